@@ -1,0 +1,100 @@
+// The plugin manifest: the one symbol a rollsense plugin library exports.
+//
+// A plugin library defines its class and one line:
+//
+//     ROLLSENSE_PLUGIN(MySensor, sensor, "my_sensor", "1.0.0",
+//                      "What it measures, in one line", my_sensor_schema)
+//
+// which exports `rollsense_plugin_manifest` (through BOOST_DLL_ALIAS). The
+// kernel reads the manifest's first fields (magic, ABI version, compiler tag)
+// before touching anything else, so a library built against another SDK is
+// reported as "ABI mismatch" instead of crashing the loader.
+#pragma once
+
+#include <cstdint>
+
+#include <boost/dll/alias.hpp>
+
+#include "rollsense/actuator.hpp"
+#include "rollsense/classifier.hpp"
+#include "rollsense/export.hpp"
+#include "rollsense/params.hpp"
+#include "rollsense/sensor.hpp"
+
+namespace rollsense {
+
+// Bump whenever a type in kernel/include/rollsense changes layout or a virtual
+// function is added, removed or reordered.
+inline constexpr std::uint32_t kPluginAbiVersion = 1;
+inline constexpr std::uint32_t kPluginMagic = 0x4c505352;  // "RSPL"
+inline constexpr const char* kPluginManifestSymbol = "rollsense_plugin_manifest";
+
+#define ROLLSENSE_STRINGIFY_IMPL(x) #x
+#define ROLLSENSE_STRINGIFY(x) ROLLSENSE_STRINGIFY_IMPL(x)
+// Plugins and kernel must agree on the C++ ABI, not just on our headers.
+#define ROLLSENSE_COMPILER_TAG "gcc-" __VERSION__ "-cxx11abi" ROLLSENSE_STRINGIFY(_GLIBCXX_USE_CXX11_ABI)
+
+enum class PluginKind : std::uint32_t { sensor = 1, actuator = 2, classifier = 3 };
+
+std::string_view to_string(PluginKind kind) noexcept;
+
+// Standard layout; the first three fields never move.
+struct PluginManifest {
+    std::uint32_t magic;
+    std::uint32_t abi_version;
+    const char* compiler_tag;
+    // -- valid only when the three fields above match the kernel's --
+    const char* name;
+    PluginKind kind;
+    const char* version;
+    const char* description;
+    ParamSchema (*schema)();
+    // Exactly one of these is set, the one matching `kind`. Typed factories
+    // (rather than one returning Component*) avoid dynamic_cast across libraries.
+    Sensor* (*create_sensor)();
+    Actuator* (*create_actuator)();
+    Classifier* (*create_classifier)();
+    void (*destroy)(Component*) noexcept;
+};
+
+using PluginManifestFn = const PluginManifest*();
+
+namespace detail {
+template <class T>
+Sensor* make_sensor() { if constexpr (std::is_base_of_v<Sensor, T>) return new T(); else return nullptr; }
+template <class T>
+Actuator* make_actuator() { if constexpr (std::is_base_of_v<Actuator, T>) return new T(); else return nullptr; }
+template <class T>
+Classifier* make_classifier() { if constexpr (std::is_base_of_v<Classifier, T>) return new T(); else return nullptr; }
+template <class T>
+void destroy(Component* c) noexcept { delete static_cast<T*>(c); }
+}  // namespace detail
+
+}  // namespace rollsense
+
+// KIND is one of: sensor, actuator, classifier. SCHEMA_FN is a function
+// `rollsense::ParamSchema fn()` listing the plugin's parameters.
+#define ROLLSENSE_PLUGIN(CLASS, KIND, NAME, VERSION, DESCRIPTION, SCHEMA_FN)                                  \
+    static_assert(std::is_base_of_v<::rollsense::Component, CLASS>, "plugin class must derive from a kind"); \
+    namespace {                                                                                             \
+    const ::rollsense::PluginManifest* rollsense_manifest_impl() {                                          \
+        constexpr auto kind = ::rollsense::PluginKind::KIND;                                                \
+        static const ::rollsense::PluginManifest manifest{                                                  \
+            ::rollsense::kPluginMagic,                                                                      \
+            ::rollsense::kPluginAbiVersion,                                                                 \
+            ROLLSENSE_COMPILER_TAG,                                                                         \
+            NAME,                                                                                           \
+            kind,                                                                                           \
+            VERSION,                                                                                        \
+            DESCRIPTION,                                                                                    \
+            &SCHEMA_FN,                                                                                     \
+            kind == ::rollsense::PluginKind::sensor ? &::rollsense::detail::make_sensor<CLASS> : nullptr,   \
+            kind == ::rollsense::PluginKind::actuator ? &::rollsense::detail::make_actuator<CLASS> : nullptr, \
+            kind == ::rollsense::PluginKind::classifier ? &::rollsense::detail::make_classifier<CLASS>      \
+                                                        : nullptr,                                          \
+            &::rollsense::detail::destroy<CLASS>,                                                           \
+        };                                                                                                  \
+        return &manifest;                                                                                   \
+    }                                                                                                       \
+    }                                                                                                       \
+    BOOST_DLL_ALIAS(rollsense_manifest_impl, rollsense_plugin_manifest)

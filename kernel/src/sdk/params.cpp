@@ -1,0 +1,263 @@
+#include "rollsense/params.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace rollsense {
+
+std::string_view to_string(ParamType type) noexcept {
+    switch (type) {
+        case ParamType::boolean: return "boolean";
+        case ParamType::integer: return "integer";
+        case ParamType::number: return "number";
+        case ParamType::string: return "string";
+        case ParamType::integer_list: return "list of integers";
+        case ParamType::number_list: return "list of numbers";
+        case ParamType::string_list: return "list of strings";
+    }
+    return "?";
+}
+
+namespace {
+
+ParamSpec make_spec(std::string name, ParamType type, std::optional<ParamValue> def, std::string doc,
+                    std::optional<double> min, std::optional<double> max, std::string unit) {
+    ParamSpec s;
+    s.name = std::move(name);
+    s.type = type;
+    s.default_value = std::move(def);
+    s.doc = std::move(doc);
+    s.min = min;
+    s.max = max;
+    s.unit = std::move(unit);
+    return s;
+}
+
+template <class T>
+std::optional<ParamValue> wrap(const std::optional<T>& v) {
+    if (!v) return std::nullopt;
+    return ParamValue{*v};
+}
+
+std::string value_type_name(const ParamValue& v) {
+    switch (v.index()) {
+        case 0: return "boolean";
+        case 1: return "integer";
+        case 2: return "number";
+        case 3: return "string";
+        case 4: return "list of integers";
+        case 5: return "list of numbers";
+        case 6: return "list of strings";
+    }
+    return "?";
+}
+
+// Convert a raw value to the declared type where the conversion loses nothing
+// (an integer where a number is expected, an integer list for a number list,
+// an empty list of any kind). Anything else is a type error.
+std::optional<ParamValue> coerce(const ParamValue& v, ParamType type) {
+    switch (type) {
+        case ParamType::boolean:
+            if (auto* b = std::get_if<bool>(&v)) return ParamValue{*b};
+            return std::nullopt;
+        case ParamType::integer:
+            if (auto* i = std::get_if<std::int64_t>(&v)) return ParamValue{*i};
+            if (auto* d = std::get_if<double>(&v); d && std::floor(*d) == *d && std::abs(*d) < 9e15)
+                return ParamValue{static_cast<std::int64_t>(*d)};
+            return std::nullopt;
+        case ParamType::number:
+            if (auto* d = std::get_if<double>(&v)) return ParamValue{*d};
+            if (auto* i = std::get_if<std::int64_t>(&v)) return ParamValue{static_cast<double>(*i)};
+            return std::nullopt;
+        case ParamType::string:
+            if (auto* s = std::get_if<std::string>(&v)) return ParamValue{*s};
+            return std::nullopt;
+        case ParamType::integer_list:
+            if (auto* l = std::get_if<std::vector<std::int64_t>>(&v)) return ParamValue{*l};
+            if (auto* l = std::get_if<std::vector<double>>(&v)) {
+                std::vector<std::int64_t> out;
+                for (double d : *l) {
+                    if (std::floor(d) != d) return std::nullopt;
+                    out.push_back(static_cast<std::int64_t>(d));
+                }
+                return ParamValue{out};
+            }
+            if (auto* l = std::get_if<std::vector<std::string>>(&v); l && l->empty())
+                return ParamValue{std::vector<std::int64_t>{}};
+            return std::nullopt;
+        case ParamType::number_list:
+            if (auto* l = std::get_if<std::vector<double>>(&v)) return ParamValue{*l};
+            if (auto* l = std::get_if<std::vector<std::int64_t>>(&v))
+                return ParamValue{std::vector<double>(l->begin(), l->end())};
+            if (auto* l = std::get_if<std::vector<std::string>>(&v); l && l->empty())
+                return ParamValue{std::vector<double>{}};
+            return std::nullopt;
+        case ParamType::string_list:
+            if (auto* l = std::get_if<std::vector<std::string>>(&v)) return ParamValue{*l};
+            if (auto* l = std::get_if<std::vector<std::int64_t>>(&v); l && l->empty())
+                return ParamValue{std::vector<std::string>{}};
+            if (auto* l = std::get_if<std::vector<double>>(&v); l && l->empty())
+                return ParamValue{std::vector<std::string>{}};
+            return std::nullopt;
+    }
+    return std::nullopt;
+}
+
+std::string format_number(double d) {
+    std::ostringstream os;
+    os.precision(10);
+    os << d;
+    return os.str();
+}
+
+std::optional<std::string> check_range(const ParamSpec& spec, double x) {
+    if ((spec.min && x < *spec.min) || (spec.max && x > *spec.max)) {
+        std::string range = "[" + (spec.min ? format_number(*spec.min) : std::string("-inf")) + ", " +
+                            (spec.max ? format_number(*spec.max) : std::string("inf")) + "]";
+        return format_number(x) + " is outside the allowed range " + range +
+               (spec.unit.empty() ? "" : " " + spec.unit);
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+ParamSpec param_bool(std::string name, std::optional<bool> def, std::string doc) {
+    return make_spec(std::move(name), ParamType::boolean, wrap(def), std::move(doc), {}, {}, {});
+}
+ParamSpec param_int(std::string name, std::optional<std::int64_t> def, std::string doc, std::optional<double> min,
+                    std::optional<double> max, std::string unit) {
+    return make_spec(std::move(name), ParamType::integer, wrap(def), std::move(doc), min, max, std::move(unit));
+}
+ParamSpec param_number(std::string name, std::optional<double> def, std::string doc, std::optional<double> min,
+                       std::optional<double> max, std::string unit) {
+    return make_spec(std::move(name), ParamType::number, wrap(def), std::move(doc), min, max, std::move(unit));
+}
+ParamSpec param_string(std::string name, std::optional<std::string> def, std::string doc,
+                       std::vector<std::string> choices) {
+    auto s = make_spec(std::move(name), ParamType::string, wrap(def), std::move(doc), {}, {}, {});
+    s.choices = std::move(choices);
+    return s;
+}
+ParamSpec param_int_list(std::string name, std::optional<std::vector<std::int64_t>> def, std::string doc,
+                         std::optional<double> min, std::optional<double> max) {
+    return make_spec(std::move(name), ParamType::integer_list, wrap(def), std::move(doc), min, max, {});
+}
+ParamSpec param_number_list(std::string name, std::optional<std::vector<double>> def, std::string doc,
+                            std::optional<double> min, std::optional<double> max, std::string unit) {
+    return make_spec(std::move(name), ParamType::number_list, wrap(def), std::move(doc), min, max, std::move(unit));
+}
+ParamSpec param_string_list(std::string name, std::optional<std::vector<std::string>> def, std::string doc) {
+    return make_spec(std::move(name), ParamType::string_list, wrap(def), std::move(doc), {}, {}, {});
+}
+
+const ParamValue& ParamSet::at(const std::string& name) const {
+    auto it = values_.find(name);
+    if (it == values_.end())
+        throw StatusError(Status(ErrorCode::invalid_argument, "parameter '" + name + "' is not declared"));
+    return it->second;
+}
+
+namespace {
+template <class T>
+const T& typed(const ParamValue& v, const std::string& name, const char* want) {
+    if (auto* p = std::get_if<T>(&v)) return *p;
+    throw StatusError(Status(ErrorCode::invalid_argument,
+                             "parameter '" + name + "' is a " + value_type_name(v) + ", not a " + want));
+}
+}  // namespace
+
+bool ParamSet::get_bool(const std::string& name) const { return typed<bool>(at(name), name, "boolean"); }
+std::int64_t ParamSet::get_int(const std::string& name) const {
+    return typed<std::int64_t>(at(name), name, "integer");
+}
+double ParamSet::get_number(const std::string& name) const {
+    const auto& v = at(name);
+    if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+    return typed<double>(v, name, "number");
+}
+const std::string& ParamSet::get_string(const std::string& name) const {
+    return typed<std::string>(at(name), name, "string");
+}
+std::vector<std::int64_t> ParamSet::get_int_list(const std::string& name) const {
+    return typed<std::vector<std::int64_t>>(at(name), name, "list of integers");
+}
+std::vector<double> ParamSet::get_number_list(const std::string& name) const {
+    const auto& v = at(name);
+    if (auto* l = std::get_if<std::vector<std::int64_t>>(&v)) return {l->begin(), l->end()};
+    return typed<std::vector<double>>(v, name, "list of numbers");
+}
+std::vector<std::string> ParamSet::get_string_list(const std::string& name) const {
+    return typed<std::vector<std::string>>(at(name), name, "list of strings");
+}
+
+Result<ParamSet> validate_params(const ParamSchema& schema, const std::map<std::string, ParamValue>& raw,
+                                 const std::string& where) {
+    ParamSet out;
+    for (const auto& [key, value] : raw) {
+        const ParamSpec* spec = nullptr;
+        for (const auto& s : schema)
+            if (s.name == key) spec = &s;
+        if (!spec) {
+            std::string known;
+            for (const auto& s : schema) known += (known.empty() ? "" : ", ") + s.name;
+            return Error{ErrorCode::invalid_argument,
+                         where + ": unknown key '" + key + "' (known keys: " + (known.empty() ? "none" : known) + ")"};
+        }
+        auto coerced = coerce(value, spec->type);
+        if (!coerced)
+            return Error{ErrorCode::invalid_argument, where + ": key '" + key + "' must be a " +
+                                                          std::string(to_string(spec->type)) + ", got a " +
+                                                          value_type_name(value) + " (" +
+                                                          format_param_value(value) + ")"};
+        std::optional<std::string> range_error;
+        if (auto* d = std::get_if<double>(&*coerced)) range_error = check_range(*spec, *d);
+        if (auto* i = std::get_if<std::int64_t>(&*coerced)) range_error = check_range(*spec, static_cast<double>(*i));
+        if (auto* l = std::get_if<std::vector<double>>(&*coerced))
+            for (double d : *l)
+                if (!range_error) range_error = check_range(*spec, d);
+        if (auto* l = std::get_if<std::vector<std::int64_t>>(&*coerced))
+            for (auto i : *l)
+                if (!range_error) range_error = check_range(*spec, static_cast<double>(i));
+        if (range_error) return Error{ErrorCode::invalid_argument, where + ": key '" + key + "': " + *range_error};
+        if (auto* s = std::get_if<std::string>(&*coerced); s && !spec->choices.empty()) {
+            bool found = false;
+            std::string list;
+            for (const auto& c : spec->choices) {
+                found = found || c == *s;
+                list += (list.empty() ? "" : ", ") + c;
+            }
+            if (!found)
+                return Error{ErrorCode::invalid_argument,
+                             where + ": key '" + key + "' is '" + *s + "', expected one of: " + list};
+        }
+        out.set(key, std::move(*coerced));
+    }
+    for (const auto& spec : schema) {
+        if (out.has(spec.name)) continue;
+        if (!spec.default_value)
+            return Error{ErrorCode::invalid_argument, where + ": required key '" + spec.name + "' is missing (" +
+                                                          std::string(to_string(spec.type)) + ": " + spec.doc + ")"};
+        out.set(spec.name, *spec.default_value);
+    }
+    return out;
+}
+
+namespace {
+struct ValueFormatter {
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(std::int64_t i) const { return std::to_string(i); }
+    std::string operator()(double d) const { return format_number(d); }
+    std::string operator()(const std::string& s) const { return "'" + s + "'"; }
+    template <class T>
+    std::string operator()(const std::vector<T>& l) const {
+        std::string out = "{";
+        for (std::size_t i = 0; i < l.size(); ++i) out += (i ? ", " : "") + (*this)(l[i]);
+        return out + "}";
+    }
+};
+}  // namespace
+
+std::string format_param_value(const ParamValue& value) { return std::visit(ValueFormatter{}, value); }
+
+}  // namespace rollsense
