@@ -1,0 +1,31 @@
+// Durable file writes: write to a temporary file in the same folder, fsync it,
+// rename it over the target, fsync the folder. A reader (or a resumed run)
+// sees either the old file or the complete new one, never a torn one, even
+// after kill -9 or a power cut.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense {
+
+Status write_file_atomic(const std::filesystem::path& file, std::string_view content);
+
+// The same for several files at once (group commit): every temporary is written
+// and synced before any rename, and the folder is synced once. Each file is
+// still atomic on its own. Used by the recorder so that a fast simulated run
+// does not pay one folder sync per trial.
+struct PendingFile {
+    std::filesystem::path file;
+    std::string content;
+};
+Status write_files_atomic(std::vector<PendingFile>& files);
+
+// Remove temporaries left by an interrupted write (".<name>.tmp-*") in a folder.
+void remove_stale_temporaries(const std::filesystem::path& folder);
+
+}  // namespace rollsense

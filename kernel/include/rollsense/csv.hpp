@@ -1,0 +1,62 @@
+// CSV as RFC 4180 writes it (comma separator, double-quoted fields with ""
+// escapes, header row), which MATLAB's readtable and pandas' read_csv read
+// without options. Every error names the file, the line and the column.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense::csv {
+
+// Streaming reader: one record at a time, so large files never load whole.
+class Reader {
+public:
+    static Result<Reader> open(const std::filesystem::path& file);
+
+    const std::vector<std::string>& header() const { return header_; }
+    // Index of a header column, or an error naming the file and the column wanted.
+    Result<std::size_t> column(std::string_view name) const;
+    // Reads the next record into `fields`; returns false at end of file. A record
+    // with another field count than the header is an error naming its line.
+    Result<bool> next(std::vector<std::string>& fields);
+    // 1-based line number where the last record returned by next() started.
+    std::size_t line() const { return record_line_; }
+    const std::filesystem::path& path() const { return path_; }
+
+    // "file:line: column 'name': message", the form of every parse error.
+    std::string where(std::size_t column_index) const;
+
+    // Strict number parsing: the whole field must be a number ("NaN" and "nan"
+    // are accepted as NaN; empty is an error).
+    Result<double> number(const std::vector<std::string>& fields, std::size_t column_index) const;
+
+private:
+    Reader() = default;
+    Result<bool> read_record(std::vector<std::string>& fields);
+
+    std::filesystem::path path_;
+    std::shared_ptr<std::ifstream> in_;
+    std::vector<std::string> header_;
+    std::size_t next_line_ = 1;
+    std::size_t record_line_ = 0;
+};
+
+// Parse a whole number field; `where` goes in the error.
+Result<double> parse_number(std::string_view text, const std::string& where);
+
+// Quote a field if it needs quoting.
+std::string escape(std::string_view field);
+// Append one record (escaped, comma separated, '\n' terminated).
+void append_row(std::string& out, const std::vector<std::string>& fields);
+// Shortest text that reads back as the same double ("%.17g"-exact, but short
+// for round values), so files are byte-identical for identical data.
+std::string format_number(double value);
+
+}  // namespace rollsense::csv

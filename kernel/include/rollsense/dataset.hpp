@@ -1,0 +1,115 @@
+// A recorded dataset on disk, the format every tool of rollsense reads and
+// writes (docs/dataset-format.md describes it for MATLAB and pandas users).
+//
+//   <dir>/dataset-info.csv   key,value: format, version, sample rate, channel and
+//                            joint column names, profile, seed (deterministic)
+//   <dir>/manifest.csv       one row per trial, in recording order
+//   <dir>/trials/<id>.csv    time,<channels...>,<joints...>,valid
+//   <dir>/run-info.csv       wall-clock provenance (date, command line, host);
+//                            kept apart so the rest is byte-identical per seed
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rollsense/atomic_file.hpp"
+#include "rollsense/status.hpp"
+#include "rollsense/types.hpp"
+
+namespace rollsense {
+
+inline constexpr const char* kDatasetFormat = "rollsense-dataset";
+inline constexpr int kDatasetFormatVersion = 1;
+
+struct DatasetInfo {
+    double sample_rate_hz = 31.1;
+    std::vector<std::string> channels;  // sensor channel columns, e.g. ch1 ch2 ch3
+    std::vector<std::string> joints;    // recorded joint position columns, e.g. sensing_finger
+    std::string profile;
+    std::uint64_t seed = 0;
+    std::string software_version;
+};
+
+// One trial's samples, column-major.
+struct TrialData {
+    std::vector<double> time;                   // seconds on the run clock
+    std::vector<std::vector<double>> channels;  // [channel][sample]
+    std::vector<std::vector<double>> joints;    // [joint][sample]
+    std::vector<std::uint8_t> valid;            // 1 = every channel read fine
+
+    std::size_t samples() const { return time.size(); }
+};
+
+struct TrialRecord {
+    TrialInfo info;
+    std::string file;             // relative to the dataset folder, e.g. trials/C1-v10-r001.csv
+    std::size_t samples = 0;
+    double start_time = 0.0;      // run clock at the first sample
+    std::size_t invalid_samples = 0;
+};
+
+class DatasetReader {
+public:
+    // Reads dataset-info.csv (optional for hand-made datasets: the columns are
+    // then inferred from the first trial file) and manifest.csv.
+    static Result<DatasetReader> open(const std::filesystem::path& dir);
+
+    const std::filesystem::path& dir() const { return dir_; }
+    const DatasetInfo& info() const { return info_; }
+    const std::vector<TrialRecord>& trials() const { return trials_; }
+    // Reads and checks one trial file: header matches the dataset's columns,
+    // every value numeric, time strictly increasing, row count = manifest.
+    Result<TrialData> load(const TrialRecord& record) const;
+
+private:
+    std::filesystem::path dir_;
+    DatasetInfo info_;
+    std::vector<TrialRecord> trials_;
+};
+
+enum class DatasetOpenMode {
+    create,  // the folder must not hold a dataset yet
+    resume,  // continue a dataset with the same info; trials already on disk are kept
+};
+
+// Writes trials durably. Each trial file is written atomically; the manifest is
+// rewritten atomically after the trial files it lists, so after a crash every
+// trial in the manifest is complete, and a trial file not yet in the manifest
+// is simply written again on resume.
+class DatasetWriter {
+public:
+    static Result<std::unique_ptr<DatasetWriter>> open(const std::filesystem::path& dir, const DatasetInfo& info,
+                                                       DatasetOpenMode mode);
+    ~DatasetWriter();
+
+    const std::filesystem::path& dir() const { return dir_; }
+    const std::vector<TrialRecord>& trials() const { return trials_; }
+    bool has_trial(const std::string& trial_id) const;
+
+    // Number of trials collected before a group commit (1 = every trial durable
+    // before the call returns).
+    void set_commit_every(std::size_t trials) { commit_every_ = trials == 0 ? 1 : trials; }
+    Status add_trial(TrialRecord record, const TrialData& data);
+    Status flush();
+
+    // Provenance outside the deterministic files.
+    Status write_run_info(const std::vector<std::pair<std::string, std::string>>& entries);
+
+private:
+    DatasetWriter() = default;
+    Status write_manifest_pending(std::vector<PendingFile>& files) const;
+
+    std::filesystem::path dir_;
+    DatasetInfo info_;
+    std::vector<TrialRecord> trials_;
+    std::vector<PendingFile> pending_;
+    std::size_t commit_every_ = 1;
+};
+
+// Render a trial as its CSV file content (used by the writer and by tests).
+std::string format_trial_csv(const DatasetInfo& info, const TrialData& data);
+
+}  // namespace rollsense

@@ -1,0 +1,85 @@
+#include "cli/command.hpp"
+
+#include <stdexcept>
+
+namespace rollsense::cli {
+namespace {
+std::vector<Command>& registry() {
+    static std::vector<Command> list;
+    return list;
+}
+
+// "--name=value" → ("--name", "value")
+bool split_equals(const std::string& arg, std::string_view name, std::string* value) {
+    if (arg.size() > name.size() && arg.compare(0, name.size(), name) == 0 && arg[name.size()] == '=') {
+        if (value) *value = arg.substr(name.size() + 1);
+        return true;
+    }
+    return false;
+}
+}  // namespace
+
+Registration::Registration(Command command) { registry().push_back(std::move(command)); }
+
+const std::vector<Command>& commands() { return registry(); }
+
+bool Args::wants_help() const {
+    for (const auto& a : args_)
+        if (a == "--help" || a == "-h") return true;
+    return false;
+}
+
+std::string Args::option(std::string_view name, std::string_view short_name) const {
+    auto all = options(name);
+    if (all.empty() && !short_name.empty()) all = options(short_name);
+    return all.empty() ? std::string() : all.back();
+}
+
+std::vector<std::string> Args::options(std::string_view name) const {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < args_.size(); ++i) {
+        std::string value;
+        if (split_equals(args_[i], name, &value)) {
+            out.push_back(value);
+        } else if (args_[i] == name) {
+            if (i + 1 >= args_.size()) throw UsageError("option " + std::string(name) + " needs a value");
+            out.push_back(args_[++i]);
+        }
+    }
+    return out;
+}
+
+bool Args::flag(std::string_view name) const {
+    for (const auto& a : args_)
+        if (a == name) return true;
+    return false;
+}
+
+std::vector<std::string> Args::positionals(const std::vector<std::string>& valued) const {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < args_.size(); ++i) {
+        const auto& a = args_[i];
+        if (a.size() > 1 && a[0] == '-') {
+            bool takes_value = false;
+            for (const auto& v : valued) takes_value = takes_value || a == v;
+            if (takes_value) ++i;
+            continue;
+        }
+        out.push_back(a);
+    }
+    return out;
+}
+
+void Args::reject_unknown(const std::vector<std::string>& known) const {
+    for (const auto& a : args_) {
+        if (a.size() < 2 || a[0] != '-' || a == "-") continue;
+        if (a == "--help" || a == "-h") continue;
+        bool ok = false;
+        for (const auto& k : known) ok = ok || a == k || split_equals(a, k, nullptr);
+        // a negative number is a value, not an option
+        if (!ok && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.')) ok = true;
+        if (!ok) throw UsageError("unknown option '" + a + "' (see --help)");
+    }
+}
+
+}  // namespace rollsense::cli

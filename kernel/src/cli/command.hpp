@@ -1,0 +1,67 @@
+// Subcommands of the `rollsense` program. Each lives in its own
+// cmd_<name>.cpp and registers itself at static-initialisation time:
+//
+//     static const rollsense::cli::Registration reg{{
+//         "features", "extract the 13 features of a dataset",
+//         "usage: rollsense features DATASET -o FILE [options]\n...", &run_features}};
+//
+// `run` receives the arguments after the subcommand name and returns the
+// process exit code (see ExitCode).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rollsense::cli {
+
+// Exit codes shared by every subcommand (documented in `rollsense --help`).
+enum ExitCode : int {
+    kExitOk = 0,
+    kExitFailure = 1,      // the job ran and failed (a script error, a failed test of the data)
+    kExitUsage = 2,        // bad command line
+    kExitConfig = 3,       // a profile, plugin or input file is wrong
+    kExitHardware = 4,     // a device failed or stopped answering
+    kExitCancelled = 130,  // interrupted (Ctrl-C, emergency stop)
+};
+
+struct Command {
+    std::string name;
+    std::string summary;  // one line for the command list
+    std::string help;     // full text for `rollsense <name> --help`
+    int (*run)(const std::vector<std::string>& args);
+};
+
+struct Registration {
+    explicit Registration(Command command);
+};
+
+const std::vector<Command>& commands();
+
+// Small argument helpers so every command parses the same way.
+class Args {
+public:
+    explicit Args(const std::vector<std::string>& args) : args_(args) {}
+    // True if --help or -h is present.
+    bool wants_help() const;
+    // Value of "--name VALUE" or "--name=VALUE"; empty if absent. Throws
+    // UsageError if the option is present without a value.
+    std::string option(std::string_view name, std::string_view short_name = {}) const;
+    std::vector<std::string> options(std::string_view name) const;  // every occurrence
+    bool flag(std::string_view name) const;
+    // Arguments that are neither options nor option values. `valued` lists
+    // options that take a value (so their value is not mistaken for a positional).
+    std::vector<std::string> positionals(const std::vector<std::string>& valued) const;
+    // Error on any --option not in `known` (so a typo is not silently ignored).
+    void reject_unknown(const std::vector<std::string>& known) const;
+
+private:
+    const std::vector<std::string>& args_;
+};
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+}  // namespace rollsense::cli

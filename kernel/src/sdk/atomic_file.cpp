@@ -1,0 +1,103 @@
+#include "rollsense/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+
+namespace rollsense {
+namespace {
+
+std::string errno_text() { return std::strerror(errno); }
+
+std::filesystem::path temporary_for(const std::filesystem::path& file) {
+    static std::atomic<unsigned> counter{0};
+    return file.parent_path() /
+           ("." + file.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+}
+
+Status write_and_sync(const std::filesystem::path& path, std::string_view content) {
+    int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return {ErrorCode::io_error, path.string() + ": cannot create: " + errno_text()};
+    const char* p = content.data();
+    std::size_t left = content.size();
+    while (left > 0) {
+        ssize_t n = ::write(fd, p, left);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            Status s{ErrorCode::io_error, path.string() + ": write failed: " + errno_text()};
+            ::close(fd);
+            return s;
+        }
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    if (::fdatasync(fd) != 0) {
+        Status s{ErrorCode::io_error, path.string() + ": fsync failed: " + errno_text()};
+        ::close(fd);
+        return s;
+    }
+    if (::close(fd) != 0) return {ErrorCode::io_error, path.string() + ": close failed: " + errno_text()};
+    return {};
+}
+
+Status sync_folder(const std::filesystem::path& folder) {
+    int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return {ErrorCode::io_error, folder.string() + ": cannot open folder to sync: " + errno_text()};
+    int rc = ::fsync(fd);
+    ::close(fd);
+    if (rc != 0) return {ErrorCode::io_error, folder.string() + ": folder fsync failed: " + errno_text()};
+    return {};
+}
+
+}  // namespace
+
+Status write_files_atomic(std::vector<PendingFile>& files) {
+    std::vector<std::filesystem::path> temps;
+    temps.reserve(files.size());
+    auto discard = [&] {
+        std::error_code ec;
+        for (const auto& t : temps) std::filesystem::remove(t, ec);
+    };
+    for (const auto& f : files) {
+        temps.push_back(temporary_for(f.file));
+        if (auto s = write_and_sync(temps.back(), f.content); !s.ok()) {
+            discard();
+            return s;
+        }
+    }
+    std::vector<std::filesystem::path> folders;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        if (::rename(temps[i].c_str(), files[i].file.c_str()) != 0) {
+            Status s{ErrorCode::io_error, files[i].file.string() + ": rename failed: " + errno_text()};
+            discard();
+            return s;
+        }
+        auto folder = files[i].file.parent_path();
+        bool seen = false;
+        for (const auto& f : folders) seen = seen || f == folder;
+        if (!seen) folders.push_back(folder);
+    }
+    for (const auto& folder : folders)
+        if (auto s = sync_folder(folder); !s.ok()) return s;
+    return {};
+}
+
+Status write_file_atomic(const std::filesystem::path& file, std::string_view content) {
+    std::vector<PendingFile> one{{file, std::string(content)}};
+    return write_files_atomic(one);
+}
+
+void remove_stale_temporaries(const std::filesystem::path& folder) {
+    std::error_code ec;
+    for (auto it = std::filesystem::directory_iterator(folder, ec); !ec && it != std::filesystem::directory_iterator();
+         it.increment(ec)) {
+        const auto name = it->path().filename().string();
+        if (name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos)
+            std::filesystem::remove(it->path(), ec);
+    }
+}
+
+}  // namespace rollsense

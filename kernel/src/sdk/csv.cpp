@@ -1,0 +1,150 @@
+#include "rollsense/csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace rollsense::csv {
+
+Result<Reader> Reader::open(const std::filesystem::path& file) {
+    Reader r;
+    r.path_ = file;
+    r.in_ = std::make_shared<std::ifstream>(file, std::ios::binary);
+    if (!*r.in_) {
+        std::error_code ec;
+        if (!std::filesystem::exists(file, ec))
+            return Error{ErrorCode::not_found, file.string() + ": no such file"};
+        return Error{ErrorCode::io_error, file.string() + ": cannot be opened for reading (check permissions)"};
+    }
+    auto got = r.read_record(r.header_);
+    if (!got.ok()) return got.error();
+    if (!got.value() || (r.header_.size() == 1 && r.header_[0].empty()))
+        return Error{ErrorCode::parse_error, file.string() + ":1: the file is empty (a header row is expected)"};
+    return r;
+}
+
+Result<std::size_t> Reader::column(std::string_view name) const {
+    for (std::size_t i = 0; i < header_.size(); ++i)
+        if (header_[i] == name) return i;
+    std::string have;
+    for (const auto& h : header_) have += (have.empty() ? "" : ", ") + h;
+    return Error{ErrorCode::parse_error,
+                 path_.string() + ":1: no column '" + std::string(name) + "' in the header (columns: " + have + ")"};
+}
+
+Result<bool> Reader::read_record(std::vector<std::string>& fields) {
+    fields.clear();
+    record_line_ = next_line_;
+    std::string field;
+    bool in_quotes = false, any = false, field_was_quoted = false;
+    int c;
+    std::istream& in = *in_;
+    while ((c = in.get()) != EOF) {
+        any = true;
+        if (in_quotes) {
+            if (c == '"') {
+                if (in.peek() == '"') {
+                    in.get();
+                    field.push_back('"');
+                } else {
+                    in_quotes = false;
+                }
+            } else {
+                if (c == '\n') ++next_line_;
+                field.push_back(static_cast<char>(c));
+            }
+            continue;
+        }
+        if (c == '"' && field.empty() && !field_was_quoted) {
+            in_quotes = true;
+            field_was_quoted = true;
+        } else if (c == ',') {
+            fields.push_back(std::move(field));
+            field.clear();
+            field_was_quoted = false;
+        } else if (c == '\r') {
+            // tolerate CRLF line ends (files edited on Windows / exported by MATLAB)
+        } else if (c == '\n') {
+            ++next_line_;
+            fields.push_back(std::move(field));
+            return true;
+        } else {
+            field.push_back(static_cast<char>(c));
+        }
+    }
+    if (in_quotes)
+        return Error{ErrorCode::parse_error, path_.string() + ":" + std::to_string(record_line_) +
+                                                 ": a quoted field is not closed before the end of the file"};
+    if (!any) return false;
+    fields.push_back(std::move(field));
+    return true;
+}
+
+Result<bool> Reader::next(std::vector<std::string>& fields) {
+    for (;;) {
+        auto got = read_record(fields);
+        if (!got.ok() || !got.value()) return got;
+        if (fields.size() == 1 && fields[0].empty()) continue;  // blank line
+        if (fields.size() != header_.size())
+            return Error{ErrorCode::parse_error,
+                         path_.string() + ":" + std::to_string(record_line_) + ": " + std::to_string(fields.size()) +
+                             " fields, the header has " + std::to_string(header_.size()) +
+                             " (a truncated or malformed row)"};
+        return true;
+    }
+}
+
+std::string Reader::where(std::size_t column_index) const {
+    std::string col = column_index < header_.size() ? header_[column_index] : std::to_string(column_index + 1);
+    return path_.string() + ":" + std::to_string(record_line_) + ": column '" + col + "'";
+}
+
+Result<double> Reader::number(const std::vector<std::string>& fields, std::size_t column_index) const {
+    return parse_number(fields.at(column_index), where(column_index));
+}
+
+Result<double> parse_number(std::string_view text, const std::string& where) {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    if (text == "NaN" || text == "nan" || text == "NAN") return std::numeric_limits<double>::quiet_NaN();
+    if (text.empty()) return Error{ErrorCode::parse_error, where + ": empty field where a number is expected"};
+    double value = 0;
+    const char* first = text.data();
+    if (*first == '+') ++first;
+    auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), value);
+    if (ec != std::errc() || ptr != text.data() + text.size())
+        return Error{ErrorCode::parse_error, where + ": '" + std::string(text) + "' is not a number"};
+    return value;
+}
+
+std::string escape(std::string_view field) {
+    if (field.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(field);
+    std::string out = "\"";
+    for (char c : field) {
+        if (c == '"') out.push_back('"');
+        out.push_back(c);
+    }
+    out.push_back('"');
+    return out;
+}
+
+void append_row(std::string& out, const std::vector<std::string>& fields) {
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+        if (i) out.push_back(',');
+        out += escape(fields[i]);
+    }
+    out.push_back('\n');
+}
+
+std::string format_number(double value) {
+    if (std::isnan(value)) return "NaN";
+    if (std::isinf(value)) return value > 0 ? "Inf" : "-Inf";
+    char buf[32];
+    // Shortest representation that round-trips exactly.
+    auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value);
+    if (ec != std::errc()) return std::to_string(value);
+    return std::string(buf, ptr);
+}
+
+}  // namespace rollsense::csv

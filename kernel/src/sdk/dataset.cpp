@@ -1,0 +1,406 @@
+#include "rollsense/dataset.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "rollsense/csv.hpp"
+#include "rollsense/log.hpp"
+
+namespace rollsense {
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<std::string> kManifestColumns = {"trial_id", "file",       "object",     "speed",
+                                                    "repetition", "seed",    "samples",    "start_time",
+                                                    "invalid_samples", "extra"};
+
+std::string join(const std::vector<std::string>& v, char sep) {
+    std::string out;
+    for (std::size_t i = 0; i < v.size(); ++i) out += (i ? std::string(1, sep) : "") + v[i];
+    return out;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    if (s.empty()) return out;
+    std::string cur;
+    for (char c : s) {
+        if (c == sep) {
+            out.push_back(cur);
+            cur.clear();
+        } else {
+            cur.push_back(c);
+        }
+    }
+    out.push_back(cur);
+    return out;
+}
+
+// "key=value;key=value" for the manifest's free-form column.
+std::string format_extra(const std::map<std::string, std::string>& extra) {
+    std::string out;
+    for (const auto& [k, v] : extra) out += (out.empty() ? "" : ";") + k + "=" + v;
+    return out;
+}
+std::map<std::string, std::string> parse_extra(const std::string& text) {
+    std::map<std::string, std::string> out;
+    for (const auto& item : split(text, ';')) {
+        auto eq = item.find('=');
+        if (eq != std::string::npos) out[item.substr(0, eq)] = item.substr(eq + 1);
+    }
+    return out;
+}
+
+std::string format_info(const DatasetInfo& info) {
+    std::string out;
+    csv::append_row(out, {"key", "value"});
+    csv::append_row(out, {"format", kDatasetFormat});
+    csv::append_row(out, {"format_version", std::to_string(kDatasetFormatVersion)});
+    csv::append_row(out, {"sample_rate_hz", csv::format_number(info.sample_rate_hz)});
+    csv::append_row(out, {"channels", join(info.channels, ' ')});
+    csv::append_row(out, {"joints", join(info.joints, ' ')});
+    csv::append_row(out, {"profile", info.profile});
+    csv::append_row(out, {"seed", std::to_string(info.seed)});
+    csv::append_row(out, {"software_version", info.software_version});
+    return out;
+}
+
+Result<DatasetInfo> read_info(const fs::path& file) {
+    auto reader = csv::Reader::open(file);
+    if (!reader) return reader.error();
+    auto key_col = reader->column("key");
+    auto val_col = reader->column("value");
+    if (!key_col) return key_col.error();
+    if (!val_col) return val_col.error();
+    DatasetInfo info;
+    std::vector<std::string> f;
+    bool format_seen = false;
+    for (;;) {
+        auto more = reader->next(f);
+        if (!more) return more.error();
+        if (!*more) break;
+        const auto& key = f[*key_col];
+        const auto& value = f[*val_col];
+        if (key == "format") {
+            if (value != kDatasetFormat)
+                return Error{ErrorCode::parse_error, reader->where(*val_col) + ": format is '" + value +
+                                                         "', expected '" + kDatasetFormat + "'"};
+            format_seen = true;
+        } else if (key == "format_version") {
+            auto v = reader->number(f, *val_col);
+            if (!v) return v.error();
+            if (*v > kDatasetFormatVersion)
+                return Error{ErrorCode::parse_error, reader->where(*val_col) + ": format version " + value +
+                                                         " is newer than this rollsense reads (" +
+                                                         std::to_string(kDatasetFormatVersion) +
+                                                         "); upgrade rollsense"};
+        } else if (key == "sample_rate_hz") {
+            auto v = reader->number(f, *val_col);
+            if (!v) return v.error();
+            info.sample_rate_hz = *v;
+        } else if (key == "channels") {
+            info.channels = split(value, ' ');
+        } else if (key == "joints") {
+            info.joints = split(value, ' ');
+        } else if (key == "profile") {
+            info.profile = value;
+        } else if (key == "seed") {
+            auto v = reader->number(f, *val_col);
+            if (!v) return v.error();
+            info.seed = std::stoull(value);
+        } else if (key == "software_version") {
+            info.software_version = value;
+        }
+    }
+    if (!format_seen) return Error{ErrorCode::parse_error, file.string() + ": no 'format' row; not a rollsense dataset"};
+    return info;
+}
+
+Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
+    auto reader = csv::Reader::open(file);
+    if (!reader) return reader.error();
+    std::vector<std::size_t> col;
+    for (const auto& name : kManifestColumns) {
+        if (name == "extra" || name == "invalid_samples" || name == "start_time" || name == "seed") {
+            auto c = reader->column(name);
+            col.push_back(c ? *c : SIZE_MAX);  // optional in hand-made manifests
+            continue;
+        }
+        auto c = reader->column(name);
+        if (!c) return c.error();
+        col.push_back(*c);
+    }
+    std::vector<TrialRecord> out;
+    std::set<std::string> ids;
+    std::vector<std::string> f;
+    auto integer = [&](std::size_t c) -> Result<double> {
+        if (c == SIZE_MAX) return 0.0;
+        auto v = reader->number(f, c);
+        if (!v) return v.error();
+        if (*v < 0 || std::floor(*v) != *v)
+            return Error{ErrorCode::parse_error, reader->where(c) + ": '" + f[c] + "' is not a whole number >= 0"};
+        return *v;
+    };
+    for (;;) {
+        auto more = reader->next(f);
+        if (!more) return more.error();
+        if (!*more) break;
+        TrialRecord r;
+        r.info.id = f[col[0]];
+        r.file = f[col[1]];
+        r.info.object = f[col[2]];
+        r.info.speed = f[col[3]];
+        auto rep = integer(col[4]);
+        if (!rep) return rep.error();
+        r.info.repetition = static_cast<int>(*rep);
+        if (col[5] != SIZE_MAX) {
+            auto seed = integer(col[5]);
+            if (!seed) return seed.error();
+            r.info.seed = std::stoull(f[col[5]]);
+        }
+        auto samples = integer(col[6]);
+        if (!samples) return samples.error();
+        r.samples = static_cast<std::size_t>(*samples);
+        if (col[7] != SIZE_MAX) {
+            auto t = reader->number(f, col[7]);
+            if (!t) return t.error();
+            r.start_time = *t;
+        }
+        auto invalid = integer(col[8]);
+        if (!invalid) return invalid.error();
+        r.invalid_samples = static_cast<std::size_t>(*invalid);
+        if (col[9] != SIZE_MAX) r.info.extra = parse_extra(f[col[9]]);
+        if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader->where(col[0]) + ": empty trial id"};
+        if (!ids.insert(r.info.id).second)
+            return Error{ErrorCode::parse_error, reader->where(col[0]) + ": trial id '" + r.info.id + "' appears twice"};
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string format_trial_csv(const DatasetInfo& info, const TrialData& data) {
+    std::string out;
+    out.reserve(64 + data.samples() * (12 * (2 + info.channels.size() + info.joints.size())));
+    std::vector<std::string> header{"time"};
+    header.insert(header.end(), info.channels.begin(), info.channels.end());
+    header.insert(header.end(), info.joints.begin(), info.joints.end());
+    header.push_back("valid");
+    csv::append_row(out, header);
+    for (std::size_t i = 0; i < data.samples(); ++i) {
+        out += csv::format_number(data.time[i]);
+        for (const auto& ch : data.channels) {
+            out.push_back(',');
+            out += csv::format_number(ch[i]);
+        }
+        for (const auto& j : data.joints) {
+            out.push_back(',');
+            out += csv::format_number(j[i]);
+        }
+        out += (i < data.valid.size() && !data.valid[i]) ? ",0\n" : ",1\n";
+    }
+    return out;
+}
+
+// ------------------------------------------------------------------ reader --
+
+Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
+    DatasetReader r;
+    r.dir_ = dir;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        return Error{ErrorCode::not_found, dir.string() + ": no such dataset folder"};
+    auto manifest = read_manifest(dir / "manifest.csv");
+    if (!manifest) return manifest.error();
+    r.trials_ = std::move(*manifest);
+    if (fs::exists(dir / "dataset-info.csv", ec)) {
+        auto info = read_info(dir / "dataset-info.csv");
+        if (!info) return info.error();
+        r.info_ = std::move(*info);
+    } else {
+        // A hand-made dataset: columns come from the first trial file; every
+        // column between time and valid whose name starts with "ch" is a channel.
+        if (r.trials_.empty())
+            return Error{ErrorCode::parse_error, (dir / "manifest.csv").string() + ": lists no trials"};
+        auto first = csv::Reader::open(dir / r.trials_.front().file);
+        if (!first) return Error{ErrorCode::not_found, (dir / "manifest.csv").string() + ": trial '" +
+                                                           r.trials_.front().info.id + "': " + first.error().message};
+        for (const auto& h : first->header()) {
+            if (h == "time" || h == "valid") continue;
+            (h.rfind("ch", 0) == 0 ? r.info_.channels : r.info_.joints).push_back(h);
+        }
+    }
+    for (const auto& t : r.trials_)
+        if (!fs::exists(dir / t.file, ec))
+            return Error{ErrorCode::not_found, (dir / "manifest.csv").string() + ": trial '" + t.info.id +
+                                                   "' points at missing file '" + t.file + "'"};
+    return r;
+}
+
+Result<TrialData> DatasetReader::load(const TrialRecord& record) const {
+    auto reader = csv::Reader::open(dir_ / record.file);
+    if (!reader) return reader.error();
+    auto time_col = reader->column("time");
+    if (!time_col) return time_col.error();
+    std::vector<std::size_t> ch_cols, joint_cols;
+    for (const auto& c : info_.channels) {
+        auto col = reader->column(c);
+        if (!col)
+            return Error{ErrorCode::parse_error, col.error().message + " — the dataset has " +
+                                                     std::to_string(info_.channels.size()) + " channels"};
+        ch_cols.push_back(*col);
+    }
+    for (const auto& j : info_.joints) {
+        auto col = reader->column(j);
+        if (!col) return col.error();
+        joint_cols.push_back(*col);
+    }
+    std::size_t valid_col = SIZE_MAX;
+    if (auto v = reader->column("valid"); v) valid_col = *v;
+
+    TrialData d;
+    d.channels.resize(ch_cols.size());
+    d.joints.resize(joint_cols.size());
+    const std::size_t expected = record.samples;
+    d.time.reserve(expected);
+    for (auto& c : d.channels) c.reserve(expected);
+    std::vector<std::string> f;
+    for (;;) {
+        auto more = reader->next(f);
+        if (!more) return more.error();
+        if (!*more) break;
+        auto t = reader->number(f, *time_col);
+        if (!t) return t.error();
+        if (!std::isfinite(*t))
+            return Error{ErrorCode::parse_error, reader->where(*time_col) + ": time must be a finite number"};
+        if (!d.time.empty() && *t <= d.time.back())
+            return Error{ErrorCode::parse_error, reader->where(*time_col) + ": time " + f[*time_col] +
+                                                     " does not increase (previous " +
+                                                     csv::format_number(d.time.back()) + ")"};
+        d.time.push_back(*t);
+        for (std::size_t c = 0; c < ch_cols.size(); ++c) {
+            auto v = reader->number(f, ch_cols[c]);
+            if (!v) return v.error();
+            d.channels[c].push_back(*v);
+        }
+        for (std::size_t j = 0; j < joint_cols.size(); ++j) {
+            auto v = reader->number(f, joint_cols[j]);
+            if (!v) return v.error();
+            d.joints[j].push_back(*v);
+        }
+        if (valid_col != SIZE_MAX) {
+            const auto& v = f[valid_col];
+            if (v != "0" && v != "1")
+                return Error{ErrorCode::parse_error, reader->where(valid_col) + ": '" + v + "' is not 0 or 1"};
+            d.valid.push_back(v == "1" ? 1 : 0);
+        } else {
+            d.valid.push_back(1);
+        }
+    }
+    if (record.samples != 0 && d.samples() != record.samples)
+        return Error{ErrorCode::parse_error, (dir_ / record.file).string() + ": " + std::to_string(d.samples()) +
+                                                 " samples, the manifest says " + std::to_string(record.samples) +
+                                                 " (a truncated file?)"};
+    return d;
+}
+
+// ------------------------------------------------------------------ writer --
+
+Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, const DatasetInfo& info,
+                                                           DatasetOpenMode mode) {
+    std::unique_ptr<DatasetWriter> w(new DatasetWriter());
+    w->dir_ = dir;
+    w->info_ = info;
+    std::error_code ec;
+    const bool exists = fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec);
+    if (mode == DatasetOpenMode::create && exists)
+        return Error{ErrorCode::invalid_argument, dir.string() +
+                                                      " already holds a dataset; continue it with --resume, or "
+                                                      "choose another folder with --out"};
+    fs::create_directories(dir / "trials", ec);
+    if (ec) return Error{ErrorCode::io_error, (dir / "trials").string() + ": cannot create: " + ec.message()};
+    remove_stale_temporaries(dir);
+    remove_stale_temporaries(dir / "trials");
+    if (mode == DatasetOpenMode::resume && exists) {
+        auto on_disk = DatasetReader::open(dir);
+        if (!on_disk) return Error{on_disk.error().code, "cannot resume: " + on_disk.error().message};
+        const auto& old = on_disk->info();
+        if (old.seed != info.seed || old.profile != info.profile || old.channels != info.channels ||
+            old.joints != info.joints || old.sample_rate_hz != info.sample_rate_hz)
+            return Error{ErrorCode::invalid_argument,
+                         dir.string() + " was recorded with another setup (profile '" + old.profile + "', seed " +
+                             std::to_string(old.seed) + "); resume it with the same --profile and --seed, or "
+                                                        "choose another folder with --out"};
+        w->trials_ = on_disk->trials();
+    }
+    std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)}};
+    if (auto s = w->write_manifest_pending(files); !s.ok()) return s.error();
+    if (auto s = write_files_atomic(files); !s.ok()) return s.error();
+    return w;
+}
+
+DatasetWriter::~DatasetWriter() {
+    if (auto s = flush(); !s.ok()) log_error("dataset", s.error().describe());
+}
+
+bool DatasetWriter::has_trial(const std::string& trial_id) const {
+    for (const auto& t : trials_)
+        if (t.info.id == trial_id) return true;
+    return false;
+}
+
+Status DatasetWriter::write_manifest_pending(std::vector<PendingFile>& files) const {
+    std::string out;
+    csv::append_row(out, kManifestColumns);
+    for (const auto& t : trials_)
+        csv::append_row(out, {t.info.id, t.file, t.info.object, t.info.speed, std::to_string(t.info.repetition),
+                              std::to_string(t.info.seed), std::to_string(t.samples),
+                              csv::format_number(t.start_time), std::to_string(t.invalid_samples),
+                              format_extra(t.info.extra)});
+    files.push_back({dir_ / "manifest.csv", std::move(out)});
+    return {};
+}
+
+Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
+    if (record.info.id.empty() || record.info.id.find_first_of("/\\") != std::string::npos ||
+        record.info.id[0] == '.')
+        return {ErrorCode::invalid_argument,
+                "trial id '" + record.info.id + "' cannot name a file (no '/', no leading '.')"};
+    if (has_trial(record.info.id))
+        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string()};
+    if (data.channels.size() != info_.channels.size() || data.joints.size() != info_.joints.size())
+        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' has " +
+                                                 std::to_string(data.channels.size()) + " channels, the dataset " +
+                                                 std::to_string(info_.channels.size())};
+    record.file = "trials/" + record.info.id + ".csv";
+    record.samples = data.samples();
+    record.invalid_samples = 0;
+    for (auto v : data.valid) record.invalid_samples += v ? 0 : 1;
+    if (!data.time.empty()) record.start_time = data.time.front();
+    pending_.push_back({dir_ / record.file, format_trial_csv(info_, data)});
+    trials_.push_back(std::move(record));
+    if (pending_.size() >= commit_every_) return flush();
+    return {};
+}
+
+Status DatasetWriter::flush() {
+    if (pending_.empty()) return {};
+    // Trial files first (synced and renamed), then the manifest that lists them.
+    if (auto s = write_files_atomic(pending_); !s.ok()) return s;
+    pending_.clear();
+    std::vector<PendingFile> manifest;
+    (void)write_manifest_pending(manifest);
+    return write_files_atomic(manifest);
+}
+
+Status DatasetWriter::write_run_info(const std::vector<std::pair<std::string, std::string>>& entries) {
+    std::string out;
+    csv::append_row(out, {"key", "value"});
+    for (const auto& [k, v] : entries) csv::append_row(out, {k, v});
+    return write_file_atomic(dir_ / "run-info.csv", out);
+}
+
+}  // namespace rollsense
