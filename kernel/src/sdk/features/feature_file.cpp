@@ -1,0 +1,198 @@
+// Features of a whole dataset, and the features CSV that MATLAB's
+// Classification Learner and pandas read directly.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <thread>
+
+#include "rollsense/atomic_file.hpp"
+#include "rollsense/csv.hpp"
+#include "rollsense/features.hpp"
+
+namespace rollsense::features {
+
+Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, const FeatureSettings& settings,
+                                                unsigned threads) {
+    const auto& trials = dataset.trials();
+    if (dataset.info().channels.size() < kChannels && !dataset.info().channels.empty())
+        return Error{ErrorCode::invalid_argument, "dataset " + dataset.dir().string() + " has " +
+                                                      std::to_string(dataset.info().channels.size()) +
+                                                      " sensor channels; the features need 3 (ch1..ch3)"};
+    std::vector<FeatureRow> rows(trials.size());
+    std::vector<Status> errors(trials.size());
+    std::atomic<std::size_t> next{0};
+
+    auto work = [&] {
+        FeatureExtractor extractor(settings);
+        for (;;) {
+            const std::size_t i = next.fetch_add(1);
+            if (i >= trials.size()) return;
+            const auto& rec = trials[i];
+            auto data = dataset.load(rec);
+            if (!data) {
+                errors[i] = data.status();
+                continue;
+            }
+            if (data->channels.size() < kChannels) {
+                errors[i] = Status(ErrorCode::invalid_argument,
+                                   dataset.dir().string() + "/" + rec.file + ": " +
+                                       std::to_string(data->channels.size()) + " channels, the features need 3");
+                continue;
+            }
+            std::array<std::span<const double>, kChannels> ch;
+            for (std::size_t c = 0; c < kChannels; ++c) ch[c] = data->channels[c];
+            auto tf = extractor.extract(std::span<const std::span<const double>>(ch), data->time);
+            if (!tf) {
+                errors[i] = std::move(tf).status().with_context(dataset.dir().string() + "/" + rec.file);
+                continue;
+            }
+            FeatureRow& row = rows[i];
+            row.trial_id = rec.info.id;
+            row.object = rec.info.object;
+            row.speed = rec.info.speed;
+            row.repetition = rec.info.repetition;
+            row.clean = tf->clean;
+            row.reason = tf->reason;
+            row.values = tf->values;
+            for (std::size_t c = 0; c < kChannels; ++c) row.windows[c] = tf->channels[c].window;
+        }
+    };
+    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(trials.size(), 1)));
+    if (threads <= 1) {
+        work();
+    } else {
+        std::vector<std::thread> pool;
+        for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
+        for (auto& t : pool) t.join();
+    }
+    for (auto& e : errors)
+        if (!e.ok()) return e;
+    return rows;
+}
+
+std::string format_features_csv(const std::vector<FeatureRow>& rows) {
+    std::vector<std::string> header = {"trial_id", "object", "speed", "repetition", "clean", "reason"};
+    for (const auto& n : feature_names()) header.push_back(n);
+    for (std::size_t c = 0; c < kChannels; ++c) header.push_back("window_ch" + std::to_string(c + 1));
+    std::string out;
+    csv::append_row(out, header);
+    std::vector<std::string> f;
+    for (const auto& r : rows) {
+        f.clear();
+        f.push_back(r.trial_id);
+        f.push_back(r.object);
+        f.push_back(r.speed);
+        f.push_back(std::to_string(r.repetition));
+        f.push_back(r.clean ? "1" : "0");
+        f.push_back(r.reason);
+        // Rejected trials keep their row but get empty features, which both
+        // readtable and read_csv load as NaN: never silently usable.
+        for (double v : r.values) f.push_back(r.clean && std::isfinite(v) ? csv::format_number(v) : "");
+        for (int w : r.windows) f.push_back(std::to_string(w));
+        csv::append_row(out, f);
+    }
+    return out;
+}
+
+Status write_features_csv(const std::filesystem::path& file, const std::vector<FeatureRow>& rows) {
+    return write_file_atomic(file, format_features_csv(rows));
+}
+
+Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& file) {
+    auto reader = csv::Reader::open(file);
+    if (!reader) return reader.error();
+    auto& r = *reader;
+    auto required = [&](std::string_view name) { return r.column(name); };
+    auto optional = [&](std::string_view name) -> std::size_t {
+        auto c = r.column(name);
+        return c ? *c : SIZE_MAX;
+    };
+    auto id_col = required("trial_id");
+    if (!id_col) return id_col.error();
+    auto obj_col = required("object");
+    if (!obj_col) return obj_col.error();
+    auto clean_col = required("clean");
+    if (!clean_col) return clean_col.error();
+    std::array<std::size_t, kFeatureCount> fcol{};
+    for (std::size_t k = 0; k < kFeatureCount; ++k) {
+        auto c = required(feature_names()[k]);
+        if (!c) return c.error();
+        fcol[k] = *c;
+    }
+    const std::size_t speed_col = optional("speed"), rep_col = optional("repetition"), reason_col = optional("reason");
+    std::array<std::size_t, kChannels> wcol{};
+    for (std::size_t c = 0; c < kChannels; ++c) wcol[c] = optional("window_ch" + std::to_string(c + 1));
+
+    std::vector<FeatureRow> rows;
+    std::vector<std::string> f;
+    for (;;) {
+        auto more = r.next(f);
+        if (!more) return more.error();
+        if (!*more) break;
+        FeatureRow row;
+        row.trial_id = f[*id_col];
+        row.object = f[*obj_col];
+        const std::string& cl = f[*clean_col];
+        if (cl == "1" || cl == "true" || cl == "TRUE" || cl == "True") row.clean = true;
+        else if (cl == "0" || cl == "false" || cl == "FALSE" || cl == "False") row.clean = false;
+        else
+            return Error{ErrorCode::parse_error,
+                         r.where(*clean_col) + ": '" + cl + "' is not a clean flag (expected 1 or 0)"};
+        if (speed_col != SIZE_MAX) row.speed = f[speed_col];
+        if (reason_col != SIZE_MAX) row.reason = f[reason_col];
+        if (rep_col != SIZE_MAX && !f[rep_col].empty()) {
+            auto v = r.number(f, rep_col);
+            if (!v) return v.error();
+            row.repetition = static_cast<int>(*v);
+        }
+        for (std::size_t k = 0; k < kFeatureCount; ++k) {
+            if (f[fcol[k]].empty()) {
+                row.values[k] = std::numeric_limits<double>::quiet_NaN();
+                continue;
+            }
+            auto v = r.number(f, fcol[k]);
+            if (!v) return v.error();
+            row.values[k] = *v;
+        }
+        if (row.clean && !std::all_of(row.values.begin(), row.values.end(), [](double v) { return std::isfinite(v); }))
+            return Error{ErrorCode::parse_error, r.path().string() + ":" + std::to_string(r.line()) +
+                                                     ": trial '" + row.trial_id +
+                                                     "' is marked clean but has a missing or non-finite feature"};
+        for (std::size_t c = 0; c < kChannels; ++c) {
+            if (wcol[c] == SIZE_MAX || f[wcol[c]].empty()) continue;
+            auto v = r.number(f, wcol[c]);
+            if (!v) return v.error();
+            row.windows[c] = static_cast<int>(*v);
+        }
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+
+FeatureTable to_feature_table(const std::vector<FeatureRow>& rows, std::vector<std::size_t>* row_index) {
+    FeatureTable t;
+    t.feature_names.assign(feature_names().begin(), feature_names().end());
+    std::map<std::string, int> classes;
+    for (const auto& r : rows)
+        if (r.clean) classes.emplace(r.object, 0);
+    int next = 0;
+    for (auto& [name, id] : classes) {
+        id = next++;
+        t.class_names.push_back(name);
+    }
+    if (row_index) row_index->clear();
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const auto& r = rows[i];
+        if (!r.clean) continue;
+        t.x.insert(t.x.end(), r.values.begin(), r.values.end());
+        t.y.push_back(classes[r.object]);
+        if (row_index) row_index->push_back(i);
+        ++t.rows;
+    }
+    return t;
+}
+
+}  // namespace rollsense::features
