@@ -27,6 +27,7 @@ enum class ErrorCode {
     cancelled,         // the run was cancelled (Ctrl-C, e-stop, budget)
     parse_error,       // a file or script could not be parsed
     unsupported,       // the operation is not implemented by this component
+    script_error,      // a roll script raised an error
 };
 
 std::string_view to_string(ErrorCode code) noexcept;

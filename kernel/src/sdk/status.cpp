@@ -21,6 +21,7 @@ std::string_view to_string(ErrorCode code) noexcept {
         case ErrorCode::cancelled: return "cancelled";
         case ErrorCode::parse_error: return "parse error";
         case ErrorCode::unsupported: return "unsupported";
+        case ErrorCode::script_error: return "script error";
     }
     return "unknown error";
 }

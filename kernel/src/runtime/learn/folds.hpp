@@ -1,0 +1,27 @@
+// Fold partitions for cross-validation.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense::learn {
+
+// fold[i] in [0, k) for every row. Stratified like MATLAB's cvpartition and
+// scikit-learn's StratifiedKFold: each class is shuffled with the seed and
+// dealt round-robin, continuing across classes so fold sizes differ by at
+// most one. k must be in [2, rows].
+Result<std::vector<int>> stratified_folds(std::span<const int> labels, int k, std::uint64_t seed);
+
+// Grouped folds: all rows of a group (a session, a rig state) land in one fold,
+// so correlated trials never straddle training and test. Groups are shuffled
+// with the seed and assigned greedily to the currently smallest fold.
+Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int k, std::uint64_t seed);
+
+// Row indices of the training (fold != test_fold) or test (fold == test_fold) part.
+std::vector<std::size_t> fold_rows(std::span<const int> folds, int test_fold, bool test);
+
+}  // namespace rollsense::learn

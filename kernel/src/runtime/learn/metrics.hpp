@@ -1,0 +1,53 @@
+// Accuracy figures: confusion matrix, per-class true-positive rate, mean ± sd
+// and the Wilson score interval for a pooled proportion.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rollsense::learn {
+
+struct ConfusionMatrix {
+    std::vector<std::string> classes;
+    std::vector<std::size_t> counts;  // row = true class, column = predicted class
+
+    explicit ConfusionMatrix(std::vector<std::string> names = {})
+        : classes(std::move(names)), counts(classes.size() * classes.size(), 0) {}
+    std::size_t size() const { return classes.size(); }
+    std::size_t at(std::size_t truth, std::size_t predicted) const { return counts[truth * size() + predicted]; }
+    void add(int truth, int predicted) {
+        ++counts[static_cast<std::size_t>(truth) * size() + static_cast<std::size_t>(predicted)];
+    }
+    std::size_t total() const;
+    std::size_t correct() const;
+    std::size_t row_total(std::size_t truth) const;
+    double accuracy() const;
+    // Recall per true class (NaN for a class without trials).
+    std::vector<double> true_positive_rates() const;
+};
+
+ConfusionMatrix confusion(std::span<const int> truth, std::span<const int> predicted,
+                          const std::vector<std::string>& classes);
+
+struct Interval {
+    double low = 0.0;
+    double high = 0.0;
+};
+
+// Wilson score interval for `successes` of `n` (z = 1.96: 95 %).
+Interval wilson_interval(std::size_t successes, std::size_t n, double z = 1.96);
+
+double mean(std::span<const double> v);
+// Sample standard deviation (n − 1); 0 for fewer than two values.
+double standard_deviation(std::span<const double> v);
+
+// "k of n (p %)" for reports.
+struct Count {
+    std::size_t k = 0;
+    std::size_t n = 0;
+    double fraction() const;
+};
+
+}  // namespace rollsense::learn

@@ -1,0 +1,312 @@
+// Module assembly and the core of the rollsense Lua API: time, waiting,
+// settings, logging, progress, tasks and cleanup.
+#include <cmath>
+#include <vector>
+
+#include "rollsense/log.hpp"
+#include "runtime/lua/api_internal.hpp"
+#include "runtime/lua/lua_values.hpp"
+
+namespace rollsense::runtime {
+
+namespace {
+const char kSessionKey = 0;  // its address is the registry key
+}
+
+Session* session_of(lua_State* L) {
+    lua_rawgetp(L, LUA_REGISTRYINDEX, &kSessionKey);
+    auto* s = static_cast<Session*>(lua_touserdata(L, -1));
+    lua_pop(L, 1);
+    return s;
+}
+
+void raise_status(lua_State* L, const Status& status) {
+    if (auto* s = session_of(L)) s->set_raised_code(status.code());
+    luaL_error(L, "%s", status.message().c_str());
+    throw StatusError(status);  // not reached: luaL_error does not return
+}
+
+void close_thread(lua_State* thread, lua_State* from) {
+    (void)from;
+    lua_resetthread(thread);  // Lua 5.4.4; 5.4.6 renames it lua_closethread(thread, from)
+}
+
+void open_rollsense_api(Session& session) {
+    lua_State* L = session.sandbox().state();
+    lua_pushlightuserdata(L, &session);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &kSessionKey);
+    lua_newtable(L);
+    lua_api::register_core(L);
+    lua_api::register_joints(L);
+    lua_api::register_trials(L);
+    lua_api::register_devices(L);
+    lua_api::register_extras(L);
+    session.sandbox().set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
+}
+
+namespace lua_api {
+
+namespace {
+std::vector<Registrar>& extras() {
+    static std::vector<Registrar> list;
+    return list;
+}
+}  // namespace
+
+ExtraRegistration::ExtraRegistration(Registrar registrar) { extras().push_back(registrar); }
+void register_extras(lua_State* L) {
+    for (auto r : extras()) r(L);
+}
+
+Task& waiting_task(lua_State* L, const char* function) {
+    Session& s = Session::of(L);
+    Task* t = s.current_task();
+    if (!t || t->thread != L || !lua_isyieldable(L))
+        luaL_error(L, "%s cannot wait here (not inside a procedure: e.g. in a wait_until condition or a "
+                      "function called from C such as a table.sort comparator)", function);
+    return *t;
+}
+
+int yield_task(lua_State* L, lua_KFunction k) { return lua_yieldk(L, 0, 0, k); }
+
+int finish_wait(lua_State* L, int, lua_KContext) {
+    Session& s = Session::of(L);
+    Task* t = s.current_task();
+    if (!t) return 0;
+    if (t->outcome == WaitOutcome::cancelled)
+        return luaL_error(L, "cancelled: %s", s.sandbox().cancel_reason().c_str());
+    if (t->outcome == WaitOutcome::timed_out) {
+        s.set_raised_code(ErrorCode::timeout);
+        return luaL_error(L, "timed out waiting for %s", t->waiting_for.c_str());
+    }
+    return 0;
+}
+
+double opt_field_number(lua_State* L, int table, const char* key, double fallback) {
+    if (lua_isnoneornil(L, table)) return fallback;
+    luaL_checktype(L, table, LUA_TTABLE);
+    lua_getfield(L, table, key);
+    double v = fallback;
+    if (!lua_isnil(L, -1)) {
+        if (!lua_isnumber(L, -1)) luaL_error(L, "option '%s' must be a number", key);
+        v = lua_tonumber(L, -1);
+    }
+    lua_pop(L, 1);
+    return v;
+}
+
+bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback) {
+    if (lua_isnoneornil(L, table)) return fallback;
+    luaL_checktype(L, table, LUA_TTABLE);
+    lua_getfield(L, table, key);
+    bool v = lua_isnil(L, -1) ? fallback : lua_toboolean(L, -1) != 0;
+    lua_pop(L, 1);
+    return v;
+}
+
+std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback) {
+    if (lua_isnoneornil(L, table)) return fallback;
+    luaL_checktype(L, table, LUA_TTABLE);
+    lua_getfield(L, table, key);
+    std::string v = fallback;
+    if (!lua_isnil(L, -1)) {
+        if (!lua_isstring(L, -1)) luaL_error(L, "option '%s' must be a string", key);
+        v = lua_tostring(L, -1);
+    }
+    lua_pop(L, 1);
+    return v;
+}
+
+namespace {
+
+// rs.now() → run clock in seconds
+int l_now(lua_State* L) {
+    lua_pushnumber(L, Session::of(L).now());
+    return 1;
+}
+
+// rs.wait(ms)
+int l_wait(lua_State* L) {
+    const double ms = luaL_checknumber(L, 1);
+    if (!(ms >= 0) || !std::isfinite(ms)) return luaL_error(L, "rs.wait: milliseconds must be a number >= 0");
+    Session& s = Session::of(L);
+    Task& t = waiting_task(L, "rs.wait");
+    t.wait = Task::Wait::time;
+    t.wake_time = s.now() + s.quantize(ms / 1000.0);
+    t.outcome = WaitOutcome::ready;
+    return yield_task(L, finish_wait);
+}
+
+int after_wait_until(lua_State* L, int, lua_KContext) {
+    Session& s = Session::of(L);
+    Task* t = s.current_task();
+    if (t->predicate_ref != LUA_NOREF) {
+        luaL_unref(L, LUA_REGISTRYINDEX, t->predicate_ref);
+        t->predicate_ref = LUA_NOREF;
+    }
+    if (t->outcome == WaitOutcome::cancelled)
+        return luaL_error(L, "cancelled: %s", s.sandbox().cancel_reason().c_str());
+    lua_pushboolean(L, t->outcome == WaitOutcome::ready);
+    return 1;
+}
+
+// rs.wait_until(condition, timeout_ms) → true, or false on timeout. The
+// condition is checked once per control period; it must not wait itself.
+int l_wait_until(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TFUNCTION);
+    const double ms = luaL_optnumber(L, 2, -1);
+    Session& s = Session::of(L);
+    Task& t = waiting_task(L, "rs.wait_until");
+    lua_pushvalue(L, 1);
+    t.predicate_ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    t.wait = Task::Wait::predicate;
+    t.wake_time = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
+    t.outcome = WaitOutcome::ready;
+    t.waiting_for = "a condition";
+    return yield_task(L, after_wait_until);
+}
+
+// rs.setting(key, default): a --set value (converted to the default's type
+// where it is a number or boolean), or the default. No default: required.
+int l_setting(lua_State* L) {
+    Session& s = Session::of(L);
+    const char* key = luaL_checkstring(L, 1);
+    if (const ParamValue* v = s.options().settings.find(key)) {
+        push_param(L, *v);
+        return 1;
+    }
+    if (lua_gettop(L) < 2) return luaL_error(L, "setting '%s' is required: pass --set %s=VALUE", key, key);
+    lua_settop(L, 2);
+    return 1;
+}
+
+int l_seed(lua_State* L) {
+    lua_pushinteger(L, static_cast<lua_Integer>(Session::of(L).options().seed));
+    return 1;
+}
+
+int l_profile(lua_State* L) {
+    Session& s = Session::of(L);
+    lua_newtable(L);
+    lua_pushstring(L, s.profile().name.c_str());
+    lua_setfield(L, -2, "name");
+    lua_pushstring(L, s.profile().description.c_str());
+    lua_setfield(L, -2, "description");
+    lua_pushboolean(L, s.profile().virtual_clock);
+    lua_setfield(L, -2, "virtual_clock");
+    lua_pushnumber(L, s.profile().sample_rate_hz);
+    lua_setfield(L, -2, "sample_rate_hz");
+    lua_pushnumber(L, s.profile().control_rate_hz);
+    lua_setfield(L, -2, "control_rate_hz");
+    lua_newtable(L);
+    int i = 0;
+    for (const auto& c : s.profile().controllers) {
+        lua_pushstring(L, c.name.c_str());
+        lua_rawseti(L, -2, ++i);
+    }
+    lua_setfield(L, -2, "controllers");
+    return 1;
+}
+
+std::string concat_args(lua_State* L) {
+    std::string line;
+    for (int i = 1; i <= lua_gettop(L); ++i) {
+        if (i > 1) line += ' ';
+        line += luaL_tolstring(L, i, nullptr);
+        lua_pop(L, 1);
+    }
+    return line;
+}
+
+int l_log(lua_State* L) {
+    log_info("script", concat_args(L));
+    return 0;
+}
+int l_warn(lua_State* L) {
+    log_warning("script", concat_args(L));
+    return 0;
+}
+
+// rs.progress(done, total, label)
+int l_progress(lua_State* L) {
+    const auto done = luaL_checkinteger(L, 1);
+    const auto total = luaL_checkinteger(L, 2);
+    const char* label = luaL_optstring(L, 3, "");
+    if (done < 0 || total < 0 || done > total) return luaL_error(L, "rs.progress: need 0 <= done <= total");
+    Session::of(L).report_progress(static_cast<std::size_t>(done), static_cast<std::size_t>(total), label);
+    return 0;
+}
+
+// rs.spawn(fn): run fn as a concurrent task (it ends when the main procedure ends).
+int l_spawn(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TFUNCTION);
+    const char* name = luaL_optstring(L, 2, "task");
+    Session::of(L).spawn(L, 1, name);
+    return 0;
+}
+
+// rs.on_cleanup(fn): fn runs when the script ends, however it ends (error,
+// Ctrl-C, e-stop included), after the kernel has stopped every joint.
+int l_on_cleanup(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TFUNCTION);
+    lua_pushvalue(L, 1);
+    Session::of(L).add_cleanup(luaL_ref(L, LUA_REGISTRYINDEX));
+    return 0;
+}
+
+// rs.write_output(name, text): a text file in the run's output folder.
+int l_write_output(lua_State* L) {
+    const char* name = luaL_checkstring(L, 1);
+    size_t len = 0;
+    const char* text = luaL_checklstring(L, 2, &len);
+    auto st = Session::of(L).write_output_text(name, std::string(text, len));
+    if (!st.ok()) raise_status(L, st);
+    return 0;
+}
+
+int l_output_dir(lua_State* L) {
+    const auto& dir = Session::of(L).output_dir();
+    if (dir.empty())
+        lua_pushnil(L);
+    else
+        lua_pushstring(L, dir.c_str());
+    return 1;
+}
+
+// rs.random() → uniform [0, 1); rs.random_normal() → N(0, 1). Seeded per trial.
+int l_random(lua_State* L) {
+    auto& rng = Session::of(L).trial_random();
+    lua_pushnumber(L, static_cast<double>(rng() >> 11) * 0x1.0p-53);
+    return 1;
+}
+int l_random_normal(lua_State* L) {
+    auto& rng = Session::of(L).trial_random();
+    std::normal_distribution<double> n(0.0, 1.0);
+    lua_pushnumber(L, n(rng));
+    return 1;
+}
+
+}  // namespace
+
+void register_core(lua_State* L) {
+    static const luaL_Reg fns[] = {{"now", l_now},
+                                   {"wait", l_wait},
+                                   {"wait_until", l_wait_until},
+                                   {"setting", l_setting},
+                                   {"seed", l_seed},
+                                   {"profile", l_profile},
+                                   {"log", l_log},
+                                   {"warn", l_warn},
+                                   {"progress", l_progress},
+                                   {"spawn", l_spawn},
+                                   {"on_cleanup", l_on_cleanup},
+                                   {"write_output", l_write_output},
+                                   {"output_dir", l_output_dir},
+                                   {"random", l_random},
+                                   {"random_normal", l_random_normal},
+                                   {nullptr, nullptr}};
+    luaL_setfuncs(L, fns, 0);
+}
+
+}  // namespace lua_api
+}  // namespace rollsense::runtime

@@ -1,0 +1,38 @@
+// Shared helpers of the Lua bindings (api_*.cpp). Not part of any public API.
+#pragma once
+
+#include <lua.hpp>
+
+#include <string>
+
+#include "runtime/lua/api.hpp"
+#include "runtime/session/session.hpp"
+
+namespace rollsense::runtime::lua_api {
+
+// The task running this Lua code; raises if the caller cannot wait here
+// (inside a wait_until condition, at load time of a module, ...).
+Task& waiting_task(lua_State* L, const char* function);
+// Yield the current task until the scheduler resumes it; `k` is the continuation.
+int yield_task(lua_State* L, lua_KFunction k);
+// Continuation that turns a cancelled or timed-out wait into an error and
+// returns nothing otherwise.
+int finish_wait(lua_State* L, int status, lua_KContext ctx);
+
+double opt_field_number(lua_State* L, int table, const char* key, double fallback);
+bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback);
+std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback);
+
+// Registration of each part of the module on the table at the top of the stack.
+void register_core(lua_State* L);
+void register_joints(lua_State* L);
+void register_trials(lua_State* L);
+void register_devices(lua_State* L);
+// Extra parts (e.g. identification) register through this hook list.
+using Registrar = void (*)(lua_State* L);
+struct ExtraRegistration {
+    explicit ExtraRegistration(Registrar registrar);
+};
+void register_extras(lua_State* L);
+
+}  // namespace rollsense::runtime::lua_api

@@ -1,0 +1,255 @@
+// Joints from Lua: rs.joint(name) returns a handle with move / push / hold /
+// torque and state queries. Every command goes through the kernel's limit
+// checks (Robot::command_joint); a refused command raises and nothing moves.
+#include <cmath>
+
+#include "runtime/lua/api_internal.hpp"
+
+namespace rollsense::runtime::lua_api {
+namespace {
+
+constexpr const char* kJointMeta = "rollsense.joint";
+
+Joint& check_joint(lua_State* L, int index) {
+    return **static_cast<Joint**>(luaL_checkudata(L, index, kJointMeta));
+}
+
+void push_joint(lua_State* L, Joint* j) {
+    *static_cast<Joint**>(lua_newuserdatauv(L, sizeof(Joint*), 0)) = j;
+    luaL_setmetatable(L, kJointMeta);
+}
+
+void command_or_raise(lua_State* L, Joint& j, const JointCommand& c) {
+    auto st = Session::of(L).robot().command_joint(j, c);
+    if (!st.ok()) raise_status(L, st);
+}
+
+// Wait until every joint in `joints` has arrived (not moving, within tolerance
+// of its goal), or raise on timeout.
+int wait_arrival(lua_State* L, std::vector<Joint*> joints, double timeout_s, double tolerance,
+                 const std::string& what) {
+    Session& s = Session::of(L);
+    Task& t = waiting_task(L, "move");
+    t.wait = Task::Wait::joints;
+    t.joints = std::move(joints);
+    t.tolerance = tolerance;
+    t.wake_time = s.now() + s.quantize(timeout_s);
+    t.outcome = WaitOutcome::ready;
+    t.waiting_for = what + " (timeout " + std::to_string(timeout_s) + " s)";
+    return yield_task(L, finish_wait);
+}
+
+// A timeout that fits the move: trapezoid duration plus a margin.
+double default_timeout(const Joint& j, double goal, double velocity, double acceleration) {
+    const double distance = std::abs(goal - j.state.position);
+    if (velocity <= 0) return 10.0;
+    double t = distance / velocity;
+    if (acceleration > 0) t += velocity / acceleration;
+    return 2.0 * t + 2.0;
+}
+
+// j:move(position, {velocity=, acceleration=, timeout_ms=, tolerance=, wait=true})
+int l_move(lua_State* L) {
+    Joint& j = check_joint(L, 1);
+    const double goal = luaL_checknumber(L, 2);
+    JointCommand c;
+    c.mode = j.info.modes.front() == ControlMode::extended_position ? ControlMode::extended_position
+                                                                    : ControlMode::position;
+    if (std::find(j.info.modes.begin(), j.info.modes.end(), ControlMode::position) != j.info.modes.end() &&
+        c.mode != ControlMode::extended_position)
+        c.mode = ControlMode::position;
+    c.position = goal;
+    c.profile_velocity = opt_field_number(L, 3, "velocity", j.limit.max_velocity);
+    c.profile_acceleration = opt_field_number(L, 3, "acceleration", 0);
+    const std::string mode = opt_field_string(L, 3, "mode", "");
+    if (mode == "current_based_position") {
+        c.mode = ControlMode::current_based_position;
+        c.current = opt_field_number(L, 3, "current", j.limit.max_current);
+    } else if (!mode.empty() && mode != "position" && mode != "extended_position") {
+        return luaL_error(L, "move: mode '%s' is not a position mode", mode.c_str());
+    } else if (!mode.empty()) {
+        c.mode = mode == "extended_position" ? ControlMode::extended_position : ControlMode::position;
+    }
+    command_or_raise(L, j, c);
+    if (!opt_field_bool(L, 3, "wait", true)) return 0;
+    const double timeout_ms = opt_field_number(L, 3, "timeout_ms", -1);
+    const double timeout = timeout_ms >= 0 ? timeout_ms / 1000.0
+                                           : default_timeout(j, goal, j.command.profile_velocity, c.profile_acceleration);
+    const double tol = opt_field_number(L, 3, "tolerance", 0.5);
+    char what[160];
+    std::snprintf(what, sizeof what, "joint '%s' to reach %.3f %s", j.name.c_str(), goal, j.info.unit.c_str());
+    return wait_arrival(L, {&j}, timeout, tol, what);
+}
+
+// j:push(current_mA): current (torque) mode, e.g. the pushing finger clamping.
+int l_push(lua_State* L) {
+    Joint& j = check_joint(L, 1);
+    JointCommand c;
+    c.mode = ControlMode::current;
+    c.current = luaL_checknumber(L, 2);
+    c.position = j.state.position;
+    command_or_raise(L, j, c);
+    return 0;
+}
+
+// j:spin(velocity): velocity mode.
+int l_spin(lua_State* L) {
+    Joint& j = check_joint(L, 1);
+    JointCommand c;
+    c.mode = ControlMode::velocity;
+    c.velocity = luaL_checknumber(L, 2);
+    c.position = j.state.position;
+    command_or_raise(L, j, c);
+    return 0;
+}
+
+// j:hold(): position mode at the present position.
+int l_hold(lua_State* L) {
+    Joint& j = check_joint(L, 1);
+    JointCommand c;
+    c.mode = j.info.modes.front() == ControlMode::extended_position ? ControlMode::extended_position
+                                                                    : ControlMode::position;
+    c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
+    command_or_raise(L, j, c);
+    return 0;
+}
+
+// j:torque(on)
+int l_torque(lua_State* L) {
+    Joint& j = check_joint(L, 1);
+    JointCommand c = j.command;
+    c.torque_enabled = lua_toboolean(L, 2) != 0;
+    if (c.torque_enabled) c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
+    command_or_raise(L, j, c);
+    return 0;
+}
+
+// j:wait({timeout_ms=, tolerance=}): until the present goal is reached.
+int l_wait_arrived(lua_State* L) {
+    Joint& j = check_joint(L, 1);
+    const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
+    const double tol = opt_field_number(L, 2, "tolerance", 0.5);
+    return wait_arrival(L, {&j}, timeout_ms / 1000.0, tol, "joint '" + j.name + "' to arrive");
+}
+
+int l_position(lua_State* L) {
+    lua_pushnumber(L, check_joint(L, 1).state.position);
+    return 1;
+}
+int l_velocity(lua_State* L) {
+    lua_pushnumber(L, check_joint(L, 1).state.velocity);
+    return 1;
+}
+int l_current(lua_State* L) {
+    lua_pushnumber(L, check_joint(L, 1).state.current);
+    return 1;
+}
+int l_moving(lua_State* L) {
+    lua_pushboolean(L, check_joint(L, 1).state.moving);
+    return 1;
+}
+int l_name(lua_State* L) {
+    lua_pushstring(L, check_joint(L, 1).name.c_str());
+    return 1;
+}
+
+int l_state(lua_State* L) {
+    const Joint& j = check_joint(L, 1);
+    lua_newtable(L);
+    lua_pushnumber(L, j.state.position);
+    lua_setfield(L, -2, "position");
+    lua_pushnumber(L, j.state.velocity);
+    lua_setfield(L, -2, "velocity");
+    lua_pushnumber(L, j.state.current);
+    lua_setfield(L, -2, "current");
+    lua_pushboolean(L, j.state.moving);
+    lua_setfield(L, -2, "moving");
+    lua_pushboolean(L, j.state.torque_enabled);
+    lua_setfield(L, -2, "torque");
+    lua_pushstring(L, std::string(to_string(j.state.mode)).c_str());
+    lua_setfield(L, -2, "mode");
+    lua_pushstring(L, j.state.fault.c_str());
+    lua_setfield(L, -2, "fault");
+    return 1;
+}
+
+int l_limits(lua_State* L) {
+    const Joint& j = check_joint(L, 1);
+    lua_newtable(L);
+    lua_pushnumber(L, j.limit.min);
+    lua_setfield(L, -2, "min");
+    lua_pushnumber(L, j.limit.max);
+    lua_setfield(L, -2, "max");
+    lua_pushnumber(L, j.limit.max_velocity);
+    lua_setfield(L, -2, "max_velocity");
+    lua_pushnumber(L, j.limit.max_current);
+    lua_setfield(L, -2, "max_current");
+    lua_pushstring(L, j.info.unit.c_str());
+    lua_setfield(L, -2, "unit");
+    return 1;
+}
+
+int l_tostring(lua_State* L) {
+    const Joint& j = check_joint(L, 1);
+    lua_pushfstring(L, "joint '%s' at %f %s", j.name.c_str(), j.state.position, j.info.unit.c_str());
+    return 1;
+}
+
+// rs.joint(name)
+int l_joint(lua_State* L) {
+    const char* name = luaL_checkstring(L, 1);
+    auto& robot = Session::of(L).robot();
+    Joint* j = robot.find_joint(name);
+    if (!j) return luaL_error(L, "no joint '%s' in this profile (joints: %s)", name, robot.joint_names().c_str());
+    push_joint(L, j);
+    return 1;
+}
+
+// rs.joints() → list of names
+int l_joints(lua_State* L) {
+    const auto& joints = Session::of(L).robot().joints();
+    lua_createtable(L, static_cast<int>(joints.size()), 0);
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+        lua_pushstring(L, joints[i].name.c_str());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    return 1;
+}
+
+// rs.wait_joints({j1, j2, ...}, {timeout_ms=, tolerance=})
+int l_wait_joints(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    std::vector<Joint*> list;
+    std::string names;
+    for (lua_Integer i = 1; i <= static_cast<lua_Integer>(lua_rawlen(L, 1)); ++i) {
+        lua_rawgeti(L, 1, i);
+        Joint& j = check_joint(L, -1);
+        list.push_back(&j);
+        names += (names.empty() ? "" : ", ") + j.name;
+        lua_pop(L, 1);
+    }
+    const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
+    const double tol = opt_field_number(L, 2, "tolerance", 0.5);
+    return wait_arrival(L, std::move(list), timeout_ms / 1000.0, tol, "joints " + names + " to arrive");
+}
+
+}  // namespace
+
+void register_joints(lua_State* L) {
+    static const luaL_Reg methods[] = {{"move", l_move},         {"push", l_push},       {"spin", l_spin},
+                                       {"hold", l_hold},         {"torque", l_torque},   {"wait", l_wait_arrived},
+                                       {"position", l_position}, {"velocity", l_velocity}, {"current", l_current},
+                                       {"moving", l_moving},     {"name", l_name},       {"state", l_state},
+                                       {"limits", l_limits},     {nullptr, nullptr}};
+    luaL_newmetatable(L, kJointMeta);
+    lua_newtable(L);
+    luaL_setfuncs(L, methods, 0);
+    lua_setfield(L, -2, "__index");
+    lua_pushcfunction(L, l_tostring);
+    lua_setfield(L, -2, "__tostring");
+    lua_pop(L, 1);
+    static const luaL_Reg fns[] = {{"joint", l_joint}, {"joints", l_joints}, {"wait_joints", l_wait_joints}, {nullptr, nullptr}};
+    luaL_setfuncs(L, fns, 0);
+}
+
+}  // namespace rollsense::runtime::lua_api

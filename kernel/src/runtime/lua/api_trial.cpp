@@ -1,0 +1,120 @@
+// Trials and recording from Lua: rs.trial{...}, rs.record_start/stop,
+// rs.save_trial, rs.end_trial, rs.has_trial (for --resume), rs.recorded().
+#include <cstdio>
+
+#include "runtime/lua/api_internal.hpp"
+
+namespace rollsense::runtime::lua_api {
+namespace {
+
+void check(lua_State* L, const Status& s) {
+    if (!s.ok()) raise_status(L, s);
+}
+
+// "C1-v10-r007": the default id of a trial.
+std::string default_id(const std::string& object, const std::string& speed, int repetition) {
+    char rep[16];
+    std::snprintf(rep, sizeof rep, "%03d", repetition);
+    return object + "-v" + speed + "-r" + rep;
+}
+
+// rs.trial{object=, speed=, repetition=, id=, extra={k=v}} → id
+int l_trial(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    TrialInfo info;
+    info.object = opt_field_string(L, 1, "object", "");
+    lua_getfield(L, 1, "speed");
+    if (!lua_isnil(L, -1)) info.speed = luaL_tolstring(L, -1, nullptr), lua_pop(L, 1);
+    lua_pop(L, 1);
+    info.repetition = static_cast<int>(opt_field_number(L, 1, "repetition", 0));
+    info.id = opt_field_string(L, 1, "id", "");
+    if (info.id.empty()) {
+        if (info.object.empty()) return luaL_error(L, "rs.trial: give an id, or an object (and speed, repetition)");
+        info.id = default_id(info.object, info.speed, info.repetition);
+    }
+    lua_getfield(L, 1, "extra");
+    if (lua_istable(L, -1)) {
+        lua_pushnil(L);
+        while (lua_next(L, -2)) {
+            if (lua_type(L, -2) == LUA_TSTRING) {
+                std::string key = lua_tostring(L, -2);
+                info.extra[key] = luaL_tolstring(L, -1, nullptr);
+                lua_pop(L, 1);
+            }
+            lua_pop(L, 1);
+        }
+    }
+    lua_pop(L, 1);
+    std::string id = info.id;
+    check(L, Session::of(L).begin_trial(std::move(info)));
+    lua_pushstring(L, id.c_str());
+    return 1;
+}
+
+int l_has_trial(lua_State* L) {
+    lua_pushboolean(L, Session::of(L).has_trial(luaL_checkstring(L, 1)));
+    return 1;
+}
+
+int l_record_start(lua_State* L) {
+    check(L, Session::of(L).record_start());
+    return 0;
+}
+
+int l_record_stop(lua_State* L) {
+    Session& s = Session::of(L);
+    check(L, s.record_stop());
+    lua_pushinteger(L, static_cast<lua_Integer>(s.recorded().samples()));
+    return 1;
+}
+
+int l_save_trial(lua_State* L) {
+    check(L, Session::of(L).save_trial());
+    return 0;
+}
+
+int l_end_trial(lua_State* L) {
+    check(L, Session::of(L).end_trial());
+    return 0;
+}
+
+void push_column(lua_State* L, const std::vector<double>& v) {
+    lua_createtable(L, static_cast<int>(v.size()), 0);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        lua_pushnumber(L, v[i]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+}
+
+// rs.recorded() → { time = {...}, ch1 = {...}, ..., <joint> = {...}, samples = n }
+int l_recorded(lua_State* L) {
+    Session& s = Session::of(L);
+    const auto& d = s.recorded();
+    const auto& robot = s.robot();
+    lua_newtable(L);
+    push_column(L, d.time);
+    lua_setfield(L, -2, "time");
+    for (std::size_t c = 0; c < d.channels.size() && c < robot.channel_columns().size(); ++c) {
+        push_column(L, d.channels[c]);
+        lua_setfield(L, -2, robot.channel_columns()[c].c_str());
+    }
+    for (std::size_t j = 0; j < d.joints.size() && j < robot.recorded_joints().size(); ++j) {
+        push_column(L, d.joints[j]);
+        lua_setfield(L, -2, robot.recorded_joints()[j].c_str());
+    }
+    lua_pushinteger(L, static_cast<lua_Integer>(d.samples()));
+    lua_setfield(L, -2, "samples");
+    return 1;
+}
+
+}  // namespace
+
+void register_trials(lua_State* L) {
+    static const luaL_Reg fns[] = {{"trial", l_trial},           {"has_trial", l_has_trial},
+                                   {"record_start", l_record_start}, {"record_stop", l_record_stop},
+                                   {"save_trial", l_save_trial}, {"end_trial", l_end_trial},
+                                   {"recorded", l_recorded},     {nullptr, nullptr}};
+    luaL_setfuncs(L, fns, 0);
+}
+
+}  // namespace rollsense::runtime::lua_api

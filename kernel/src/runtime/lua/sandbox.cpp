@@ -1,0 +1,259 @@
+#include "runtime/lua/sandbox.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+
+#include "rollsense/log.hpp"
+
+namespace rollsense::runtime {
+namespace {
+
+constexpr int kHookEvery = 10000;  // instructions between watchdog checks
+
+double wall_ms() {
+    using namespace std::chrono;
+    return duration<double, std::milli>(steady_clock::now().time_since_epoch()).count();
+}
+
+// Base functions a script may use. Everything else is absent, not stubbed.
+constexpr const char* kBaseWhitelist[] = {"assert", "error",    "ipairs",   "next",      "pairs",
+                                          "pcall",  "rawequal", "rawget",   "rawlen",    "rawset",
+                                          "select", "setmetatable", "getmetatable", "tonumber", "tostring",
+                                          "type",   "xpcall",   "_VERSION"};
+constexpr const char* kOsWhitelist[] = {"clock", "date", "difftime", "time", "getenv"};
+
+void copy_library(lua_State* L, int env, const char* name, const char* const* keep, std::size_t n_keep,
+                  const char* drop = nullptr) {
+    lua_getglobal(L, name);
+    if (!lua_istable(L, -1)) {
+        lua_pop(L, 1);
+        return;
+    }
+    int lib = lua_gettop(L);
+    lua_newtable(L);
+    if (keep) {
+        for (std::size_t i = 0; i < n_keep; ++i) {
+            lua_getfield(L, lib, keep[i]);
+            lua_setfield(L, -2, keep[i]);
+        }
+    } else {
+        lua_pushnil(L);
+        while (lua_next(L, lib)) {
+            if (!(drop && lua_type(L, -2) == LUA_TSTRING && std::strcmp(lua_tostring(L, -2), drop) == 0)) {
+                lua_pushvalue(L, -2);
+                lua_insert(L, -2);
+                lua_settable(L, -4);
+            } else {
+                lua_pop(L, 1);
+            }
+        }
+    }
+    lua_setfield(L, env, name);
+    lua_pop(L, 1);
+}
+
+}  // namespace
+
+Sandbox::Sandbox(SandboxLimits limits, std::vector<std::filesystem::path> module_path)
+    : limits_(limits), module_path_(std::move(module_path)) {
+    L_ = lua_newstate(&Sandbox::allocate, this);
+    if (!L_) throw StatusError(Status(ErrorCode::io_error, "cannot create a Lua state (out of memory)"));
+    *static_cast<Sandbox**>(lua_getextraspace(L_)) = this;  // inherited by every coroutine
+    luaL_openlibs(L_);
+    build_environment();
+    arm(L_);
+}
+
+Sandbox::~Sandbox() {
+    if (L_) lua_close(L_);
+}
+
+Sandbox& Sandbox::of(lua_State* L) { return **static_cast<Sandbox**>(lua_getextraspace(L)); }
+
+void* Sandbox::allocate(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
+    auto* self = static_cast<Sandbox*>(ud);
+    const std::size_t old = ptr ? osize : 0;
+    if (nsize == 0) {
+        std::free(ptr);
+        self->memory_used_ -= old;
+        return nullptr;
+    }
+    // Past the cap: fail the allocation; Lua raises "not enough memory" in the
+    // script. The cap does not apply while closing the state (ud untouched).
+    if (nsize > old && self->memory_used_ + (nsize - old) > self->limits_.memory_bytes) return nullptr;
+    void* p = std::realloc(ptr, nsize);
+    if (p) self->memory_used_ = self->memory_used_ - old + nsize;
+    return p;
+}
+
+void Sandbox::build_environment() {
+    lua_State* L = L_;
+    lua_newtable(L);
+    int env = lua_gettop(L);
+    lua_pushglobaltable(L);
+    int g = lua_gettop(L);
+    for (const char* name : kBaseWhitelist) {
+        lua_getfield(L, g, name);
+        lua_setfield(L, env, name);
+    }
+    lua_pop(L, 1);
+    copy_library(L, env, "string", nullptr, 0, "dump");  // no bytecode out
+    copy_library(L, env, "table", nullptr, 0);
+    copy_library(L, env, "math", nullptr, 0);
+    copy_library(L, env, "utf8", nullptr, 0);
+    copy_library(L, env, "os", kOsWhitelist, std::size(kOsWhitelist));
+    lua_pushvalue(L, env);
+    lua_setfield(L, env, "_G");
+    lua_pushcfunction(L, &Sandbox::lua_print);
+    lua_setfield(L, env, "print");
+    lua_pushcfunction(L, &Sandbox::lua_load_text);
+    lua_setfield(L, env, "load");
+    lua_newtable(L);
+    loaded_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+    lua_pushcfunction(L, &Sandbox::lua_require);
+    lua_setfield(L, env, "require");
+    env_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+    // The string metatable's __index is the real string library, which still
+    // has dump; point it at the sandbox copy.
+    lua_pushliteral(L, "");
+    lua_getmetatable(L, -1);
+    lua_rawgeti(L, LUA_REGISTRYINDEX, env_ref_);
+    lua_getfield(L, -1, "string");
+    lua_setfield(L, -3, "__index");
+    lua_pop(L, 3);
+}
+
+Status Sandbox::load_file(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec))
+        return {ErrorCode::not_found, file.string() + ": no such script"};
+    // "t": text only; a precompiled chunk is refused.
+    if (luaL_loadfilex(L_, file.c_str(), "t") != LUA_OK) {
+        std::string msg = lua_tostring(L_, -1);
+        lua_pop(L_, 1);
+        return {ErrorCode::parse_error, msg};
+    }
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, env_ref_);
+    lua_setupvalue(L_, -2, 1);
+    return {};
+}
+
+Status Sandbox::load_string(const std::string& code, const std::string& chunk_name) {
+    if (luaL_loadbufferx(L_, code.data(), code.size(), ("=" + chunk_name).c_str(), "t") != LUA_OK) {
+        std::string msg = lua_tostring(L_, -1);
+        lua_pop(L_, 1);
+        return {ErrorCode::parse_error, msg};
+    }
+    lua_rawgeti(L_, LUA_REGISTRYINDEX, env_ref_);
+    lua_setupvalue(L_, -2, 1);
+    return {};
+}
+
+int Sandbox::lua_load_text(lua_State* L) {
+    auto& self = of(L);
+    size_t len = 0;
+    const char* code = luaL_checklstring(L, 1, &len);  // strings only: no reader functions
+    const char* name = luaL_optstring(L, 2, "=(load)");
+    const char* mode = luaL_optstring(L, 3, "t");
+    if (std::strcmp(mode, "t") != 0) return luaL_error(L, "load: only text chunks are allowed (mode 't')");
+    if (luaL_loadbufferx(L, code, len, name, "t") != LUA_OK) {
+        lua_pushnil(L);
+        lua_insert(L, -2);
+        return 2;
+    }
+    if (lua_gettop(L) >= 5 && !lua_isnil(L, 4)) {
+        lua_pushvalue(L, 4);
+    } else {
+        lua_rawgeti(L, LUA_REGISTRYINDEX, self.env_ref_);
+    }
+    lua_setupvalue(L, -2, 1);
+    return 1;
+}
+
+int Sandbox::lua_print(lua_State* L) {
+    std::string line;
+    int n = lua_gettop(L);
+    for (int i = 1; i <= n; ++i) {
+        if (i > 1) line += '\t';
+        line += luaL_tolstring(L, i, nullptr);
+        lua_pop(L, 1);
+    }
+    log_info("script", line);
+    return 0;
+}
+
+int Sandbox::lua_require(lua_State* L) {
+    auto& self = of(L);
+    std::string name = luaL_checkstring(L, 1);
+    if (name == "rollsense") {
+        lua_rawgeti(L, LUA_REGISTRYINDEX, self.api_ref_);
+        return 1;
+    }
+    lua_rawgeti(L, LUA_REGISTRYINDEX, self.loaded_ref_);
+    if (lua_getfield(L, -1, name.c_str()) != LUA_TNIL) return 1;
+    lua_pop(L, 1);
+    for (char c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'))
+            return luaL_error(L, "require('%s'): module names may hold letters, digits, '_' and '.'", name.c_str());
+    std::string rel = name;
+    for (auto& c : rel)
+        if (c == '.') c = '/';
+    std::string searched;
+    for (const auto& dir : self.module_path_) {
+        auto file = dir / (rel + ".lua");
+        searched += "\n\t" + file.string();
+        std::error_code ec;
+        if (!std::filesystem::exists(file, ec)) continue;
+        if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) return lua_error(L);
+        lua_rawgeti(L, LUA_REGISTRYINDEX, self.env_ref_);
+        lua_setupvalue(L, -2, 1);
+        lua_pushstring(L, name.c_str());
+        lua_call(L, 1, 1);
+        if (lua_isnil(L, -1)) {
+            lua_pop(L, 1);
+            lua_pushboolean(L, 1);
+        }
+        lua_pushvalue(L, -1);
+        lua_setfield(L, -3, name.c_str());
+        return 1;
+    }
+    return luaL_error(L, "module '%s' not found; searched:%s", name.c_str(), searched.c_str());
+}
+
+void Sandbox::hook(lua_State* L, lua_Debug*) {
+    auto& self = of(L);
+    if (self.external_flag_ && self.external_flag_->load()) self.cancel(self.external_reason_);
+    if (self.cancelled_.load()) {
+        // Fire on every instruction from now on: a pcall that catches this
+        // error runs at most one more instruction before it is raised again.
+        lua_sethook(L, &Sandbox::hook, LUA_MASKCOUNT, 1);
+        luaL_error(L, "cancelled: %s", self.cancel_reason_.c_str());
+        return;
+    }
+    const double ran = wall_ms() - self.slice_start_;
+    if (ran > self.limits_.max_slice_ms) {
+        self.cancel("the script ran " + std::to_string(static_cast<long>(ran)) +
+                    " ms without waiting (an endless loop?); the limit is --slice-limit-ms");
+        lua_sethook(L, &Sandbox::hook, LUA_MASKCOUNT, 1);
+        luaL_error(L, "cancelled: %s", self.cancel_reason_.c_str());
+    }
+}
+
+void Sandbox::arm(lua_State* thread) {
+    lua_sethook(thread, &Sandbox::hook, LUA_MASKCOUNT, cancelled_.load() ? 1 : kHookEvery);
+}
+
+void Sandbox::cancel(const std::string& reason) {
+    if (!cancelled_.load()) cancel_reason_ = reason;
+    cancelled_.store(true);
+}
+
+void Sandbox::clear_cancel() {
+    cancelled_.store(false);
+    cancel_reason_.clear();
+}
+
+void Sandbox::start_slice() { slice_start_ = wall_ms(); }
+
+}  // namespace rollsense::runtime

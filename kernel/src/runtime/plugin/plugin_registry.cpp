@@ -1,0 +1,179 @@
+#include "runtime/plugin/plugin_registry.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+#include <boost/dll/runtime_symbol_info.hpp>
+
+namespace rollsense::runtime {
+namespace fs = std::filesystem;
+
+PluginRegistry::PluginRegistry(std::vector<fs::path> search_path) : search_path_(std::move(search_path)) {}
+
+std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::path>& extra) {
+    std::vector<fs::path> out = extra;
+    if (const char* env = std::getenv("ROLLSENSE_PLUGIN_PATH")) {
+        std::string s(env);
+        std::size_t start = 0;
+        while (start <= s.size()) {
+            auto end = s.find(':', start);
+            if (end == std::string::npos) end = s.size();
+            if (end > start) out.emplace_back(s.substr(start, end - start));
+            start = end + 1;
+        }
+    }
+    // <prefix>/bin/rollsense → <prefix>/lib/rollsense/plugins (same layout in the build tree).
+    std::error_code ec;
+    auto exe = fs::path(boost::dll::program_location().string());
+    auto installed = exe.parent_path().parent_path() / ROLLSENSE_PLUGIN_INSTALL_SUBDIR;
+    out.push_back(installed);
+    auto build_layout = exe.parent_path().parent_path() / "lib" / "rollsense" / "plugins";
+    if (build_layout != installed) out.push_back(build_layout);
+    // Remove duplicates, keep order.
+    std::vector<fs::path> unique;
+    for (auto& p : out) {
+        auto norm = p.lexically_normal();
+        if (std::find(unique.begin(), unique.end(), norm) == unique.end()) unique.push_back(norm);
+    }
+    return unique;
+}
+
+PluginCandidate PluginRegistry::load_file(const fs::path& file) {
+    PluginCandidate c;
+    c.path = file;
+    boost::dll::shared_library lib;
+    try {
+        // The throwing overload: the error_code one loses dlerror()'s text.
+        lib.load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local);
+    } catch (const std::exception& e) {
+        c.failure = std::string("cannot be loaded: ") + e.what();
+        return c;
+    }
+    if (!lib.has(kPluginManifestSymbol)) {
+        c.failure = std::string("not a rollsense plugin: missing symbol '") + kPluginManifestSymbol +
+                    "' (a plugin defines it with ROLLSENSE_PLUGIN(...))";
+        return c;
+    }
+    const PluginManifest* m = nullptr;
+    try {
+        m = lib.get_alias<PluginManifestFn>(kPluginManifestSymbol)();
+    } catch (const std::exception& e) {
+        c.failure = std::string("its manifest function failed: ") + e.what();
+        return c;
+    }
+    if (!m || m->magic != kPluginMagic) {
+        c.failure = "not a rollsense plugin: the manifest symbol does not point at a rollsense manifest";
+        return c;
+    }
+    if (m->abi_version != kPluginAbiVersion) {
+        c.failure = "ABI mismatch: built for plugin ABI " + std::to_string(m->abi_version) + ", this rollsense has " +
+                    std::to_string(kPluginAbiVersion) + " (rebuild the plugin against this SDK)";
+        return c;
+    }
+    if (!m->compiler_tag || std::strcmp(m->compiler_tag, ROLLSENSE_COMPILER_TAG) != 0) {
+        c.failure = std::string("ABI mismatch: built with compiler '") + (m->compiler_tag ? m->compiler_tag : "?") +
+                    "', this rollsense with '" + ROLLSENSE_COMPILER_TAG + "' (rebuild the plugin)";
+        return c;
+    }
+    const bool factory_ok = (m->kind == PluginKind::sensor && m->create_sensor) ||
+                            (m->kind == PluginKind::actuator && m->create_actuator) ||
+                            (m->kind == PluginKind::classifier && m->create_classifier);
+    if (!m->name || !*m->name || !factory_ok || !m->destroy || !m->schema) {
+        c.failure = "malformed manifest: missing name, factory for its kind, destroy or schema";
+        return c;
+    }
+    c.library = std::make_shared<LoadedLibrary>(std::move(lib), m, file);
+    return c;
+}
+
+const std::vector<PluginCandidate>& PluginRegistry::scan() {
+    if (scanned_) return candidates_;
+    scanned_ = true;
+    std::map<std::string, fs::path> seen;
+    for (const auto& dir : search_path_) {
+        std::error_code ec;
+        if (!fs::is_directory(dir, ec)) continue;
+        std::vector<fs::path> files;
+        for (const auto& entry : fs::directory_iterator(dir, ec))
+            if (entry.path().extension() == ".so" || entry.path().filename().string().find(".so.") != std::string::npos)
+                files.push_back(entry.path());
+        std::sort(files.begin(), files.end());
+        for (const auto& f : files) {
+            auto c = load_file(f);
+            if (c.library) {
+                auto [it, inserted] = seen.emplace(c.library->name(), f);
+                if (!inserted) {
+                    c.failure = "shadowed: a plugin named '" + c.library->name() + "' was already found at " +
+                                it->second.string() + " (earlier in the search path)";
+                    c.library.reset();
+                }
+            }
+            candidates_.push_back(std::move(c));
+        }
+    }
+    return candidates_;
+}
+
+Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::string& name, PluginKind kind) {
+    for (const auto& c : scan()) {
+        if (c.library && c.library->name() == name) {
+            if (c.library->manifest().kind != kind)
+                return Error{ErrorCode::not_found, "plugin '" + name + "' at " + c.path.string() + " is a " +
+                                                       std::string(to_string(c.library->manifest().kind)) +
+                                                       " plugin, not a " + std::string(to_string(kind))};
+            return c.library;
+        }
+    }
+    std::string msg = "no " + std::string(to_string(kind)) + " plugin named '" + name + "'. Searched:";
+    for (const auto& d : search_path_) msg += "\n  " + d.string() + (fs::is_directory(d) ? "" : " (no such folder)");
+    bool any = false;
+    for (const auto& c : candidates_) {
+        if (!any) msg += "\nFound:";
+        any = true;
+        msg += "\n  " + c.path.string() + ": " + (c.library ? "plugin '" + c.library->name() + "'" : c.failure);
+    }
+    if (!any) msg += "\nNo plugin files were found.";
+    msg += "\nAdd a folder with --plugin-path or the profile's plugin_path; `rollsense plugins` lists what loads.";
+    return Error{ErrorCode::not_found, msg};
+}
+
+Result<ParamSchema> PluginRegistry::schema_of(const LoadedLibrary& library) {
+    try {
+        return library.manifest().schema();
+    } catch (const std::exception& e) {
+        return Error{ErrorCode::plugin_error, "plugin '" + library.name() + "': schema() threw: " + e.what()};
+    }
+}
+
+namespace {
+template <class T, class Create>
+Result<std::unique_ptr<Handle<T>>> create(PluginRegistry& reg, const std::string& plugin, const std::string& instance,
+                                          PluginKind kind, Create factory) {
+    auto lib = reg.find(plugin, kind);
+    if (!lib) return lib.error();
+    T* object = nullptr;
+    try {
+        object = ((*lib)->manifest().*factory)();
+    } catch (const std::exception& e) {
+        return Error{ErrorCode::plugin_error, "plugin '" + plugin + "': constructor threw: " + e.what()};
+    }
+    if (!object) return Error{ErrorCode::plugin_error, "plugin '" + plugin + "': factory returned nothing"};
+    return std::make_unique<Handle<T>>(instance, *lib, object);
+}
+}  // namespace
+
+Result<std::unique_ptr<SensorHandle>> PluginRegistry::create_sensor(const std::string& plugin,
+                                                                    const std::string& instance) {
+    return create<Sensor>(*this, plugin, instance, PluginKind::sensor, &PluginManifest::create_sensor);
+}
+Result<std::unique_ptr<ActuatorHandle>> PluginRegistry::create_actuator(const std::string& plugin,
+                                                                        const std::string& instance) {
+    return create<Actuator>(*this, plugin, instance, PluginKind::actuator, &PluginManifest::create_actuator);
+}
+Result<std::unique_ptr<ClassifierHandle>> PluginRegistry::create_classifier(const std::string& plugin,
+                                                                            const std::string& instance) {
+    return create<Classifier>(*this, plugin, instance, PluginKind::classifier, &PluginManifest::create_classifier);
+}
+
+}  // namespace rollsense::runtime

@@ -1,0 +1,398 @@
+#include "runtime/profile/profile.hpp"
+
+#include <lua.hpp>
+
+#include <algorithm>
+#include <memory>
+
+#include "runtime/lua/lua_values.hpp"
+
+namespace rollsense::runtime {
+namespace fs = std::filesystem;
+
+Status Settings::add(const std::string& kv) {
+    auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+        return {ErrorCode::invalid_argument, "--set expects key=value, got '" + kv + "'"};
+    values_[kv.substr(0, eq)] = parse_cli_value(kv.substr(eq + 1));
+    return {};
+}
+
+const ParamValue* Settings::find(const std::string& key) const {
+    auto it = values_.find(key);
+    if (it == values_.end()) return nullptr;
+    used_.insert(key);
+    return &it->second;
+}
+
+std::vector<std::string> Settings::unused() const {
+    std::vector<std::string> out;
+    for (const auto& [k, v] : values_)
+        if (!used_.count(k)) out.push_back(k);
+    return out;
+}
+
+fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir) {
+    if (name.find('/') != std::string::npos || (name.size() > 4 && name.substr(name.size() - 4) == ".lua"))
+        return fs::path(name);
+    return share_dir / "profiles" / (name + ".lua");
+}
+
+namespace {
+
+struct LuaCloser {
+    void operator()(lua_State* L) const { lua_close(L); }
+};
+
+struct LoadState {
+    fs::path share_dir;
+    const Settings* settings;
+    int depth = 0;
+};
+
+int run_profile_file(lua_State* L, const fs::path& path);
+
+// include("name"): evaluate another profile and return its table.
+int lua_include(lua_State* L) {
+    auto* st = static_cast<LoadState*>(lua_touserdata(L, lua_upvalueindex(1)));
+    const char* name = luaL_checkstring(L, 1);
+    if (++st->depth > 8) return luaL_error(L, "include('%s'): profiles include each other too deeply", name);
+    auto path = resolve_profile_path(name, st->share_dir);
+    int n = run_profile_file(L, path);
+    --st->depth;
+    return n;
+}
+
+// setting("key", default): a --set value or the default.
+int lua_setting(lua_State* L) {
+    auto* st = static_cast<LoadState*>(lua_touserdata(L, lua_upvalueindex(1)));
+    const char* key = luaL_checkstring(L, 1);
+    if (const ParamValue* v = st->settings->find(key)) {
+        push_param(L, *v);
+        return 1;
+    }
+    if (lua_gettop(L) < 2) return luaL_error(L, "setting '%s' is required: pass --set %s=VALUE", key, key);
+    lua_settop(L, 2);
+    return 1;
+}
+
+int run_profile_file(lua_State* L, const fs::path& path) {
+    if (luaL_loadfilex(L, path.c_str(), "t") != LUA_OK) return lua_error(L);
+    // A fresh environment: only the helpers, no standard library.
+    lua_newtable(L);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_pushcclosure(L, lua_include, 1);
+    lua_setfield(L, -2, "include");
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_pushcclosure(L, lua_setting, 1);
+    lua_setfield(L, -2, "setting");
+    lua_setupvalue(L, -2, 1);
+    lua_call(L, 0, 1);
+    if (!lua_istable(L, -1)) return luaL_error(L, "%s: a profile must return a table", path.c_str());
+    return 1;
+}
+
+// Walks a Lua table and remembers which keys were read, so that leftovers
+// can be reported as unknown.
+class TableReader {
+public:
+    TableReader(lua_State* L, int index, std::string where) : L_(L), index_(lua_absindex(L, index)), where_(std::move(where)) {}
+
+    const std::string& where() const { return where_; }
+    std::string at(const std::string& key) const { return where_ + "." + key; }
+
+    // Pushes the field (or nil); remember to pop.
+    int push(const std::string& key) {
+        used_.insert(key);
+        return lua_getfield(L_, index_, key.c_str());
+    }
+    Result<std::optional<double>> number(const std::string& key) {
+        int t = push(key);
+        std::optional<double> out;
+        if (t == LUA_TNUMBER) out = lua_tonumber(L_, -1);
+        lua_pop(L_, 1);
+        if (t != LUA_TNUMBER && t != LUA_TNIL)
+            return Error{ErrorCode::invalid_argument, at(key) + " must be a number"};
+        return out;
+    }
+    Result<std::optional<std::string>> string(const std::string& key) {
+        int t = push(key);
+        std::optional<std::string> out;
+        if (t == LUA_TSTRING) out = lua_tostring(L_, -1);
+        lua_pop(L_, 1);
+        if (t != LUA_TSTRING && t != LUA_TNIL)
+            return Error{ErrorCode::invalid_argument, at(key) + " must be a string"};
+        return out;
+    }
+    Result<std::optional<bool>> boolean(const std::string& key) {
+        int t = push(key);
+        std::optional<bool> out;
+        if (t == LUA_TBOOLEAN) out = lua_toboolean(L_, -1) != 0;
+        lua_pop(L_, 1);
+        if (t != LUA_TBOOLEAN && t != LUA_TNIL)
+            return Error{ErrorCode::invalid_argument, at(key) + " must be true or false"};
+        return out;
+    }
+    Result<std::vector<std::string>> string_list(const std::string& key) {
+        push(key);
+        auto v = lua_isnil(L_, -1) ? Result<ParamValue>(ParamValue{std::vector<std::string>{}})
+                                   : lua_to_param(L_, -1, at(key));
+        lua_pop(L_, 1);
+        if (!v) return v.error();
+        if (auto* l = std::get_if<std::vector<std::string>>(&*v)) return *l;
+        if (auto* l = std::get_if<std::vector<double>>(&*v); l && l->empty()) return std::vector<std::string>{};
+        return Error{ErrorCode::invalid_argument, at(key) + " must be a list of strings"};
+    }
+    // Iterate over string keys of a sub-table: fn(name, reader-of-value-at-top).
+    template <class F>
+    Status each(const std::string& key, F&& fn) {
+        int t = push(key);
+        if (t == LUA_TNIL) {
+            lua_pop(L_, 1);
+            return {};
+        }
+        if (t != LUA_TTABLE) {
+            lua_pop(L_, 1);
+            return {ErrorCode::invalid_argument, at(key) + " must be a table"};
+        }
+        int table = lua_gettop(L_);
+        // Sorted keys: deterministic device order regardless of Lua's hashing.
+        std::vector<std::string> names;
+        lua_pushnil(L_);
+        while (lua_next(L_, table)) {
+            lua_pop(L_, 1);
+            if (lua_type(L_, -1) != LUA_TSTRING) {
+                lua_pop(L_, 2);
+                return {ErrorCode::invalid_argument, at(key) + ": entries must be named (name = { ... })"};
+            }
+            names.emplace_back(lua_tostring(L_, -1));
+        }
+        std::sort(names.begin(), names.end());
+        for (const auto& name : names) {
+            lua_getfield(L_, table, name.c_str());
+            Status s = fn(name, at(key) + "." + name);
+            lua_settop(L_, table);
+            if (!s.ok()) {
+                lua_pop(L_, 1);
+                return s;
+            }
+        }
+        lua_pop(L_, 1);
+        return {};
+    }
+    Status reject_unknown() {
+        lua_pushnil(L_);
+        while (lua_next(L_, index_)) {
+            lua_pop(L_, 1);
+            std::string key = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "<non-name key>";
+            if (!used_.count(key)) {
+                lua_pop(L_, 1);
+                std::string known;
+                for (const auto& k : used_) known += (known.empty() ? "" : ", ") + k;
+                return {ErrorCode::invalid_argument, at(key) + ": unknown key (known here: " + known + ")"};
+            }
+        }
+        return {};
+    }
+
+private:
+    lua_State* L_;
+    int index_;
+    std::string where_;
+    std::set<std::string> used_;
+};
+
+// Return early on error. The status variable's name carries the line number
+// because TRY nests (a TRY inside a lambda passed to TRY).
+#define TRY_CAT2(a, b) a##b
+#define TRY_CAT(a, b) TRY_CAT2(a, b)
+#define TRY(expr)                                                                   \
+    do {                                                                            \
+        if (auto TRY_CAT(status_, __LINE__) = (expr); !TRY_CAT(status_, __LINE__).ok()) \
+            return TRY_CAT(status_, __LINE__);                                      \
+    } while (0)
+
+template <class T>
+Status take(Result<T> r, T& out) {
+    if (!r) return r.status();
+    out = std::move(*r);
+    return {};
+}
+
+Status read_gpio(lua_State* L, const std::string& where, bool is_trigger, std::optional<GpioLine>& out) {
+    if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table"};
+    TableReader r(L, -1, where);
+    GpioLine g;
+    std::optional<std::string> chip;
+    std::optional<double> line, pulse;
+    std::optional<bool> active_low;
+    TRY(take(r.string("chip"), chip));
+    TRY(take(r.number("line"), line));
+    TRY(take(r.boolean("active_low"), active_low));
+    if (is_trigger) TRY(take(r.number("pulse_ms"), pulse));
+    TRY(r.reject_unknown());
+    if (!chip || !line) return {ErrorCode::invalid_argument, where + " needs chip and line"};
+    g.chip = *chip;
+    g.line = static_cast<unsigned>(*line);
+    g.active_low = active_low.value_or(false);
+    if (pulse) g.pulse_ms = *pulse;
+    out = g;
+    return {};
+}
+
+Status read_profile_table(lua_State* L, const Settings& settings, Profile& p) {
+    TableReader r(L, -1, p.path.filename().string());
+    std::optional<std::string> s;
+    std::optional<double> d;
+    TRY(take(r.string("description"), s));
+    p.description = s.value_or("");
+    TRY(take(r.string("clock"), s));
+    if (s && *s != "virtual" && *s != "monotonic")
+        return {ErrorCode::invalid_argument, r.at("clock") + " is '" + *s + "', expected 'virtual' or 'monotonic'"};
+    p.virtual_clock = !s || *s == "virtual";
+    TRY(take(r.number("sample_rate_hz"), d));
+    if (d) p.sample_rate_hz = *d;
+    TRY(take(r.number("control_rate_hz"), d));
+    if (d) p.control_rate_hz = *d;
+    if (p.sample_rate_hz <= 0 || p.control_rate_hz <= 0)
+        return {ErrorCode::invalid_argument, r.where() + ": sample_rate_hz and control_rate_hz must be > 0"};
+    std::vector<std::string> list;
+    TRY(take(r.string_list("plugin_path"), list));
+    for (const auto& entry : list) {
+        fs::path pp(entry);
+        p.plugin_path.push_back(pp.is_absolute() ? pp : p.path.parent_path() / pp);
+    }
+    TRY(take(r.string_list("record_joints"), p.record_joints));
+
+    TRY(r.each("devices", [&](const std::string& name, const std::string& where) -> Status {
+        if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table { plugin = ..., params = {...} }"};
+        TableReader dr(L, -1, where);
+        DeviceSpec dev;
+        dev.name = name;
+        std::optional<std::string> plugin;
+        TRY(take(dr.string("plugin"), plugin));
+        if (!plugin) return {ErrorCode::invalid_argument, where + ".plugin is missing (which plugin drives it?)"};
+        dev.plugin = *plugin;
+        dr.push("params");
+        auto params = lua_to_param_map(L, -1, where + ".params");
+        lua_pop(L, 1);
+        if (!params) return params.status();
+        dev.params = std::move(*params);
+        TRY(dr.reject_unknown());
+        p.devices.push_back(std::move(dev));
+        return {};
+    }));
+    TRY(r.each("joints", [&](const std::string& name, const std::string& where) -> Status {
+        if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table"};
+        TableReader jr(L, -1, where);
+        JointLimit j;
+        j.name = name;
+        std::optional<double> v;
+        TRY(take(jr.number("min"), v));
+        if (!v) return {ErrorCode::invalid_argument, where + ".min is missing"};
+        j.min = *v;
+        TRY(take(jr.number("max"), v));
+        if (!v) return {ErrorCode::invalid_argument, where + ".max is missing"};
+        j.max = *v;
+        if (j.min >= j.max) return {ErrorCode::invalid_argument, where + ": min must be below max"};
+        TRY(take(jr.number("max_velocity"), v));
+        j.max_velocity = v.value_or(0);
+        TRY(take(jr.number("max_current"), v));
+        j.max_current = v.value_or(0);
+        std::optional<std::string> safe;
+        TRY(take(jr.string("safe"), safe));
+        if (safe && *safe != "hold" && *safe != "torque_off")
+            return {ErrorCode::invalid_argument, where + ".safe is '" + *safe + "', expected 'hold' or 'torque_off'"};
+        j.safe_torque_off = safe && *safe == "torque_off";
+        TRY(jr.reject_unknown());
+        p.joints.push_back(j);
+        return {};
+    }));
+    TRY(r.each("controllers", [&](const std::string& name, const std::string& where) -> Status {
+        auto params = lua_to_param_map(L, -1, where);
+        if (!params) return params.status();
+        p.controllers.push_back({name, std::move(*params)});
+        return {};
+    }));
+    int t = r.push("safety");
+    if (t == LUA_TTABLE) {
+        TableReader sr(L, -1, r.at("safety"));
+        if (sr.push("estop") != LUA_TNIL) TRY(read_gpio(L, sr.at("estop"), false, p.estop));
+        lua_pop(L, 1);
+        if (sr.push("trigger") != LUA_TNIL) TRY(read_gpio(L, sr.at("trigger"), true, p.trigger));
+        lua_pop(L, 1);
+        TRY(sr.reject_unknown());
+    } else if (t != LUA_TNIL) {
+        lua_pop(L, 1);
+        return {ErrorCode::invalid_argument, r.at("safety") + " must be a table"};
+    }
+    lua_pop(L, 1);
+    (void)settings;
+    return r.reject_unknown();
+}
+
+// Apply dotted --set keys (devices.tactile.params.x=1) to the profile table.
+Status apply_dotted_settings(lua_State* L, const Settings& settings, const std::string& file) {
+    for (const auto& [key, value] : settings.values()) {
+        if (key.find('.') == std::string::npos) continue;
+        settings.mark_used(key);
+        std::vector<std::string> parts;
+        std::string cur;
+        for (char c : key + ".") {
+            if (c == '.') {
+                parts.push_back(cur);
+                cur.clear();
+            } else {
+                cur.push_back(c);
+            }
+        }
+        int top = lua_gettop(L);
+        lua_pushvalue(L, -1);
+        for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+            if (lua_getfield(L, -1, parts[i].c_str()) != LUA_TTABLE) {
+                lua_settop(L, top);
+                return {ErrorCode::invalid_argument,
+                        "--set " + key + ": " + file + " has no table '" + parts[i] + "' on that path"};
+            }
+        }
+        push_param(L, value);
+        lua_setfield(L, -2, parts.back().c_str());
+        lua_settop(L, top);
+    }
+    return {};
+}
+
+}  // namespace
+
+Result<Profile> load_profile(const std::string& name_or_path, const fs::path& share_dir, const Settings& settings) {
+    Profile p;
+    p.path = resolve_profile_path(name_or_path, share_dir);
+    p.name = p.path.stem().string();
+    std::error_code ec;
+    if (!fs::exists(p.path, ec)) {
+        std::string known;
+        for (const auto& e : fs::directory_iterator(share_dir / "profiles", ec))
+            if (e.path().extension() == ".lua") known += (known.empty() ? "" : ", ") + e.path().stem().string();
+        return Error{ErrorCode::not_found, "profile '" + name_or_path + "' not found at " + p.path.string() +
+                                               (known.empty() ? "" : " (profiles here: " + known + ")")};
+    }
+    std::unique_ptr<lua_State, LuaCloser> holder(luaL_newstate());
+    lua_State* L = holder.get();
+    LoadState st{share_dir, &settings, 0};
+    lua_pushlightuserdata(L, &st);
+    lua_pushcclosure(
+        L,
+        [](lua_State* L2) -> int {
+            auto path = fs::path(lua_tostring(L2, 1));
+            return run_profile_file(L2, path);
+        },
+        1);
+    lua_pushstring(L, p.path.c_str());
+    if (lua_pcall(L, 1, 1, 0) != LUA_OK)
+        return Error{ErrorCode::parse_error, std::string("profile ") + lua_tostring(L, -1)};
+    if (auto s = apply_dotted_settings(L, settings, p.path.string()); !s.ok()) return s.error();
+    if (auto s = read_profile_table(L, settings, p); !s.ok()) return s.error();
+    return p;
+}
+
+}  // namespace rollsense::runtime

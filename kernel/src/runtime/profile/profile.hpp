@@ -1,0 +1,100 @@
+// Robot profiles: Lua files in share/profiles/ that say which plugin drives
+// which device, with what parameters, what the joint limits are and how the
+// run is clocked. A profile is configuration only (Cartographer-style): it runs
+// in an empty sandbox, and every key must be one the kernel knows, so a typo is
+// an error naming the file and the key instead of a silent default.
+//
+//   return {
+//     description = "...",
+//     clock = "virtual" | "monotonic",
+//     sample_rate_hz = 31.1, control_rate_hz = 100,
+//     plugin_path = { "..." },
+//     devices = { name = { plugin = "...", params = { ... } }, ... },
+//     joints  = { name = { min = .., max = .., max_velocity = .., max_current = .., safe = "hold"|"torque_off" } },
+//     record_joints = { "sensing_finger" },
+//     controllers = { palm_parallel = { ... } },
+//     safety = { estop = { chip = .., line = .., active_low = .. }, trigger = { chip = .., line = .., pulse_ms = .. } },
+//   }
+//
+// Inside a profile, `include("other")` returns another profile's table (to
+// extend it) and `setting("key", default)` reads a --set value.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "rollsense/params.hpp"
+#include "rollsense/status.hpp"
+
+namespace rollsense::runtime {
+
+struct DeviceSpec {
+    std::string name;
+    std::string plugin;
+    std::map<std::string, ParamValue> params;
+};
+
+struct JointLimit {
+    std::string name;
+    double min = 0, max = 0;
+    double max_velocity = 0;  // unit/s, 0 = no profile limit
+    double max_current = 0;   // mA, 0 = no profile limit
+    bool safe_torque_off = false;  // safe state: false = hold position, true = torque off
+};
+
+struct ControllerSpec {
+    std::string name;
+    std::map<std::string, ParamValue> params;
+};
+
+struct GpioLine {
+    std::string chip;
+    unsigned line = 0;
+    bool active_low = false;
+    double pulse_ms = 5.0;  // trigger output only
+};
+
+struct Profile {
+    std::string name;
+    std::filesystem::path path;
+    std::string description;
+    bool virtual_clock = true;
+    double sample_rate_hz = 31.1;
+    double control_rate_hz = 100.0;
+    std::vector<std::filesystem::path> plugin_path;
+    std::vector<DeviceSpec> devices;
+    std::vector<JointLimit> joints;
+    std::vector<std::string> record_joints;
+    std::vector<ControllerSpec> controllers;
+    std::optional<GpioLine> estop;
+    std::optional<GpioLine> trigger;
+};
+
+// Command-line settings (--set key=value). Plain keys are read by profiles
+// (`setting`) and scripts (`rs.setting`); dotted keys override a profile path,
+// e.g. devices.tactile.params.kernel_fwhm=5.
+class Settings {
+public:
+    Status add(const std::string& key_equals_value);
+    void set(const std::string& key, ParamValue value) { values_[key] = std::move(value); }
+    const ParamValue* find(const std::string& key) const;  // marks the key as used
+    const std::map<std::string, ParamValue>& values() const { return values_; }
+    std::vector<std::string> unused() const;
+    void mark_used(const std::string& key) const { used_.insert(key); }
+
+private:
+    std::map<std::string, ParamValue> values_;
+    mutable std::set<std::string> used_;
+};
+
+// Where profiles named without a path are looked up: <share>/profiles/<name>.lua.
+std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);
+
+Result<Profile> load_profile(const std::string& name_or_path, const std::filesystem::path& share_dir,
+                             const Settings& settings);
+
+}  // namespace rollsense::runtime

@@ -1,0 +1,436 @@
+#include "runtime/robot/robot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace rollsense::runtime {
+
+namespace {
+std::string fmt(double v) {
+    std::ostringstream os;
+    os.precision(6);
+    os << v;
+    return os.str();
+}
+bool is_position_mode(ControlMode m) {
+    return m == ControlMode::position || m == ControlMode::extended_position ||
+           m == ControlMode::current_based_position;
+}
+}  // namespace
+
+Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegistry& registry,
+                                             const std::filesystem::path& share_dir) {
+    std::unique_ptr<Robot> r(new Robot());
+    r->profile_label_ = "profile '" + profile.name + "' (" + profile.path.string() + ")";
+    const std::string file = profile.path.string();
+
+    for (const auto& dev : profile.devices) {
+        const std::string where = file + ": devices." + dev.name;
+        std::shared_ptr<const LoadedLibrary> lib;
+        for (auto kind : {PluginKind::sensor, PluginKind::actuator, PluginKind::classifier}) {
+            auto found = registry.find(dev.plugin, kind);
+            if (found) {
+                lib = *found;
+                break;
+            }
+        }
+        if (!lib) {
+            auto any = registry.find(dev.plugin, PluginKind::sensor);  // for the full "searched" message
+            return Error{ErrorCode::not_found, where + ": " + any.error().message};
+        }
+        auto schema = PluginRegistry::schema_of(*lib);
+        if (!schema) return schema.error();
+        auto params = validate_params(*schema, dev.params, where + ".params");
+        if (!params) return params.error();
+        PluginContext ctx;
+        ctx.instance = dev.name;
+        ctx.share_dir = share_dir;
+        ctx.profile_path = profile.path;
+        ctx.virtual_time = profile.virtual_clock;
+
+        if (lib->manifest().kind == PluginKind::sensor) {
+            auto h = registry.create_sensor(dev.plugin, dev.name);
+            if (!h) return h.error();
+            if (auto s = (*h)->configure(*params, ctx); !s.ok()) return s.error();
+            SensorSlot slot;
+            slot.handle = std::move(*h);
+            auto channels = slot.handle->plugin().channels();
+            slot.channels = channels.size();
+            r->sensors_.push_back(std::move(slot));
+        } else if (lib->manifest().kind == PluginKind::actuator) {
+            auto h = registry.create_actuator(dev.plugin, dev.name);
+            if (!h) return h.error();
+            if (auto s = (*h)->configure(*params, ctx); !s.ok()) return s.error();
+            ActuatorSlot slot;
+            slot.handle = std::move(*h);
+            r->actuators_.push_back(std::move(slot));
+        } else {
+            return Error{ErrorCode::invalid_argument,
+                         where + ": plugin '" + dev.plugin +
+                             "' is a classifier; classifiers are chosen by the script, not listed as devices"};
+        }
+    }
+
+    // Channel columns: a lone sensor's channel names; several sensors are prefixed.
+    for (auto& s : r->sensors_) {
+        for (const auto& ch : s.handle->plugin().channels())
+            r->channel_columns_.push_back(r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name);
+        s.frame.values.assign(s.channels, 0.0);
+    }
+
+    // Joint table, with profile limits required for every joint.
+    for (std::size_t a = 0; a < r->actuators_.size(); ++a) {
+        auto& slot = r->actuators_[a];
+        auto infos = slot.handle->plugin().joints();
+        for (std::size_t i = 0; i < infos.size(); ++i) {
+            const auto& info = infos[i];
+            for (const auto& j : r->joints_)
+                if (j.name == info.name)
+                    return Error{ErrorCode::invalid_argument, file + ": joint '" + info.name +
+                                                                  "' is declared by two devices (" +
+                                                                  j.actuator->instance() + " and " +
+                                                                  slot.handle->instance() + ")"};
+            auto lim = std::find_if(profile.joints.begin(), profile.joints.end(),
+                                    [&](const JointLimit& l) { return l.name == info.name; });
+            if (lim == profile.joints.end())
+                return Error{ErrorCode::invalid_argument,
+                             file + ": joint '" + info.name + "' of device '" + slot.handle->instance() +
+                                 "' has no limits; add joints." + info.name +
+                                 " = { min = ..., max = ... } (the kernel enforces them)"};
+            if (lim->min < info.min_position || lim->max > info.max_position)
+                return Error{ErrorCode::invalid_argument,
+                             file + ": joints." + info.name + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
+                                 "] exceed what the device allows [" + fmt(info.min_position) + ", " +
+                                 fmt(info.max_position) + "] " + info.unit};
+            Joint j;
+            j.name = info.name;
+            j.actuator = slot.handle.get();
+            j.index = i;
+            j.info = info;
+            j.limit = *lim;
+            if (info.max_velocity > 0 && (j.limit.max_velocity == 0 || j.limit.max_velocity > info.max_velocity))
+                j.limit.max_velocity = info.max_velocity;
+            if (info.max_current > 0 && (j.limit.max_current == 0 || j.limit.max_current > info.max_current))
+                j.limit.max_current = info.max_current;
+            slot.joints.push_back(r->joints_.size());
+            r->joints_.push_back(std::move(j));
+        }
+        slot.states.resize(infos.size());
+        slot.commands.resize(infos.size());
+    }
+    for (const auto& l : profile.joints)
+        if (!r->find_joint(l.name))
+            return Error{ErrorCode::invalid_argument, file + ": joints." + l.name +
+                                                          " names no joint of any device (joints: " +
+                                                          r->joint_names() + ")"};
+    for (const auto& name : profile.record_joints) {
+        auto* j = r->find_joint(name);
+        if (!j)
+            return Error{ErrorCode::invalid_argument, file + ": record_joints names '" + name +
+                                                          "', which is not a joint (joints: " + r->joint_names() + ")"};
+        r->recorded_joints_.push_back(name);
+        r->recorded_joint_index_.push_back(static_cast<std::size_t>(j - r->joints_.data()));
+    }
+    for (const auto& j : r->joints_) r->joint_names_.push_back(j.name);
+    r->joint_states_.resize(r->joints_.size());
+
+    for (const auto& spec : profile.controllers) {
+        const auto* type = find_controller_type(spec.name);
+        if (!type) {
+            std::string known;
+            for (const auto& n : controller_type_names()) known += (known.empty() ? "" : ", ") + n;
+            return Error{ErrorCode::not_found, file + ": controllers." + spec.name + ": no such controller (known: " +
+                                                   (known.empty() ? "none" : known) + ")"};
+        }
+        auto params = validate_params(type->schema, spec.params, file + ": controllers." + spec.name);
+        if (!params) return params.error();
+        r->controllers_.push_back({spec.name, type->create(*params), false});
+    }
+    return r;
+}
+
+Robot::~Robot() = default;
+
+std::string Robot::joint_names() const {
+    std::string out;
+    for (const auto& j : joints_) out += (out.empty() ? "" : ", ") + j.name;
+    return out.empty() ? "none" : out;
+}
+
+Joint* Robot::find_joint(const std::string& name) {
+    for (auto& j : joints_)
+        if (j.name == name) return &j;
+    return nullptr;
+}
+
+ComponentHandle* Robot::find_device(const std::string& name) {
+    for (auto& a : actuators_)
+        if (a.handle->instance() == name) return a.handle.get();
+    for (auto& s : sensors_)
+        if (s.handle->instance() == name) return s.handle.get();
+    return nullptr;
+}
+
+std::vector<std::string> Robot::device_names() const {
+    std::vector<std::string> out;
+    for (const auto& a : actuators_) out.push_back(a.handle->instance());
+    for (const auto& s : sensors_) out.push_back(s.handle->instance());
+    return out;
+}
+
+Status Robot::activate(double time) {
+    for (auto& s : sensors_)
+        if (s.handle->state() == LifecycleState::inactive)
+            if (auto st = s.handle->activate(); !st.ok()) return st;
+    for (auto& a : actuators_)
+        if (a.handle->state() == LifecycleState::inactive)
+            if (auto st = a.handle->activate(); !st.ok()) return st;
+    // Latch the measured position as the command: no jump to a stale goal.
+    if (auto st = read_actuators(time); !st.ok()) return st;
+    for (auto& j : joints_) {
+        j.command = JointCommand{};
+        j.command.mode = j.info.modes.empty() || j.info.modes.front() == ControlMode::current
+                             ? ControlMode::position
+                             : j.info.modes.front();
+        j.command.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
+        j.command.profile_velocity = j.limit.max_velocity;
+    }
+    return {};
+}
+
+Status Robot::read_actuators(double time) {
+    for (auto& a : actuators_) {
+        if (auto s = a.handle->require_active("read"); !s.ok()) return s;
+        auto st = a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); });
+        if (!st.ok()) return st;
+        for (std::size_t i = 0; i < a.joints.size(); ++i) {
+            auto& j = joints_[a.joints[i]];
+            j.state = a.states[i];
+            joint_states_[a.joints[i]] = a.states[i];
+        }
+    }
+    return {};
+}
+
+Status Robot::write_actuators(double time) {
+    for (auto& a : actuators_) {
+        for (std::size_t i = 0; i < a.joints.size(); ++i) a.commands[i] = joints_[a.joints[i]].command;
+        auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, a.commands); });
+        if (!st.ok()) return st;
+    }
+    return {};
+}
+
+Status Robot::control_tick(double time, double dt) {
+    if (auto s = read_actuators(time); !s.ok()) return s;
+    for (auto& c : controllers_) {
+        if (!c.enabled) continue;
+        if (auto s = c.controller->update(time, dt, *this); !s.ok()) {
+            c.enabled = false;
+            return std::move(s).with_context("controller '" + c.name + "'");
+        }
+    }
+    return write_actuators(time);
+}
+
+std::vector<JointCommand> Robot::safe_commands(const ActuatorHandle& actuator) const {
+    std::vector<JointCommand> out;
+    for (const auto& j : joints_) {
+        if (j.actuator != &actuator) continue;
+        JointCommand c;
+        c.mode = j.info.modes.empty() || j.info.modes.front() == ControlMode::current ? ControlMode::position
+                                                                                     : j.info.modes.front();
+        c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
+        c.torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty();
+        c.profile_velocity = j.limit.max_velocity;
+        out.push_back(c);
+    }
+    return out;
+}
+
+void Robot::safe_state(double time) noexcept {
+    disable_all_controllers(time);
+    for (auto& a : actuators_) {
+        if (a.handle->state() != LifecycleState::active) continue;
+        // Fresh positions where the bus still answers; the last known otherwise.
+        (void)a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); }, true);
+        for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
+        auto cmds = safe_commands(*a.handle);
+        for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = cmds[i];
+        auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, cmds); }, true);
+        if (!st.ok()) log_error("kernel", "safe state: " + st.message());
+    }
+}
+
+void Robot::shutdown(double time) noexcept {
+    safe_state(time);
+    for (auto& a : actuators_) {
+        if (a.handle->state() == LifecycleState::active) (void)a.handle->deactivate();
+        if (a.handle->state() == LifecycleState::inactive) (void)a.handle->cleanup();
+    }
+    for (auto& s : sensors_) {
+        if (s.handle->state() == LifecycleState::active) (void)s.handle->deactivate();
+        if (s.handle->state() == LifecycleState::inactive) (void)s.handle->cleanup();
+    }
+}
+
+void Robot::set_commands_locked(bool locked, std::string reason) {
+    locked_ = locked;
+    lock_reason_ = std::move(reason);
+}
+
+Status Robot::command_joint(Joint& j, const JointCommand& c) {
+    const std::string who = "joint '" + j.name + "'";
+    if (locked_) return {ErrorCode::cancelled, who + ": command refused: " + lock_reason_};
+    if (std::find(j.info.modes.begin(), j.info.modes.end(), c.mode) == j.info.modes.end())
+        return {ErrorCode::invalid_argument, who + ": the device does not support " +
+                                                 std::string(to_string(c.mode)) + " mode"};
+    if (is_position_mode(c.mode) && (c.position < j.limit.min || c.position > j.limit.max || !std::isfinite(c.position)))
+        return {ErrorCode::limit_violation, who + ": goal " + fmt(c.position) + " " + j.info.unit +
+                                                " is outside the joint limits [" + fmt(j.limit.min) + ", " +
+                                                fmt(j.limit.max) + "] of " + profile_label_ + "; nothing was moved"};
+    if (j.limit.max_velocity > 0 && (std::abs(c.profile_velocity) > j.limit.max_velocity ||
+                                     std::abs(c.velocity) > j.limit.max_velocity))
+        return {ErrorCode::limit_violation, who + ": velocity " + fmt(std::max(std::abs(c.profile_velocity), std::abs(c.velocity))) +
+                                                " " + j.info.unit + "/s exceeds the limit " + fmt(j.limit.max_velocity) +
+                                                " of " + profile_label_ + "; nothing was moved"};
+    const bool uses_current = c.mode == ControlMode::current || c.mode == ControlMode::current_based_position;
+    if (uses_current) {
+        if (j.limit.max_current <= 0)
+            return {ErrorCode::limit_violation,
+                    who + ": no current limit is configured (joints." + j.name + ".max_current in " + profile_label_ +
+                        "), so current commands are refused"};
+        if (std::abs(c.current) > j.limit.max_current || !std::isfinite(c.current))
+            return {ErrorCode::limit_violation, who + ": current " + fmt(c.current) + " mA exceeds the limit " +
+                                                    fmt(j.limit.max_current) + " mA of " + profile_label_ +
+                                                    "; nothing was moved"};
+    }
+    j.command = c;
+    if (c.profile_velocity == 0 && j.limit.max_velocity > 0) j.command.profile_velocity = j.limit.max_velocity;
+    return {};
+}
+
+const JointState* Robot::state(const std::string& joint) const {
+    for (const auto& j : joints_)
+        if (j.name == joint) return &j.state;
+    return nullptr;
+}
+const JointInfo* Robot::info(const std::string& joint) const {
+    for (const auto& j : joints_)
+        if (j.name == joint) return &j.info;
+    return nullptr;
+}
+const JointCommand* Robot::command(const std::string& joint) const {
+    for (const auto& j : joints_)
+        if (j.name == joint) return &j.command;
+    return nullptr;
+}
+Status Robot::set_command(const std::string& joint, const JointCommand& c) {
+    auto* j = find_joint(joint);
+    if (!j) return {ErrorCode::not_found, "no joint '" + joint + "' (joints: " + joint_names() + ")"};
+    return command_joint(*j, c);
+}
+
+Controller* Robot::find_controller(const std::string& name) {
+    for (auto& c : controllers_)
+        if (c.name == name) return c.controller.get();
+    return nullptr;
+}
+
+Status Robot::enable_controller(const std::string& name, double time) {
+    for (auto& c : controllers_) {
+        if (c.name != name) continue;
+        if (c.enabled) return {};
+        if (locked_) return {ErrorCode::cancelled, "controller '" + name + "': refused: " + lock_reason_};
+        if (auto s = c.controller->enable(time, *this); !s.ok())
+            return std::move(s).with_context("controller '" + name + "'");
+        c.enabled = true;
+        return {};
+    }
+    std::string known;
+    for (const auto& c : controllers_) known += (known.empty() ? "" : ", ") + c.name;
+    return {ErrorCode::not_found, "no controller '" + name + "' in " + profile_label_ +
+                                      " (configured: " + (known.empty() ? "none" : known) + ")"};
+}
+
+void Robot::disable_controller(const std::string& name, double time) {
+    for (auto& c : controllers_)
+        if (c.name == name && c.enabled) {
+            c.controller->disable(time, *this);
+            c.enabled = false;
+        }
+}
+
+void Robot::disable_all_controllers(double time) {
+    for (auto& c : controllers_)
+        if (c.enabled) {
+            c.controller->disable(time, *this);
+            c.enabled = false;
+        }
+}
+
+Status Robot::begin_trial(const TrialInfo& trial) {
+    for (auto& s : sensors_) {
+        if (auto st = s.handle->require_active("begin_trial"); !st.ok()) return st;
+        if (auto st = s.handle->call("begin_trial", [&] { return s.handle->plugin().begin_trial(trial); }); !st.ok())
+            return st;
+    }
+    return {};
+}
+
+Status Robot::start_recording(double time) {
+    SampleInput in{time, &joint_names_, &joint_states_};
+    for (auto& s : sensors_)
+        if (auto st = s.handle->call("start_recording", [&] { return s.handle->plugin().start_recording(in); });
+            !st.ok())
+            return st;
+    return {};
+}
+
+Status Robot::stop_recording() {
+    for (auto& s : sensors_)
+        if (auto st = s.handle->call("stop_recording", [&] { return s.handle->plugin().stop_recording(); }); !st.ok())
+            return st;
+    return {};
+}
+
+Status Robot::end_trial() {
+    for (auto& s : sensors_)
+        if (auto st = s.handle->call("end_trial", [&] { return s.handle->plugin().end_trial(); }); !st.ok()) return st;
+    return {};
+}
+
+Status Robot::sample(double time, TrialData& data) {
+    SampleInput in{time, &joint_names_, &joint_states_};
+    if (data.channels.size() != channel_columns_.size()) data.channels.resize(channel_columns_.size());
+    if (data.joints.size() != recorded_joints_.size()) data.joints.resize(recorded_joints_.size());
+    bool valid = true;
+    std::size_t column = 0;
+    for (auto& s : sensors_) {
+        s.frame.time = time;
+        s.frame.valid = true;
+        s.frame.reason.clear();
+        std::fill(s.frame.values.begin(), s.frame.values.end(), 0.0);
+        auto st = s.handle->call("read", [&] { return s.handle->plugin().read(in, s.frame); });
+        if (!st.ok()) return st;
+        if (s.frame.values.size() != s.channels)
+            return s.handle->call("read", [&] {
+                return Status(ErrorCode::plugin_error, "read() changed the frame size to " +
+                                                           std::to_string(s.frame.values.size()) + " values, expected " +
+                                                           std::to_string(s.channels));
+            });
+        if (!s.frame.valid) {
+            valid = false;
+            log_debug(s.handle->instance(), "invalid sample at t=" + fmt(time) + ": " + s.frame.reason);
+        }
+        for (double v : s.frame.values) data.channels[column++].push_back(v);
+    }
+    for (std::size_t k = 0; k < recorded_joint_index_.size(); ++k)
+        data.joints[k].push_back(joints_[recorded_joint_index_[k]].state.position);
+    data.time.push_back(time);
+    data.valid.push_back(valid ? 1 : 0);
+    return {};
+}
+
+}  // namespace rollsense::runtime

@@ -1,0 +1,121 @@
+// The hand as the kernel sees it: every device of a profile, created through
+// the plugin registry and driven through lifecycle handles, plus the joint
+// table on which limits are enforced. The control loop (control_tick) and the
+// sampling loop (sample) are C++; Lua only sets commands.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rollsense/dataset.hpp"
+#include "runtime/control/controller.hpp"
+#include "runtime/plugin/plugin_registry.hpp"
+#include "runtime/profile/profile.hpp"
+
+namespace rollsense::runtime {
+
+struct Joint {
+    std::string name;
+    ActuatorHandle* actuator = nullptr;
+    std::size_t index = 0;  // in the actuator's joints()
+    JointInfo info;         // as the device declares it
+    JointLimit limit;       // enforced by the kernel (profile limits within the device's)
+    JointCommand command;
+    JointState state;
+};
+
+class Robot final : public JointAccess {
+public:
+    // Creates and configures every device of the profile (parameters checked
+    // against each plugin's schema). Nothing moves yet.
+    static Result<std::unique_ptr<Robot>> create(const Profile& profile, PluginRegistry& registry,
+                                                 const std::filesystem::path& share_dir);
+    ~Robot() override;
+
+    // Activate every device; each joint then holds where it is.
+    Status activate(double time);
+    // Best effort, never throws: stop every joint (hold, or torque off where the
+    // profile says so), then deactivate and clean up every device.
+    void shutdown(double time) noexcept;
+    // Stop every joint now. Used on script failure, cancellation and e-stop.
+    void safe_state(double time) noexcept;
+    // Refuse every command until released (emergency stop).
+    void set_commands_locked(bool locked, std::string reason = {});
+
+    // One control period: read all actuators, run enabled controllers, write.
+    Status control_tick(double time, double dt);
+    // One sample of every sensor, appended to `data` (channels, joints, valid).
+    Status sample(double time, TrialData& data);
+
+    // The dataset columns this robot records.
+    const std::vector<std::string>& channel_columns() const { return channel_columns_; }
+    const std::vector<std::string>& recorded_joints() const { return recorded_joints_; }
+
+    // Sensors' trial hooks.
+    Status begin_trial(const TrialInfo& trial);
+    Status start_recording(double time);
+    Status stop_recording();
+    Status end_trial();
+
+    // Joint table.
+    Joint* find_joint(const std::string& name);
+    const std::vector<Joint>& joints() const { return joints_; }
+    std::string joint_names() const;  // "a, b, c" for messages
+    // Check a command against the joint's limits and store it for the next write.
+    Status command_joint(Joint& joint, const JointCommand& command);
+
+    // Controllers from the profile.
+    Status enable_controller(const std::string& name, double time);
+    void disable_controller(const std::string& name, double time);
+    void disable_all_controllers(double time);
+    Controller* find_controller(const std::string& name);
+
+    // Devices by name, for `device:call(...)` from scripts.
+    ComponentHandle* find_device(const std::string& name);
+    std::vector<std::string> device_names() const;
+
+    // JointAccess (for controllers).
+    const JointState* state(const std::string& joint) const override;
+    const JointInfo* info(const std::string& joint) const override;
+    const JointCommand* command(const std::string& joint) const override;
+    Status set_command(const std::string& joint, const JointCommand& command) override;
+
+private:
+    Robot() = default;
+    Status read_actuators(double time);
+    Status write_actuators(double time);
+    std::vector<JointCommand> safe_commands(const ActuatorHandle& actuator) const;
+
+    struct ActuatorSlot {
+        std::unique_ptr<ActuatorHandle> handle;
+        std::vector<std::size_t> joints;  // indices into joints_
+        std::vector<JointState> states;   // scratch, reused every period
+        std::vector<JointCommand> commands;
+    };
+    struct SensorSlot {
+        std::unique_ptr<SensorHandle> handle;
+        std::size_t channels = 0;
+        Frame frame;  // scratch
+    };
+    struct ControllerSlot {
+        std::string name;
+        std::unique_ptr<Controller> controller;
+        bool enabled = false;
+    };
+
+    std::string profile_label_;
+    std::vector<ActuatorSlot> actuators_;
+    std::vector<SensorSlot> sensors_;
+    std::vector<ControllerSlot> controllers_;
+    std::vector<Joint> joints_;
+    std::vector<std::string> joint_names_;       // for SampleInput
+    std::vector<JointState> joint_states_;       // for SampleInput
+    std::vector<std::string> channel_columns_;
+    std::vector<std::string> recorded_joints_;
+    std::vector<std::size_t> recorded_joint_index_;
+    bool locked_ = false;
+    std::string lock_reason_;
+};
+
+}  // namespace rollsense::runtime

@@ -1,0 +1,38 @@
+#include "runtime/session/progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace rollsense::runtime {
+
+Progress::Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+
+Progress::~Progress() { finish(); }
+
+void Progress::update(std::size_t done, std::size_t total, const std::string& label, double run_clock_s) {
+    if (!enabled_ || total == 0) return;
+    auto now = std::chrono::steady_clock::now();
+    if (first_done_ == SIZE_MAX) first_done_ = done;  // trials skipped on --resume do not count for the rate
+    if (done < total && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const std::size_t fresh = done - first_done_;
+    const double per = fresh > 0 ? elapsed / static_cast<double>(fresh) : 0.0;
+    const double left = per * static_cast<double>(total - done);
+    const int width = 30;
+    const int filled = static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total));
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar.resize(width, '.');
+    std::fprintf(stderr, "\r[%s] %zu/%zu %-18.18s robot %6.0f s  left %s%5.0f s ", bar.c_str(), done, total,
+                 label.c_str(), run_clock_s, fresh > 0 ? "" : "~", left);
+    std::fflush(stderr);
+    drawn_ = true;
+}
+
+void Progress::finish() {
+    if (drawn_) std::fprintf(stderr, "\n");
+    drawn_ = false;
+}
+
+}  // namespace rollsense::runtime
