@@ -30,7 +30,10 @@ Result<ChipPtr> open_chip(const GpioLineConfig& cfg) {
     gpiod_chip* chip = cfg.chip[0] == '/' ? gpiod_chip_open(cfg.chip.c_str()) : gpiod_chip_open_by_name(cfg.chip.c_str());
     if (!chip) {
         const int err = errno;
-        if (err == ENOENT || err == ENODEV || err == ENOTTY)
+        if (err == ENODEV || err == ENOTTY)
+            return Error{ErrorCode::invalid_argument,
+                         "'" + cfg.chip + "' is not a GPIO character device: use a chip listed by 'gpiodetect'"};
+        if (err == ENOENT)
             return Error{ErrorCode::not_found,
                          "GPIO chip '" + cfg.chip + "' not found (no such device node under /dev): list the chips "
                          "with 'gpiodetect'; without hardware use a fake chip, e.g. \"fake:estop\""};

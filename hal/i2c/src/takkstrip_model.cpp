@@ -39,6 +39,10 @@ mpl115a::CoefficientWords plausible_coefficients(std::uint64_t seed) {
     return w;
 }
 
+std::shared_ptr<TakkStripModel> make_takkstrip_model(TakkStripModelConfig config) {
+    return std::make_shared<TakkStripModel>(config);
+}
+
 // ------------------------------------------------------------ Mpl115aChip --
 
 Mpl115aChip::Mpl115aChip(mpl115a::CoefficientWords words, std::uint64_t noise_seed)

@@ -141,6 +141,12 @@ private:
     int contended_reads_ = 0;
 };
 
+// Create a model whose shared_ptr control block lives in this library. Code
+// that may be unloaded while the (process-wide) fake bus still holds the model
+// — a plugin — must use this rather than std::make_shared, or the bus would
+// later call a destructor in an unmapped library.
+std::shared_ptr<TakkStripModel> make_takkstrip_model(TakkStripModelConfig config = {});
+
 // Realistic coefficient words around the datasheet example (a0 ≈ 2009.75,
 // b1 ≈ −2.376, b2 ≈ −0.920, c12 ≈ 0.00079), varied per chip by `seed`.
 mpl115a::CoefficientWords plausible_coefficients(std::uint64_t seed);

@@ -1,0 +1,160 @@
+// Every fault gives the documented error (at configure) or invalid-sample
+// reason (while sampling) — never a silent zero.
+#include <catch2/catch.hpp>
+
+#include <cerrno>
+
+#include "mpl115a_test_rig.hpp"
+
+using namespace rollsense;
+using namespace mpl115a_test;
+using rollsense::hal::Mpl115aFault;
+
+namespace {
+bool is_nan(double v) { return std::isnan(v); }
+}  // namespace
+
+TEST_CASE("configure: a missing sensor names the channel, the slot and the probe command", "[mpl115a][faults]") {
+    Rig rig("fault-missing");
+    rig.strip->set_slot_missing(1, true);
+    plugins::Mpl115aSensor s;
+    auto st = s.on_configure(params(rig.spec), {});
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(st.message(), Catch::Contains("channel ch2") && Catch::Contains("select 0x01") &&
+                                 Catch::Contains("NACK") && Catch::Contains("rollsense probe i2c fake:fault-missing"));
+}
+
+TEST_CASE("configure: a dead chip (NACK at 0x60)", "[mpl115a][faults]") {
+    Rig rig("fault-dead");
+    rig.strip->chip(2).set_fault(Mpl115aFault::nack);
+    plugins::Mpl115aSensor s;
+    auto st = s.on_configure(params(rig.spec), {});
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(st.message(), Catch::Contains("channel ch3") && Catch::Contains("no MPL115A at 0x60"));
+}
+
+TEST_CASE("configure: no strip on the bus", "[mpl115a][faults]") {
+    auto bus = rollsense::hal::FakeI2cBus::get("fault-empty");
+    bus->reset();
+    plugins::Mpl115aSensor s;
+    auto st = s.on_configure(params("fake:fault-empty"), {});
+    REQUIRE_FALSE(st.ok());
+    CHECK_THAT(st.message(), Catch::Contains("no TakkStrip answers the all-strips address 0x06 on fake:fault-empty") &&
+                                 Catch::Contains("rollsense probe i2c"));
+}
+
+TEST_CASE("configure: missing bus node and unsuitable adapters", "[mpl115a][faults]") {
+    plugins::Mpl115aSensor s;
+    auto missing = s.on_configure(params("/dev/i2c-247"), {});
+    REQUIRE_FALSE(missing.ok());
+    CHECK(missing.code() == ErrorCode::not_found);
+    CHECK_THAT(missing.message(), Catch::Contains("bus '/dev/i2c-247'") && Catch::Contains("fake:"));
+
+    Rig rig("fault-adapter");
+    rig.bus->set_functionality({true, false, 0});
+    auto no_quick = s.on_configure(params(rig.spec), {});
+    CHECK(no_quick.code() == ErrorCode::unsupported);
+    CHECK_THAT(no_quick.message(), Catch::Contains("quick commands"));
+}
+
+TEST_CASE("sampling: a chip that stops answering marks the frame invalid, other channels stay valid", "[mpl115a][faults]") {
+    Rig rig("fault-runtime-nack");
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(params(rig.spec), {}).ok());
+    REQUIRE(s.on_activate().ok());
+    REQUIRE(s.start_recording({}).ok());
+    REQUIRE(read_frame(s).valid);
+
+    rig.strip->chip(1).set_fault(Mpl115aFault::nack);
+    auto f = read_frame(s);
+    CHECK_FALSE(f.valid);
+    CHECK_THAT(f.reason, Catch::StartsWith("ch2: ") && Catch::Contains("0x60") && Catch::Contains("NACK"));
+    CHECK(is_nan(f.values[1]));  // not a silent zero
+    CHECK(std::isfinite(f.values[0]));
+    CHECK(std::isfinite(f.values[2]));
+    CHECK_FALSE(rig.strip->selected(1));
+
+    rig.strip->chip(1).set_fault(Mpl115aFault::none);  // it comes back
+    CHECK(read_frame(s).valid);
+}
+
+TEST_CASE("sampling: a sensor that disappears from the strip", "[mpl115a][faults]") {
+    Rig rig("fault-runtime-missing");
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(params(rig.spec), {}).ok());
+    REQUIRE(s.start_recording({}).ok());
+    rig.strip->set_slot_missing(2, true);
+    auto f = read_frame(s);
+    CHECK_FALSE(f.valid);
+    CHECK_THAT(f.reason, Catch::Contains("ch3: selecting strip 0 slot 2 (select 0x02)"));
+    CHECK(is_nan(f.values[2]));
+}
+
+TEST_CASE("sampling: a stuck ADC is detected after stuck_samples identical readings", "[mpl115a][faults]") {
+    Rig rig("fault-stuck");
+    // Healthy chips see a slow pressure ramp, so their readings change every sample.
+    for (int slot = 0; slot < 3; ++slot)
+        rig.strip->chip(slot).set_pressure_source([slot](double t) { return 100.0 + slot + 50.0 * t; });
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(params(rig.spec, {{"stuck_samples", 5}}), {}).ok());
+    REQUIRE(s.start_recording({}).ok());
+    rig.strip->chip(0).set_fault(Mpl115aFault::stuck);
+    int first_invalid = -1;
+    rollsense::Frame last;
+    for (int i = 0; i < 10; ++i) {
+        last = read_frame(s);
+        CHECK(std::isfinite(last.values[1]));
+        CHECK(std::isfinite(last.values[2]));
+        if (!last.valid && first_invalid < 0) first_invalid = i;
+    }
+    // The first reading after the fault is the last good one repeated; then
+    // repeats 1..5: the 6th identical reading (index 5) is flagged.
+    CHECK(first_invalid == 5);
+    CHECK_FALSE(last.valid);
+    CHECK_THAT(last.reason, Catch::StartsWith("ch1: ADC stuck") && Catch::Contains("stopped converting"));
+    CHECK(is_nan(last.values[0]));
+}
+
+TEST_CASE("sampling: a transient bus error is retried, and reported without retries", "[mpl115a][faults]") {
+    Rig rig("fault-transient");
+    plugins::Mpl115aSensor s;
+
+    REQUIRE(s.on_configure(params(rig.spec, {{"retries", 1}}), {}).ok());
+    REQUIRE(s.start_recording({}).ok());
+    rig.bus->inject_errno(EIO, 1);
+    CHECK(read_frame(s).valid);
+
+    REQUIRE(s.on_configure(params(rig.spec, {{"retries", 0}}), {}).ok());
+    REQUIRE(s.start_recording({}).ok());
+    rig.bus->inject_errno(EIO, 1);
+    auto f = read_frame(s);
+    CHECK_FALSE(f.valid);
+    CHECK_THAT(f.reason, Catch::Contains("starting the conversion") && Catch::Contains("I/O error"));
+    for (double v : f.values) CHECK(is_nan(v));
+    CHECK(read_frame(s).valid);  // the next sample is fine again
+}
+
+TEST_CASE("sampling: a hung bus (timeouts) invalidates every channel with the reason", "[mpl115a][faults]") {
+    Rig rig("fault-timeout");
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(params(rig.spec), {}).ok());
+    REQUIRE(s.start_recording({}).ok());
+    rig.bus->inject_errno(ETIMEDOUT, 1000);
+    auto f = read_frame(s);
+    CHECK_FALSE(f.valid);
+    CHECK_THAT(f.reason, Catch::Contains("timed out") && Catch::Contains("fake:fault-timeout"));
+    rig.bus->inject_errno(0, 0);
+}
+
+TEST_CASE("no baseline can be taken from a dead chip: start_recording fails, naming it", "[mpl115a][faults]") {
+    Rig rig("fault-baseline");
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(params(rig.spec), {}).ok());
+    rig.strip->chip(0).set_fault(Mpl115aFault::nack);
+    auto st = s.start_recording({});
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(st.message(), Catch::Contains("no baseline for channel ch1") && Catch::Contains("NACK"));
+}
