@@ -1,0 +1,65 @@
+// A bus of emulated servos: takes instruction packets, answers with status
+// packets exactly as X-series firmware would, and injects faults on request.
+// Transport-free (bytes in, bytes out) so it runs in-process in unit tests and
+// behind a pseudo-terminal in the `rollsense-dxl-emu` program.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <vector>
+
+#include "rollsense/hal/dynamixel/emulated_servo.hpp"
+#include "rollsense/hal/dynamixel/protocol.hpp"
+
+namespace rollsense::hal::dxl {
+
+// Faults injected on one servo. Counts are consumed reply by reply; -1 = forever.
+struct FaultPlan {
+    int drop_replies = 0;     // answer nothing (the client times out)
+    int corrupt_replies = 0;  // answer with a wrong CRC (the client sees a CRC error)
+};
+
+class BusEmulator {
+public:
+    BusEmulator() = default;
+
+    void add_servo(const ServoSetup& setup);
+    // nullptr if no servo has that id.
+    EmulatedServo* servo(std::uint8_t id);
+    const EmulatedServo* servo(std::uint8_t id) const;
+    std::vector<std::uint8_t> ids() const;
+
+    // Feed received bytes; returns the bytes to send back, one entry per
+    // status packet in the order the servos answer.
+    std::vector<Bytes> receive(std::span<const std::uint8_t> bytes);
+    // Handle one parsed instruction packet.
+    std::vector<Bytes> handle(const Packet& instruction);
+
+    // Advance every servo's motion model.
+    void advance(double seconds);
+
+    // ---- fault injection
+    void set_faults(std::uint8_t id, FaultPlan plan) { faults_[id] = plan; }
+    void raise_hardware_error(std::uint8_t id, std::uint8_t bits);
+    // Bytes sent in front of the next status packet (line noise).
+    void inject_garbage(Bytes bytes) { garbage_ = std::move(bytes); }
+
+    // Counters, for tests and the emulator's status line.
+    std::uint64_t instructions_handled() const { return handled_; }
+    std::uint64_t crc_errors_seen() const { return crc_errors_; }
+    std::uint64_t sync_writes() const { return sync_writes_; }
+    std::uint64_t sync_reads() const { return sync_reads_; }
+
+private:
+    // Build a status packet for `s`, applying its fault plan; false = no reply.
+    bool reply(EmulatedServo& s, std::uint8_t error, std::span<const std::uint8_t> params, std::vector<Bytes>& out);
+
+    std::vector<EmulatedServo> servos_;
+    std::map<std::uint8_t, FaultPlan> faults_;
+    Bytes garbage_;
+    PacketParser parser_;
+    std::uint64_t handled_ = 0, crc_errors_ = 0, sync_writes_ = 0, sync_reads_ = 0;
+};
+
+}  // namespace rollsense::hal::dxl

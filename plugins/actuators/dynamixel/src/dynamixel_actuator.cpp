@@ -1,0 +1,362 @@
+#include "dynamixel_actuator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "rollsense/log.hpp"
+
+namespace rollsense::dynamixel {
+
+using namespace hal::dxl;
+
+namespace {
+
+constexpr const char* kLog = "dynamixel";
+
+std::vector<ControlMode> modes_for(ControlMode first) {
+    std::vector<ControlMode> out{first};
+    for (auto m : {ControlMode::position, ControlMode::extended_position, ControlMode::current_based_position,
+                   ControlMode::current, ControlMode::velocity})
+        if (m != first) out.push_back(m);
+    return out;
+}
+
+bool is_position_mode(ControlMode m) {
+    return m == ControlMode::position || m == ControlMode::extended_position ||
+           m == ControlMode::current_based_position;
+}
+
+}  // namespace
+
+std::string DynamixelActuator::who(std::size_t i) const {
+    return "joint '" + config_.joints[i].name + "' (servo " + std::to_string(config_.joints[i].id) + ")";
+}
+
+Status DynamixelActuator::with_joint(std::size_t i, Status st) const {
+    if (st.ok()) return st;
+    return std::move(st).with_context(who(i));
+}
+
+Status DynamixelActuator::on_configure(const ParamSet& params, const PluginContext& context) {
+    (void)context;
+    auto cfg = parse_config(params);
+    if (!cfg.ok()) return cfg.status();
+    config_ = std::move(cfg).value();
+
+    infos_.clear();
+    ids_.clear();
+    rt_.assign(config_.joints.size(), Runtime{});
+    for (std::size_t i = 0; i < config_.joints.size(); ++i) {
+        const auto& j = config_.joints[i];
+        JointInfo info;
+        info.name = j.name;
+        info.unit = j.unit;
+        info.min_position = j.min;
+        info.max_position = j.max;
+        info.max_velocity = j.max_velocity;
+        info.max_current = j.current_units_to_ma(j.current_limit_units());
+        info.modes = modes_for(j.default_mode);
+        infos_.push_back(info);
+        ids_.push_back(j.id);
+        rt_[i].mode = j.default_mode;
+    }
+
+    auto port = hal::SerialPort::open(config_.device, config_.baud);
+    if (!port.ok()) return port.status();
+    bus_ = std::make_unique<Bus>(std::move(port).value(), BusOptions{config_.timeout, config_.retries});
+    return check_servos();
+}
+
+Status DynamixelActuator::check_servos() {
+    for (std::size_t i = 0; i < config_.joints.size(); ++i) {
+        const auto& j = config_.joints[i];
+        auto reply = bus_->ping(j.id);
+        if (!reply.ok())
+            return with_joint(i, Status(reply.error().code,
+                                        reply.error().message + "; is it on " + config_.device + " at " +
+                                            std::to_string(config_.baud) + " baud?"));
+        if (reply->model_number != j.model->model_number) {
+            const auto* found = find_model(reply->model_number);
+            return {ErrorCode::invalid_argument,
+                    who(i) + ": the profile says " + std::string(j.model->name) + " but the servo is " +
+                        (found ? std::string(found->name) : "model " + std::to_string(reply->model_number)) +
+                        "; fix 'models' or the id"};
+        }
+    }
+    return {};
+}
+
+Status DynamixelActuator::set_torque(std::size_t i, bool on) {
+    if (auto st = bus_->write_value(ids_[i], addr::torque_enable, 1, on ? 1 : 0); !st.ok()) return with_joint(i, st);
+    rt_[i].torque = on;
+    return {};
+}
+
+Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
+    const auto& j = config_.joints[i];
+    const std::uint8_t id = ids_[i];
+    // Torque Enable (64) is right after the EEPROM block; read 11..64 in one go.
+    auto block = bus_->read(id, addr::operating_mode, addr::torque_enable - addr::operating_mode + 1);
+    if (!block.ok()) return with_joint(i, block.status());
+    auto item = [&](std::uint16_t a, std::uint16_t size) {
+        return get_le_signed(&block->data[a - addr::operating_mode], size);
+    };
+    rt_[i].torque = item(addr::torque_enable, 1) != 0;
+
+    struct Change {
+        std::uint16_t address, size;
+        std::int64_t value;
+    };
+    std::vector<Change> changes;
+    const auto op = static_cast<std::int64_t>(to_operating_mode(mode));
+    if (item(addr::operating_mode, 1) != op) changes.push_back({addr::operating_mode, 1, op});
+    const auto limit = j.current_limit_units();
+    if (item(addr::current_limit, 2) != limit) changes.push_back({addr::current_limit, 2, limit});
+    if (config_.write_position_limits && mode == ControlMode::position) {
+        auto lo = j.joint_to_ticks(j.min), hi = j.joint_to_ticks(j.max);
+        if (lo > hi) std::swap(lo, hi);
+        if (lo >= 0 && hi <= 4095) {
+            if (item(addr::max_position_limit, 4) != hi) changes.push_back({addr::max_position_limit, 4, hi});
+            if (item(addr::min_position_limit, 4) != lo) changes.push_back({addr::min_position_limit, 4, lo});
+        } else {
+            log_warning(kLog, who(i) + ": limits [" + std::to_string(j.min) + ", " + std::to_string(j.max) +
+                                  "] fall outside one turn (ticks " + std::to_string(lo) + ".." + std::to_string(hi) +
+                                  "); servo position limits left unchanged");
+        }
+    }
+    if (!changes.empty() && rt_[i].torque) {
+        // EEPROM is writable only with torque off.
+        if (auto st = set_torque(i, false); !st.ok()) return st;
+    }
+    for (const auto& c : changes)
+        if (auto st = bus_->write_value(id, c.address, c.size, c.value); !st.ok()) return with_joint(i, st);
+    rt_[i].mode = mode;
+    return {};
+}
+
+Status DynamixelActuator::hold_here(std::size_t i) {
+    const std::uint8_t id = ids_[i];
+    auto present = bus_->read_value(id, addr::present_position, 4);
+    if (!present.ok()) return with_joint(i, present.status());
+    rt_[i].present_ticks = *present;
+    // The goal becomes where the servo is, before torque comes on: no jump to
+    // whatever Goal Position was left from a previous run.
+    if (is_position_mode(rt_[i].mode)) {
+        if (auto st = bus_->write_value(id, addr::goal_position, 4, *present); !st.ok()) {
+            if (st.code() == ErrorCode::limit_violation) {
+                const auto& j = config_.joints[i];
+                return {ErrorCode::limit_violation,
+                        who(i) + " is at " + std::to_string(j.ticks_to_joint(*present)) + " " + j.unit +
+                            ", outside its limits [" + std::to_string(j.min) + ", " + std::to_string(j.max) +
+                            "]; move it inside by hand (torque is off) or widen 'min'/'max'"};
+            }
+            return with_joint(i, st);
+        }
+    } else if (rt_[i].mode == ControlMode::current) {
+        if (auto st = bus_->write_value(id, addr::goal_current, 2, 0); !st.ok()) return with_joint(i, st);
+    } else if (rt_[i].mode == ControlMode::velocity) {
+        if (auto st = bus_->write_value(id, addr::goal_velocity, 4, 0); !st.ok()) return with_joint(i, st);
+    }
+    return set_torque(i, true);
+}
+
+Status DynamixelActuator::on_activate() {
+    if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+        auto hw = bus_->read_value(ids_[i], addr::hardware_error_status, 1);
+        if (!hw.ok()) return with_joint(i, hw.status());
+        rt_[i].hardware_error = static_cast<std::uint8_t>(*hw);
+        if (*hw != 0)
+            return {ErrorCode::hardware_fault,
+                    who(i) + " reports a hardware error: " + describe_hardware_error(rt_[i].hardware_error) +
+                        "; remove the cause, then reboot it (device:call('reboot', {joint='" +
+                        config_.joints[i].name + "'}) or power-cycle)"};
+        if (auto st = prepare(i, config_.joints[i].default_mode); !st.ok()) return st;
+        if (auto st = hold_here(i); !st.ok()) return st;
+    }
+    return {};
+}
+
+Status DynamixelActuator::on_deactivate() {
+    if (!bus_ || !config_.torque_off_on_deactivate) return {};
+    Status first;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+        auto st = set_torque(i, false);  // keep going: release every servo we can
+        if (!st.ok() && first.ok()) first = st;
+    }
+    return first;
+}
+
+Status DynamixelActuator::on_cleanup() {
+    bus_.reset();
+    return {};
+}
+
+Status DynamixelActuator::on_recover() {
+    bus_.reset();
+    rt_.assign(config_.joints.size(), Runtime{});
+    return {};
+}
+
+Status DynamixelActuator::read(double time, std::span<JointState> states) {
+    (void)time;
+    if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
+    if (states.size() != ids_.size())
+        return {ErrorCode::invalid_argument, "read() got " + std::to_string(states.size()) + " states for " +
+                                                 std::to_string(ids_.size()) + " joints"};
+    auto replies = bus_->sync_read(ids_, kStateBlockAddress, kStateBlockLength);
+    if (!replies.ok()) return replies.status();
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+        const auto& j = config_.joints[i];
+        const auto& r = (*replies)[i];
+        const std::uint8_t* d = r.data.data();
+        auto at = [&](std::uint16_t a) { return d + (a - kStateBlockAddress); };
+        auto& s = states[i];
+        rt_[i].present_ticks = get_le_signed(at(addr::present_position), 4);
+        s.position = j.ticks_to_joint(rt_[i].present_ticks);
+        s.velocity = j.velocity_units_to_joint(get_le_signed(at(addr::present_velocity), 4));
+        s.current = j.current_units_to_ma(get_le_signed(at(addr::present_current), 2));
+        s.moving = *at(addr::moving) != 0;
+        s.mode = rt_[i].mode;
+        if (r.alert) {
+            // Only now is the extra READ worth its bus time.
+            auto hw = bus_->read_value(ids_[i], addr::hardware_error_status, 1);
+            if (!hw.ok()) return with_joint(i, hw.status());
+            const auto bits = static_cast<std::uint8_t>(*hw);
+            if (bits != rt_[i].hardware_error)
+                log_error(kLog, who(i) + ": hardware error: " + describe_hardware_error(bits));
+            rt_[i].hardware_error = bits;
+            rt_[i].torque = false;  // the firmware turned it off
+        } else {
+            rt_[i].hardware_error = 0;
+        }
+        s.torque_enabled = rt_[i].torque;
+        s.fault_bits = rt_[i].hardware_error;
+        s.fault = rt_[i].hardware_error ? describe_hardware_error(rt_[i].hardware_error) : std::string();
+    }
+    return {};
+}
+
+Status DynamixelActuator::write(double time, std::span<const JointCommand> commands) {
+    (void)time;
+    if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
+    if (commands.size() != ids_.size())
+        return {ErrorCode::invalid_argument, "write() got " + std::to_string(commands.size()) + " commands for " +
+                                                 std::to_string(ids_.size()) + " joints"};
+    std::vector<SyncWriteEntry> entries;
+    std::vector<std::size_t> enable_after;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+        const auto& j = config_.joints[i];
+        const auto& c = commands[i];
+        if (rt_[i].hardware_error && c.torque_enabled)
+            return {ErrorCode::hardware_fault,
+                    who(i) + ": hardware error (" + describe_hardware_error(rt_[i].hardware_error) +
+                        "); the servo turned its torque off. Remove the cause, then "
+                        "device:call('reboot', {joint='" + j.name + "'})"};
+        if (is_position_mode(c.mode) && (c.position < j.min - 1e-9 || c.position > j.max + 1e-9))
+            return {ErrorCode::limit_violation, who(i) + ": goal " + std::to_string(c.position) + " " + j.unit +
+                                                    " is outside [" + std::to_string(j.min) + ", " +
+                                                    std::to_string(j.max) + "]"};
+        if (c.mode != rt_[i].mode) {
+            // Operating Mode is EEPROM: torque off, switch, and torque comes
+            // back only after this period's goals are in place.
+            if (auto st = prepare(i, c.mode); !st.ok()) return st;
+            if (rt_[i].torque)
+                if (auto st = set_torque(i, false); !st.ok()) return st;
+            log_debug(kLog, who(i) + ": now in " + std::string(to_string(c.mode)) + " mode");
+        }
+        if (!c.torque_enabled && rt_[i].torque) {
+            if (auto st = set_torque(i, false); !st.ok()) return st;
+        }
+        if (c.torque_enabled && !rt_[i].torque) enable_after.push_back(i);
+
+        const std::int32_t limit = j.current_limit_units();
+        std::int32_t goal_current = limit;
+        if (c.mode == ControlMode::current) goal_current = std::clamp(j.ma_to_current_units(c.current), -limit, limit);
+        if (c.mode == ControlMode::current_based_position)
+            goal_current = std::clamp(std::abs(j.ma_to_current_units(c.current)), 0, limit);
+        std::int32_t goal_velocity = 0;
+        if (c.mode == ControlMode::velocity) goal_velocity = j.joint_to_velocity_units(c.velocity);
+        const std::int32_t goal_ticks = is_position_mode(c.mode) ? j.joint_to_ticks(c.position) : rt_[i].present_ticks;
+
+        Bytes d;
+        d.reserve(kCommandBlockLength);
+        put_le(d, goal_current, 2);                                          // 102 Goal Current
+        put_le(d, goal_velocity, 4);                                         // 104 Goal Velocity
+        put_le(d, j.joint_to_profile_acceleration(c.profile_acceleration), 4);  // 108 Profile Acceleration
+        put_le(d, j.joint_to_profile_velocity(c.profile_velocity), 4);          // 112 Profile Velocity
+        put_le(d, goal_ticks, 4);                                            // 116 Goal Position
+        entries.push_back({ids_[i], std::move(d)});
+    }
+    if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok()) return st;
+    for (auto i : enable_after)
+        if (auto st = set_torque(i, true); !st.ok()) return st;
+    return {};
+}
+
+Result<std::size_t> DynamixelActuator::joint_index(const ValueMap& args) const {
+    auto it = args.find("joint");
+    if (it == args.end() || !std::holds_alternative<std::string>(it->second))
+        return Error{ErrorCode::invalid_argument, "needs {joint = '<name>'}"};
+    const auto& name = std::get<std::string>(it->second);
+    for (std::size_t i = 0; i < config_.joints.size(); ++i)
+        if (config_.joints[i].name == name) return i;
+    std::string known;
+    for (const auto& j : config_.joints) known += (known.empty() ? "" : ", ") + j.name;
+    return Error{ErrorCode::not_found, "no joint '" + name + "' on this bus (joints: " + known + ")"};
+}
+
+Status DynamixelActuator::reboot_joint(std::size_t i) {
+    if (auto st = bus_->reboot(ids_[i]); !st.ok()) return with_joint(i, st);
+    // The servo restarts after answering; it is back within about half a second.
+    Status last;
+    for (int attempt = 0; attempt < 20; ++attempt) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        auto p = bus_->ping(ids_[i]);
+        if (p.ok()) {
+            last = {};
+            break;
+        }
+        last = p.status();
+    }
+    if (!last.ok()) return with_joint(i, Status(last.code(), "did not come back after REBOOT: " + last.message()));
+    rt_[i].hardware_error = 0;
+    rt_[i].torque = false;
+    const ControlMode mode = rt_[i].mode;
+    if (auto st = prepare(i, mode); !st.ok()) return st;
+    return hold_here(i);
+}
+
+Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueMap& args) {
+    if (verb == "reboot") {
+        if (!bus_) return Error{ErrorCode::state_error, "reboot: the bus is not open (configure first)"};
+        auto i = joint_index(args);
+        if (!i.ok()) return Error{i.error().code, "reboot: " + i.error().message};
+        if (auto st = reboot_joint(*i); !st.ok()) return st;
+        return ValueMap{{"joint", config_.joints[*i].name}, {"rebooted", true}};
+    }
+    if (verb == "ping") {
+        if (!bus_) return Error{ErrorCode::state_error, "ping: the bus is not open (configure first)"};
+        ValueMap out;
+        for (std::size_t i = 0; i < ids_.size(); ++i) {
+            auto p = bus_->ping(ids_[i]);
+            if (!p.ok()) return with_joint(i, p.status());
+            out[config_.joints[i].name] = static_cast<std::int64_t>(p->model_number);
+        }
+        return out;
+    }
+    if (verb == "statistics") {
+        if (!bus_) return Error{ErrorCode::state_error, "statistics: the bus is not open"};
+        const auto& s = bus_->statistics();
+        return ValueMap{{"transactions", static_cast<std::int64_t>(s.transactions)},
+                        {"retries", static_cast<std::int64_t>(s.retries)},
+                        {"timeouts", static_cast<std::int64_t>(s.timeouts)},
+                        {"crc_errors", static_cast<std::int64_t>(s.crc_errors)},
+                        {"bytes_sent", static_cast<std::int64_t>(s.bytes_sent)},
+                        {"bytes_received", static_cast<std::int64_t>(s.bytes_received)}};
+    }
+    return Error{ErrorCode::unsupported, "no operation '" + verb + "' (dynamixel knows: reboot, ping, statistics)"};
+}
+
+}  // namespace rollsense::dynamixel

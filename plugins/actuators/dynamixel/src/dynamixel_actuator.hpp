@@ -1,0 +1,62 @@
+// The `dynamixel` actuator: every joint of one Protocol 2.0 bus.
+//
+// Per control period it sends exactly one SYNC_WRITE (Goal Current .. Goal
+// Position for every servo) and one SYNC_READ (Moving .. Present Position);
+// single-servo WRITEs happen only for what changes rarely (operating mode,
+// torque) and a READ of Hardware Error Status only after a servo raised its
+// alert bit.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "dynamixel_config.hpp"
+#include "rollsense/actuator.hpp"
+#include "rollsense/hal/dynamixel/bus.hpp"
+
+namespace rollsense::dynamixel {
+
+class DynamixelActuator final : public Actuator {
+public:
+    Status on_configure(const ParamSet& params, const PluginContext& context) override;
+    Status on_activate() override;
+    Status on_deactivate() override;
+    Status on_cleanup() override;
+    Status on_recover() override;
+    Result<ValueMap> invoke(const std::string& verb, const ValueMap& args) override;
+
+    std::vector<JointInfo> joints() const override { return infos_; }
+    Status read(double time, std::span<JointState> states) override;
+    Status write(double time, std::span<const JointCommand> commands) override;
+
+    // For benches and diagnostics: nullptr before configure.
+    const hal::dxl::Bus* bus() const { return bus_.get(); }
+
+private:
+    struct Runtime {
+        ControlMode mode = ControlMode::position;
+        bool torque = false;
+        std::int32_t present_ticks = hal::dxl::kCentreTick;
+        std::uint8_t hardware_error = 0;
+    };
+
+    std::string who(std::size_t i) const;
+    Status with_joint(std::size_t i, Status st) const;
+    Status check_servos();
+    // EEPROM items the joint needs in `mode` (mode, current limit, position
+    // limits); turns torque off only if something has to change.
+    Status prepare(std::size_t i, ControlMode mode);
+    // Goal = present position (or zero current), then torque on.
+    Status hold_here(std::size_t i);
+    Status set_torque(std::size_t i, bool on);
+    Status reboot_joint(std::size_t i);
+    Result<std::size_t> joint_index(const ValueMap& args) const;
+
+    BusConfig config_;
+    std::vector<JointInfo> infos_;
+    std::vector<std::uint8_t> ids_;
+    std::vector<Runtime> rt_;
+    std::unique_ptr<hal::dxl::Bus> bus_;
+};
+
+}  // namespace rollsense::dynamixel

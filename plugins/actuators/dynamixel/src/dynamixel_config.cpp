@@ -1,0 +1,133 @@
+#include "dynamixel_config.hpp"
+
+#include <set>
+
+namespace rollsense::dynamixel {
+namespace {
+
+Result<ControlMode> parse_mode(const std::string& s) {
+    if (s == "position") return ControlMode::position;
+    if (s == "extended_position") return ControlMode::extended_position;
+    if (s == "current") return ControlMode::current;
+    if (s == "current_based_position") return ControlMode::current_based_position;
+    if (s == "velocity") return ControlMode::velocity;
+    return Error{ErrorCode::invalid_argument, "unknown mode '" + s +
+                                                  "' (position, extended_position, current, "
+                                                  "current_based_position or velocity)"};
+}
+
+}  // namespace
+
+ParamSchema dynamixel_schema() {
+    return {
+        param_string("device", std::string("/dev/ttyUSB0"), "serial port of the bus (a pty path for the emulator)"),
+        param_int("baud", 57600, "bus baud rate; must match every servo's Baud Rate item", 9600, 4500000, "bit/s"),
+        param_int_list("ids", std::nullopt, "servo id of each joint", 0, 252),
+        param_string_list("names", std::nullopt, "joint name of each servo, e.g. sensing_finger"),
+        param_string_list("models", std::nullopt, "servo model of each joint: XM430-W350 or XL330-M288"),
+        param_string_list("units", std::vector<std::string>{}, "'deg' (revolute) or 'mm' (linear) per joint; empty = all deg"),
+        param_string_list("modes", std::vector<std::string>{},
+                          "default operating mode per joint; empty = position (the first mode joints() reports)"),
+        param_number_list("radius", std::vector<double>{},
+                          "pinion or drum radius per joint for 'mm' joints (0 for 'deg' joints)", 0, {}, "mm"),
+        param_number_list("ratio", std::vector<double>{},
+                          "travel multiplier per joint: 2 for the palm's double rack, 1 for the winch; empty = 1", {},
+                          {}),
+        param_number_list("offsets", std::vector<double>{},
+                          "joint position at the servo's centre (tick 2048), per joint; empty = 0"),
+        param_number_list("min", std::nullopt, "lowest joint position per joint (deg or mm)"),
+        param_number_list("max", std::nullopt, "highest joint position per joint (deg or mm)"),
+        param_number_list("max_current", std::vector<double>{},
+                          "Current Limit per joint in mA; empty or 0 = the model's maximum", 0, {}, "mA"),
+        param_number_list("max_velocity", std::vector<double>{},
+                          "declared velocity limit per joint (unit/s); empty or 0 = none", 0),
+        param_int("retries", 3, "extra attempts after a timeout or CRC error", 0, 10),
+        param_int("timeout_ms", 30, "reply timeout per status packet", 1, 1000, "ms"),
+        param_bool("write_position_limits", true,
+                   "write min/max into the servos' Min/Max Position Limit (position modes only)"),
+        param_bool("torque_off_on_deactivate", true,
+                   "turn torque off on deactivate (false: servos keep holding, e.g. a loaded winch)"),
+    };
+}
+
+Result<BusConfig> parse_config(const ParamSet& params) {
+    BusConfig c;
+    c.device = params.get_string("device");
+    c.baud = static_cast<std::uint32_t>(params.get_int("baud"));
+    c.retries = static_cast<int>(params.get_int("retries"));
+    c.timeout = std::chrono::milliseconds(params.get_int("timeout_ms"));
+    c.write_position_limits = params.get_bool("write_position_limits");
+    c.torque_off_on_deactivate = params.get_bool("torque_off_on_deactivate");
+
+    const auto ids = params.get_int_list("ids");
+    const auto names = params.get_string_list("names");
+    const auto models = params.get_string_list("models");
+    const auto units = params.get_string_list("units");
+    const auto modes = params.get_string_list("modes");
+    const auto radius = params.get_number_list("radius");
+    const auto ratio = params.get_number_list("ratio");
+    const auto offsets = params.get_number_list("offsets");
+    const auto mins = params.get_number_list("min");
+    const auto maxs = params.get_number_list("max");
+    const auto currents = params.get_number_list("max_current");
+    const auto velocities = params.get_number_list("max_velocity");
+    const std::size_t n = ids.size();
+    if (n == 0) return Error{ErrorCode::invalid_argument, "'ids' is empty: list the servo id of every joint"};
+
+    auto check_len = [&](const char* key, std::size_t len, bool optional) -> Status {
+        if (len == n || (optional && len == 0)) return {};
+        return {ErrorCode::invalid_argument, std::string("'") + key + "' has " + std::to_string(len) +
+                                                 " entries but 'ids' has " + std::to_string(n) +
+                                                 " (the lists are parallel: one entry per joint)"};
+    };
+    for (auto st : {check_len("names", names.size(), false), check_len("models", models.size(), false),
+                    check_len("units", units.size(), true), check_len("modes", modes.size(), true),
+                    check_len("radius", radius.size(), true), check_len("ratio", ratio.size(), true),
+                    check_len("offsets", offsets.size(), true), check_len("min", mins.size(), false),
+                    check_len("max", maxs.size(), false), check_len("max_current", currents.size(), true),
+                    check_len("max_velocity", velocities.size(), true)})
+        if (!st.ok()) return st;
+
+    std::set<std::int64_t> seen_ids;
+    std::set<std::string> seen_names;
+    for (std::size_t i = 0; i < n; ++i) {
+        JointMap j;
+        j.name = names[i];
+        const std::string where = "joint '" + j.name + "' (id " + std::to_string(ids[i]) + "): ";
+        if (j.name.empty()) return Error{ErrorCode::invalid_argument, "joint " + std::to_string(i + 1) + " has an empty name"};
+        if (!seen_names.insert(j.name).second)
+            return Error{ErrorCode::invalid_argument, "joint name '" + j.name + "' appears twice in 'names'"};
+        if (!seen_ids.insert(ids[i]).second)
+            return Error{ErrorCode::invalid_argument, where + "id " + std::to_string(ids[i]) + " appears twice in 'ids'"};
+        j.id = static_cast<std::uint8_t>(ids[i]);
+        j.model = hal::dxl::find_model(models[i]);
+        if (!j.model)
+            return Error{ErrorCode::invalid_argument,
+                         where + "unknown model '" + models[i] + "' (known: XM430-W350, XL330-M288)"};
+        j.unit = units.empty() ? "deg" : units[i];
+        if (j.unit != "deg" && j.unit != "mm")
+            return Error{ErrorCode::invalid_argument, where + "unit '" + j.unit + "' must be 'deg' or 'mm'"};
+        j.radius_mm = radius.empty() ? 0.0 : radius[i];
+        j.ratio = ratio.empty() ? 1.0 : ratio[i];
+        if (j.unit == "mm" && (j.radius_mm <= 0.0 || j.ratio == 0.0))
+            return Error{ErrorCode::invalid_argument,
+                         where + "a 'mm' joint needs a positive 'radius' (pinion or drum, mm) and a non-zero 'ratio'"};
+        j.offset = offsets.empty() ? 0.0 : offsets[i];
+        j.min = mins[i];
+        j.max = maxs[i];
+        if (!(j.min < j.max))
+            return Error{ErrorCode::invalid_argument, where + "min (" + std::to_string(j.min) +
+                                                          ") must be below max (" + std::to_string(j.max) + ")"};
+        j.max_current_ma = currents.empty() ? 0.0 : currents[i];
+        j.max_velocity = velocities.empty() ? 0.0 : velocities[i];
+        if (!modes.empty()) {
+            auto m = parse_mode(modes[i]);
+            if (!m.ok()) return Error{ErrorCode::invalid_argument, where + m.error().message};
+            j.default_mode = *m;
+        }
+        c.joints.push_back(std::move(j));
+    }
+    return c;
+}
+
+}  // namespace rollsense::dynamixel

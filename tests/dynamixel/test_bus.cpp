@@ -1,0 +1,200 @@
+// The bus master against the emulator over a real pseudo-terminal.
+#include <catch2/catch.hpp>
+
+#include "rollsense/hal/dynamixel/bus.hpp"
+#include "rollsense/hal/dynamixel/emulator_config.hpp"
+#include "rollsense/hal/dynamixel/pty_emulator.hpp"
+
+using namespace rollsense;
+using namespace rollsense::hal;
+using namespace rollsense::hal::dxl;
+using namespace std::chrono_literals;
+
+namespace {
+
+struct Rig {
+    std::unique_ptr<PtyBusEmulator> emu;
+    std::unique_ptr<Bus> bus;
+
+    explicit Rig(PtyEmulatorOptions options = {false, 0}, BusOptions bus_options = {30ms, 3}) {
+        BusEmulator e;
+        for (const auto& s : etroll_servos()) e.add_servo(s);
+        auto started = PtyBusEmulator::start(std::move(e), options);
+        REQUIRE(started.ok());
+        emu = std::move(started).value();
+        auto port = SerialPort::open(emu->device(), 57600);
+        REQUIRE(port.ok());
+        bus = std::make_unique<Bus>(std::move(port).value(), bus_options);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("ping and scan find the E-TRoll servos with their model numbers") {
+    Rig rig;
+    auto p = rig.bus->ping(3);
+    REQUIRE(p.ok());
+    CHECK(p->model_number == 1020);
+    auto found = rig.bus->scan(0, 10, 5ms);
+    REQUIRE(found.ok());
+    REQUIRE(found->size() == 4);
+    CHECK((*found)[3].id == 4);
+    CHECK((*found)[3].model_number == 1200);
+}
+
+TEST_CASE("read and write single items") {
+    Rig rig;
+    REQUIRE(rig.bus->write_value(2, addr::profile_velocity, 4, 15).ok());
+    auto v = rig.bus->read_value(2, addr::profile_velocity, 4);
+    REQUIRE(v.ok());
+    CHECK(*v == 15);
+    auto mode = rig.bus->read_value(4, addr::operating_mode, 1);
+    REQUIRE(mode.ok());
+    CHECK(*mode == 4);
+}
+
+TEST_CASE("one sync write moves every servo and one sync read returns every state") {
+    Rig rig;
+    const std::uint8_t ids[] = {1, 2, 3, 4};
+    for (auto id : ids) REQUIRE(rig.bus->write_value(id, addr::torque_enable, 1, 1).ok());
+    std::vector<SyncWriteEntry> entries;
+    for (auto id : ids) {
+        Bytes d;
+        put_le(d, 4096 / 8 * id, 4);  // 45 deg per id above 0 tick... absolute ticks
+        entries.push_back({id, d});
+    }
+    const auto writes_before = rig.emu->with_bus([](BusEmulator& b) { return b.sync_writes(); });
+    REQUIRE(rig.bus->sync_write(addr::goal_position, 4, entries).ok());
+    // SYNC_WRITE has no reply; a PING behind it proves the emulator has handled it.
+    REQUIRE(rig.bus->ping(1).ok());
+    // The emulator's clock is manual here: let 5 s pass.
+    rig.emu->with_bus([](BusEmulator& b) { b.advance(5.0); return 0; });
+    auto states = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
+    REQUIRE(states.ok());
+    REQUIRE(states->size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+        CHECK((*states)[i].id == ids[i]);
+        const auto pos = get_le_signed(&(*states)[i].data[addr::present_position - kStateBlockAddress], 4);
+        CHECK(pos == 512 * ids[i]);
+        CHECK((*states)[i].data[0] == 0);  // not moving
+    }
+    CHECK(rig.emu->with_bus([](BusEmulator& b) { return b.sync_writes(); }) == writes_before + 1);
+    CHECK(rig.emu->with_bus([](BusEmulator& b) { return b.sync_reads(); }) == 1);
+}
+
+TEST_CASE("status-packet errors become typed errors naming the servo") {
+    Rig rig;
+    SECTION("a goal outside the position limits is a limit violation") {
+        REQUIRE(rig.bus->write_value(1, addr::max_position_limit, 4, 3000).ok());
+        auto st = rig.bus->write_value(1, addr::goal_position, 4, 3500);
+        CHECK(st.code() == ErrorCode::limit_violation);
+        CHECK(st.message().find("servo 1") != std::string::npos);
+        CHECK(st.message().find("data limit") != std::string::npos);
+    }
+    SECTION("an EEPROM write with torque on is an access error (state error)") {
+        REQUIRE(rig.bus->write_value(2, addr::torque_enable, 1, 1).ok());
+        auto st = rig.bus->write_value(2, addr::operating_mode, 1, 0);
+        CHECK(st.code() == ErrorCode::state_error);
+        CHECK(st.message().find("servo 2") != std::string::npos);
+        CHECK(st.message().find("access") != std::string::npos);
+    }
+    SECTION("an invalid operating mode is a data range error") {
+        auto st = rig.bus->write_value(3, addr::operating_mode, 1, 2);
+        CHECK(st.code() == ErrorCode::limit_violation);
+        CHECK(st.message().find("data range") != std::string::npos);
+    }
+    SECTION("an unsupported instruction is a protocol error") {
+        auto st = rig.bus->read(3, 200, 4);
+        CHECK(st.error().code == ErrorCode::limit_violation);
+    }
+}
+
+TEST_CASE("a dropped reply is retried and the transaction succeeds") {
+    Rig rig;
+    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(2, {1, 0}); return 0; });
+    auto v = rig.bus->read_value(2, addr::model_number, 2);
+    REQUIRE(v.ok());
+    CHECK(*v == 1020);
+    CHECK(rig.bus->statistics().retries == 1);
+    CHECK(rig.bus->statistics().timeouts == 1);
+}
+
+TEST_CASE("a servo that never answers ends in a timeout error after the bounded retries") {
+    Rig rig;
+    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(3, {-1, 0}); return 0; });
+    auto v = rig.bus->read_value(3, addr::present_position, 4);
+    REQUIRE_FALSE(v.ok());
+    CHECK(v.error().code == ErrorCode::timeout);
+    CHECK(v.error().message.find("servo 3") != std::string::npos);
+    CHECK(v.error().message.find("4 attempts") != std::string::npos);
+    CHECK(rig.bus->statistics().timeouts == 4);
+    CHECK(rig.bus->statistics().retries == 3);
+    // The others still answer.
+    CHECK(rig.bus->ping(1).ok());
+}
+
+TEST_CASE("a corrupted reply is retried; a servo that always corrupts ends in a CRC error") {
+    Rig rig;
+    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(1, {0, 2}); return 0; });
+    REQUIRE(rig.bus->ping(1).ok());
+    CHECK(rig.bus->statistics().crc_errors == 2);
+    CHECK(rig.bus->statistics().retries == 2);
+
+    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(1, {0, -1}); return 0; });
+    auto p = rig.bus->ping(1);
+    REQUIRE_FALSE(p.ok());
+    CHECK(p.error().code == ErrorCode::protocol_error);
+    CHECK(p.error().message.find("CRC") != std::string::npos);
+    CHECK(p.error().message.find("servo 1") != std::string::npos);
+}
+
+TEST_CASE("a sync read with one silent servo names that servo") {
+    Rig rig;
+    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(3, {-1, 0}); return 0; });
+    const std::uint8_t ids[] = {1, 2, 3, 4};
+    auto r = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().code == ErrorCode::timeout);
+    CHECK(r.error().message.find("servo 3") != std::string::npos);
+    CHECK(r.error().message.find("SYNC_READ") != std::string::npos);
+}
+
+TEST_CASE("garbage on the line before a reply is skipped") {
+    Rig rig;
+    rig.emu->with_bus([](BusEmulator& b) {
+        b.inject_garbage({0x00, 0xFF, 0xFF, 0xFD, 0x13, 0x37, 0xFF, 0xFF});
+        return 0;
+    });
+    auto v = rig.bus->read_value(1, addr::model_number, 2);
+    REQUIRE(v.ok());
+    CHECK(*v == 1020);
+    CHECK(rig.bus->statistics().retries == 0);
+    CHECK(rig.bus->statistics().garbage_bytes > 0);
+}
+
+TEST_CASE("an injected hardware error shows as the alert bit; reboot clears it") {
+    Rig rig;
+    rig.emu->with_bus([](BusEmulator& b) { b.raise_hardware_error(2, hw_error::overheating); return 0; });
+    auto r = rig.bus->read(2, addr::hardware_error_status, 1);
+    REQUIRE(r.ok());
+    CHECK(r->alert);
+    CHECK(r->data[0] == hw_error::overheating);
+    REQUIRE(rig.bus->reboot(2).ok());
+    r = rig.bus->read(2, addr::hardware_error_status, 1);
+    REQUIRE(r.ok());
+    CHECK_FALSE(r->alert);
+    CHECK(r->data[0] == 0);
+}
+
+TEST_CASE("with wire pacing a 4-servo control period costs about what the wire would") {
+    // Not a timing threshold on the host: the paced emulator holds replies for
+    // the computed wire time, so the lower bound is the physics, not the machine.
+    Rig rig({false, 57600}, {100ms, 0});
+    const std::uint8_t ids[] = {1, 2, 3, 4};
+    const auto t0 = std::chrono::steady_clock::now();
+    auto r = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
+    const auto took = std::chrono::steady_clock::now() - t0;
+    REQUIRE(r.ok());
+    // SYNC_READ (18 bytes) + 4 x (25 bytes + 500 us return delay) at 57600 baud >= 22.5 ms.
+    CHECK(took >= std::chrono::microseconds((18 + 4 * 25) * 10 * 1000000LL / 57600 + 4 * 500));
+}

@@ -1,0 +1,371 @@
+// The `dynamixel` actuator plugin against the emulator over a real pty.
+#include <catch2/catch.hpp>
+
+#include <thread>
+
+#include "conformance.hpp"
+#include "dynamixel_actuator.hpp"
+#include "rollsense/hal/dynamixel/emulator_config.hpp"
+#include "rollsense/hal/dynamixel/pty_emulator.hpp"
+
+using namespace rollsense;
+using namespace rollsense::hal::dxl;
+using rollsense::dynamixel::DynamixelActuator;
+
+namespace {
+
+constexpr double kPinionRadius = 10.0;  // mm
+constexpr double kDrumRadius = 8.0;     // mm
+
+// The E-TRoll bus as a profile would declare it.
+std::map<std::string, ParamValue> etroll_raw(const std::string& device) {
+    return {
+        {"device", device},
+        {"baud", std::int64_t{57600}},
+        {"ids", std::vector<std::int64_t>{1, 2, 3, 4}},
+        {"names", std::vector<std::string>{"sensing_finger", "pushing_finger", "palm", "winch"}},
+        {"models", std::vector<std::string>{"XM430-W350", "XM430-W350", "XM430-W350", "XL330-M288"}},
+        {"units", std::vector<std::string>{"deg", "deg", "mm", "mm"}},
+        {"modes", std::vector<std::string>{"position", "position", "position", "extended_position"}},
+        {"radius", std::vector<double>{0, 0, kPinionRadius, kDrumRadius}},
+        {"ratio", std::vector<double>{1, 1, 2, 1}},
+        {"offsets", std::vector<double>{0, 0, 65, 0}},
+        {"min", std::vector<double>{-90, -90, 30, -500}},
+        {"max", std::vector<double>{90, 90, 100, 500}},
+        {"timeout_ms", std::int64_t{30}},
+    };
+}
+
+ParamSet validated(const std::map<std::string, ParamValue>& raw) {
+    auto p = validate_params(dynamixel::dynamixel_schema(), raw, "test profile: devices.hand");
+    INFO((p.ok() ? std::string() : p.error().message));
+    REQUIRE(p.ok());
+    return *p;
+}
+
+std::unique_ptr<PtyBusEmulator> start_emulator(bool real_time, std::vector<ServoSetup> servos = etroll_servos()) {
+    BusEmulator bus;
+    for (const auto& s : servos) bus.add_servo(s);
+    auto emu = PtyBusEmulator::start(std::move(bus), {real_time, 0});
+    REQUIRE(emu.ok());
+    return std::move(emu).value();
+}
+
+template <class F>
+auto on_bus(PtyBusEmulator& emu, F f) {
+    return emu.with_bus([&](BusEmulator& b) { return f(b); });
+}
+
+std::vector<JointCommand> hold_all(DynamixelActuator& a, const std::vector<JointState>& s) {
+    std::vector<JointCommand> c(s.size());
+    const auto joints = a.joints();
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        c[i].mode = joints[i].modes.front();
+        c[i].position = s[i].position;
+    }
+    return c;
+}
+
+}  // namespace
+
+TEST_CASE("the dynamixel plugin passes the actuator conformance suite on the emulated E-TRoll") {
+    auto emu = start_emulator(true);
+    testing::ActuatorConformance c;
+    c.make = [] { return std::make_unique<DynamixelActuator>(); };
+    c.params = validated(etroll_raw(emu->device()));
+    c.now = [start = std::chrono::steady_clock::now()] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    c.advance = [](double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); };
+    c.control_period = 0.01;
+    c.position_tolerance = 0.5;
+    c.move_timeout = 10.0;
+    c.move_fraction = 0.05;
+    testing::check_actuator_conformance(c);
+}
+
+TEST_CASE("joints are reported in their units with limits, current ceiling and modes") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    const auto j = a.joints();
+    REQUIRE(j.size() == 4);
+    CHECK(j[0].name == "sensing_finger");
+    CHECK(j[2].unit == "mm");
+    CHECK(j[2].min_position == 30);
+    CHECK(j[3].modes.front() == ControlMode::extended_position);
+    CHECK(j[0].max_current == Approx(1193 * 2.69));  // XM430: 2.69 mA/unit
+    CHECK(j[3].max_current == Approx(1750.0));       // XL330: 1 mA/unit
+}
+
+TEST_CASE("positions convert per joint: degrees, palm width through the pinion, string through the drum") {
+    std::vector<ServoSetup> servos = etroll_servos();
+    servos[0].start_degrees = -44.0;
+    servos[2].start_degrees = -20.0;   // palm pinion
+    servos[3].start_degrees = 720.0;   // winch drum, two turns
+    auto emu = start_emulator(false, servos);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[0].position == Approx(-44.0).margin(0.05));
+    // width = 65 + 2 * r * theta
+    CHECK(s[2].position == Approx(65.0 + 2 * kPinionRadius * (-20.0) * M_PI / 180.0).margin(0.05));
+    // string = r * theta (multi-turn in extended position mode)
+    CHECK(s[3].position == Approx(kDrumRadius * 720.0 * M_PI / 180.0).margin(0.05));
+
+    // A goal in mm arrives in ticks on the servo.
+    auto cmd = hold_all(a, s);
+    cmd[2].position = 50.0;
+    cmd[3].position = 10.0;
+    REQUIRE(a.write(0, cmd).ok());
+    REQUIRE(a.read(0, s).ok());  // SYNC_WRITE has no reply: the read orders us behind it
+    const auto palm_goal = on_bus(*emu, [](BusEmulator& b) { return b.servo(3)->item(addr::goal_position, 4); });
+    CHECK(palm_goal == degrees_to_ticks((50.0 - 65.0) / (2 * kPinionRadius * M_PI / 180.0)));
+    const auto winch_goal = on_bus(*emu, [](BusEmulator& b) { return b.servo(4)->item(addr::goal_position, 4); });
+    CHECK(winch_goal == degrees_to_ticks(10.0 / (kDrumRadius * M_PI / 180.0)));
+    on_bus(*emu, [](BusEmulator& b) { b.advance(5.0); return 0; });
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[2].position == Approx(50.0).margin(0.05));
+    CHECK(s[3].position == Approx(10.0).margin(0.05));
+}
+
+TEST_CASE("profile velocity in deg/s becomes Dynamixel units (the paper's speed 10 = 2.29 rev/min)") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[0].profile_velocity = 13.74;  // deg/s = 2.29 rev/min
+    cmd[0].profile_acceleration = 21.4577 * 3;
+    REQUIRE(a.write(0, cmd).ok());
+    REQUIRE(a.read(0, s).ok());
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::profile_velocity, 4); }) == 10);
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::profile_acceleration, 4); }) == 3);
+    // A very slow but non-zero speed never becomes 0 (= unlimited).
+    cmd[0].profile_velocity = 0.01;
+    REQUIRE(a.write(0, cmd).ok());
+    REQUIRE(a.read(0, s).ok());
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::profile_velocity, 4); }) == 1);
+}
+
+TEST_CASE("activation holds the present position even with a stale goal in the servo") {
+    std::vector<ServoSetup> servos = etroll_servos();
+    servos[0].start_degrees = 30.0;
+    auto emu = start_emulator(false, servos);
+    // A previous run left Goal Position at -60 deg with torque off.
+    on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->write(addr::goal_position, [] {
+        Bytes d;
+        put_le(d, degrees_to_ticks(-60.0), 4);
+        return d;
+    }()); });
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    on_bus(*emu, [](BusEmulator& b) { b.advance(2.0); return 0; });
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[0].position == Approx(30.0).margin(0.1));
+    CHECK(s[0].torque_enabled);
+    CHECK_FALSE(s[0].moving);
+}
+
+TEST_CASE("each control period costs exactly one sync write and one sync read") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    const auto cmd = hold_all(a, s);
+    const auto before = on_bus(*emu, [](BusEmulator& b) { return b.instructions_handled(); });
+    for (int period = 0; period < 25; ++period) {
+        REQUIRE(a.write(period * 0.01, cmd).ok());
+        REQUIRE(a.read(period * 0.01, s).ok());
+    }
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.instructions_handled(); }) == before + 50);
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.sync_writes(); }) == 25);
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.sync_reads(); }) == 26);
+}
+
+TEST_CASE("the pushing finger switches to current mode and clamps the object with the commanded current") {
+    std::vector<ServoSetup> servos = etroll_servos();
+    servos[1].start_degrees = -66.0;
+    servos[1].contact_degrees = -44.0;  // the object
+    auto emu = start_emulator(false, servos);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[1].mode = ControlMode::current;
+    cmd[1].current = 269.0;  // 100 units on an XM430
+    REQUIRE(a.write(0, cmd).ok());
+    REQUIRE(a.read(0, s).ok());
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(2)->mode(); }) == OperatingMode::current);
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(2)->torque_enabled(); }));
+    on_bus(*emu, [](BusEmulator& b) { b.advance(2.0); return 0; });
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[1].mode == ControlMode::current);
+    CHECK(s[1].position == Approx(-44.0).margin(0.1));
+    CHECK(s[1].current == Approx(269.0).margin(3.0));
+    // Back to position mode: the goal is this period's command, not a stale one.
+    cmd[1].mode = ControlMode::position;
+    cmd[1].position = -60.0;
+    REQUIRE(a.write(0, cmd).ok());
+    on_bus(*emu, [](BusEmulator& b) { b.advance(2.0); return 0; });
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[1].position == Approx(-60.0).margin(0.1));
+}
+
+TEST_CASE("torque can be switched off and on through the command") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[3].torque_enabled = false;
+    REQUIRE(a.write(0, cmd).ok());
+    REQUIRE(a.read(0, s).ok());
+    CHECK_FALSE(s[3].torque_enabled);
+    CHECK_FALSE(on_bus(*emu, [](BusEmulator& b) { return b.servo(4)->torque_enabled(); }));
+    cmd[3].torque_enabled = true;
+    REQUIRE(a.write(0, cmd).ok());
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(4)->torque_enabled(); }));
+}
+
+TEST_CASE("a hardware error becomes a fault on the joint, a typed error on write, and reboot clears it") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    const auto cmd = hold_all(a, s);
+    on_bus(*emu, [](BusEmulator& b) { b.raise_hardware_error(3, hw_error::overload); return 0; });
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[2].fault == "overload");
+    CHECK(s[2].fault_bits == hw_error::overload);
+    CHECK_FALSE(s[2].torque_enabled);
+    CHECK(s[0].fault.empty());
+    auto st = a.write(0, cmd);
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK(st.message().find("'palm'") != std::string::npos);
+    CHECK(st.message().find("servo 3") != std::string::npos);
+    CHECK(st.message().find("overload") != std::string::npos);
+    CHECK(st.message().find("reboot") != std::string::npos);
+
+    auto r = a.invoke("reboot", {{"joint", std::string("palm")}});
+    INFO((r.ok() ? std::string() : r.error().message));
+    REQUIRE(r.ok());
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[2].fault.empty());
+    CHECK(s[2].torque_enabled);
+    CHECK(a.write(0, hold_all(a, s)).ok());
+    CHECK(a.invoke("reboot", {{"joint", std::string("thumb")}}).error().code == ErrorCode::not_found);
+}
+
+TEST_CASE("activation refuses a servo with a latched hardware error") {
+    auto emu = start_emulator(false);
+    on_bus(*emu, [](BusEmulator& b) { b.raise_hardware_error(1, hw_error::overheating); return 0; });
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    auto st = a.on_activate();
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK(st.message().find("sensing_finger") != std::string::npos);
+    CHECK(st.message().find("overheating") != std::string::npos);
+}
+
+TEST_CASE("a servo that stops answering mid-run ends the read in a timeout naming it") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    on_bus(*emu, [](BusEmulator& b) { b.set_faults(4, {-1, 0}); return 0; });
+    std::vector<JointState> s(4);
+    auto st = a.read(0, s);
+    CHECK(st.code() == ErrorCode::timeout);
+    CHECK(st.message().find("servo 4") != std::string::npos);
+}
+
+TEST_CASE("transient faults are absorbed by the bounded retries") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    on_bus(*emu, [](BusEmulator& b) { b.set_faults(2, {1, 0}); return 0; });  // one lost reply
+    CHECK(a.read(0, s).ok());
+    on_bus(*emu, [](BusEmulator& b) { b.set_faults(3, {0, 1}); return 0; });  // one corrupted reply
+    CHECK(a.read(0, s).ok());
+    auto stats = a.invoke("statistics", {});
+    REQUIRE(stats.ok());
+    CHECK(std::get<std::int64_t>(stats->at("retries")) == 2);
+}
+
+TEST_CASE("configuration errors name the joint and the fix") {
+    auto emu = start_emulator(false);
+    SECTION("a wrong model") {
+        auto raw = etroll_raw(emu->device());
+        raw["models"] = std::vector<std::string>{"XM430-W350", "XM430-W350", "XM430-W350", "XM430-W350"};
+        DynamixelActuator a;
+        auto st = a.on_configure(validated(raw), {});
+        CHECK(st.code() == ErrorCode::invalid_argument);
+        CHECK(st.message().find("'winch'") != std::string::npos);
+        CHECK(st.message().find("XL330-M288") != std::string::npos);
+    }
+    SECTION("a missing servo") {
+        auto raw = etroll_raw(emu->device());
+        raw["ids"] = std::vector<std::int64_t>{1, 2, 3, 9};
+        DynamixelActuator a;
+        auto st = a.on_configure(validated(raw), {});
+        CHECK(st.code() == ErrorCode::timeout);
+        CHECK(st.message().find("servo 9") != std::string::npos);
+        CHECK(st.message().find("57600") != std::string::npos);
+    }
+    SECTION("lists of different lengths") {
+        auto raw = etroll_raw(emu->device());
+        raw["min"] = std::vector<double>{-90, -90, 30};
+        DynamixelActuator a;
+        auto st = a.on_configure(validated(raw), {});
+        CHECK(st.code() == ErrorCode::invalid_argument);
+        CHECK(st.message().find("'min' has 3 entries") != std::string::npos);
+    }
+    SECTION("a mm joint without a radius") {
+        auto raw = etroll_raw(emu->device());
+        raw["radius"] = std::vector<double>{0, 0, 0, kDrumRadius};
+        DynamixelActuator a;
+        auto st = a.on_configure(validated(raw), {});
+        CHECK(st.message().find("'palm'") != std::string::npos);
+        CHECK(st.message().find("radius") != std::string::npos);
+    }
+    SECTION("a missing device") {
+        auto raw = etroll_raw("/dev/ttyUSB-nothing-here");
+        DynamixelActuator a;
+        auto st = a.on_configure(validated(raw), {});
+        CHECK(st.code() == ErrorCode::not_found);
+    }
+}
+
+TEST_CASE("a goal outside the joint's limits is refused before it reaches the bus") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[2].position = 120.0;
+    auto st = a.write(0, cmd);
+    CHECK(st.code() == ErrorCode::limit_violation);
+    CHECK(st.message().find("'palm'") != std::string::npos);
+    // The palm's limits were written into the servo as position limits.
+    const auto hi = on_bus(*emu, [](BusEmulator& b) { return b.servo(3)->item(addr::max_position_limit, 4); });
+    CHECK(hi == degrees_to_ticks((100.0 - 65.0) / (2 * kPinionRadius * M_PI / 180.0)));
+}
