@@ -1,0 +1,68 @@
+#include "layer_response.hpp"
+
+#include <cmath>
+
+namespace rollsense::sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+constexpr double kFwhmPerSigma = 2.3548200450309493;  // 2 sqrt(2 ln 2)
+
+double phi(double z) { return kInvSqrt2Pi * std::exp(-0.5 * z * z); }
+double Phi(double z) { return 0.5 * std::erfc(-z * 0.70710678118654752440); }
+double sech(double x) {
+    const double e = std::exp(-std::abs(x));
+    return 2.0 * e / (1.0 + e * e);
+}
+
+}  // namespace
+
+LayerKernel::LayerKernel(double fwhm, double tail_at_pitch, double pitch, double tail_length)
+    : fwhm_(fwhm), sigma_(fwhm / kFwhmPerSigma), tail_length_(tail_length) {
+    // Choose the tail's share w so that tail(pitch) = tail_at_pitch * K(0):
+    // K(0) = (1-w) c + w e, tail(pitch) = w e sech(pitch/λ), solved for w.
+    const double c = kInvSqrt2Pi / sigma_;
+    const double e = 1.0 / (kPi * tail_length_);
+    const double r = tail_at_pitch;
+    const double denominator = e * sech(pitch / tail_length_) - r * e + r * c;
+    tail_weight_ = r > 0.0 && denominator > 0.0 ? r * c / denominator : 0.0;
+    if (tail_weight_ > 0.9) tail_weight_ = 0.9;
+}
+
+double LayerKernel::line(double u) const {
+    return (1.0 - tail_weight_) * phi(u / sigma_) / sigma_ +
+           tail_weight_ * sech(u / tail_length_) / (kPi * tail_length_);
+}
+
+double LayerKernel::spread(double u, double spread_var) const {
+    const double s = std::sqrt(sigma_ * sigma_ + spread_var);
+    return (1.0 - tail_weight_) * phi(u / s) / s + tail_weight_ * sech(u / tail_length_) / (kPi * tail_length_);
+}
+
+double LayerKernel::linear_segment(double x, double u0, double u1, double p0, double p1) const {
+    const double length = u1 - u0;
+    if (!(length > 0.0)) return 0.0;
+    // Core: ∫ (A + Bξ) φ((ξ-x)/σ)/σ dξ with z = (ξ-x)/σ.
+    const double B = (p1 - p0) / length;
+    const double A = p0 - B * u0;
+    const double z0 = (u0 - x) / sigma_;
+    const double z1 = (u1 - x) / sigma_;
+    const double core = (A + B * x) * (Phi(z1) - Phi(z0)) + B * sigma_ * (phi(z0) - phi(z1));
+    // Tail: broad compared with a segment, so the segment's load is taken at its centroid.
+    const double force = 0.5 * (p0 + p1) * length;
+    double tail = 0.0;
+    if (force > 0.0) {
+        const double centroid = u0 + length * (p0 + 2.0 * p1) / (3.0 * (p0 + p1));
+        tail = force * sech((x - centroid) / tail_length_) / (kPi * tail_length_);
+    }
+    return (1.0 - tail_weight_) * core + tail_weight_ * tail;
+}
+
+double hertz_half_width(double line_load, double radius, double contact_modulus) {
+    if (!(line_load > 0.0) || !(contact_modulus > 0.0)) return 0.0;
+    return std::sqrt(4.0 * line_load * radius / (kPi * contact_modulus));
+}
+
+}  // namespace rollsense::sim

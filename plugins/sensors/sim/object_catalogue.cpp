@@ -1,0 +1,154 @@
+#include "object_catalogue.hpp"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "rollsense/csv.hpp"
+
+namespace rollsense::sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Circumscribed diameter of a regular n-gon of side a.
+double circumscribed_diameter(int n, double a) { return a / std::sin(kPi / n); }
+
+}  // namespace
+
+int sides_for_base(const std::string& base) {
+    static const std::map<std::string, int> names{{"circle", 0},  {"triangle", 3}, {"square", 4},
+                                                  {"pentagon", 5}, {"hexagon", 6}, {"heptagon", 7},
+                                                  {"octagon", 8}};
+    auto it = names.find(base);
+    return it == names.end() ? -1 : it->second;
+}
+
+double ObjectSpec::flat_width() const {
+    if (is_cylinder()) return diameter;
+    const double R = circumradius();
+    const double inradius = R * std::cos(kPi / sides);
+    return sides % 2 == 0 ? 2.0 * inradius : inradius + R;
+}
+
+const ObjectSpec* ObjectCatalogue::find(const std::string& id) const {
+    for (const auto& o : objects_)
+        if (o.id == id) return &o;
+    return nullptr;
+}
+
+std::string ObjectCatalogue::ids() const {
+    std::string out;
+    for (const auto& o : objects_) out += (out.empty() ? "" : ", ") + o.id;
+    return out;
+}
+
+Result<ObjectCatalogue> ObjectCatalogue::load(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file))
+        return Error{ErrorCode::not_found, "object catalogue " + file.string() +
+                                               " does not exist; set the sim sensor's 'catalogue' parameter to a "
+                                               "CSV file (see docs/simulation.md, 'Object catalogue')"};
+    auto opened = csv::Reader::open(file);
+    if (!opened) return opened.error();
+    csv::Reader& reader = opened.value();
+
+    struct Column {
+        const char* name;
+        std::size_t index = 0;
+    };
+    Column c_id{"id"}, c_base{"base"}, c_sides{"sides"}, c_side{"side_mm"}, c_diam{"diameter_mm"},
+        c_rmin{"edge_radius_min_mm"}, c_rmax{"edge_radius_max_mm"}, c_desc{"description"};
+    for (Column* c : {&c_id, &c_base, &c_sides, &c_side, &c_diam, &c_rmin, &c_rmax, &c_desc}) {
+        auto idx = reader.column(c->name);
+        if (!idx) return idx.error();
+        c->index = idx.value();
+    }
+
+    ObjectCatalogue cat;
+    cat.path_ = file;
+    std::set<std::string> seen;
+    std::vector<std::string> fields;
+    auto bad = [&](std::size_t column, const std::string& what) {
+        return Error{ErrorCode::parse_error, reader.where(column) + ": " + what};
+    };
+    // Empty field → value 0 ("not applicable"), otherwise a strict number.
+    auto optional_number = [&](std::size_t column) -> Result<double> {
+        if (fields[column].empty()) return 0.0;
+        return reader.number(fields, column);
+    };
+
+    while (true) {
+        auto more = reader.next(fields);
+        if (!more) return more.error();
+        if (!more.value()) break;
+
+        ObjectSpec o;
+        o.id = fields[c_id.index];
+        if (o.id.empty()) return bad(c_id.index, "an object needs an id (e.g. C1)");
+        if (o.id.find_first_of(" ,\"") != std::string::npos)
+            return bad(c_id.index, "id '" + o.id + "' must not contain spaces, commas or quotes");
+        if (!seen.insert(o.id).second) return bad(c_id.index, "id '" + o.id + "' appears twice");
+
+        o.base = fields[c_base.index];
+        const int base_sides = sides_for_base(o.base);
+        if (base_sides < 0)
+            return bad(c_base.index, "unknown base '" + o.base +
+                                         "'; use circle, triangle, square, pentagon, hexagon, heptagon or octagon");
+
+        auto sides = optional_number(c_sides.index);
+        if (!sides) return sides.error();
+        if (sides.value() != std::floor(sides.value()) || sides.value() < 0)
+            return bad(c_sides.index, "sides must be a whole number (0 for a circle)");
+        o.sides = static_cast<int>(sides.value());
+        if (o.sides != base_sides)
+            return bad(c_sides.index, "sides " + std::to_string(o.sides) + " contradicts base '" + o.base +
+                                          "' (expected " + std::to_string(base_sides) + ")");
+
+        auto side = optional_number(c_side.index);
+        if (!side) return side.error();
+        auto diam = optional_number(c_diam.index);
+        if (!diam) return diam.error();
+        auto rmin = optional_number(c_rmin.index);
+        if (!rmin) return rmin.error();
+        auto rmax = optional_number(c_rmax.index);
+        if (!rmax) return rmax.error();
+        o.side = side.value();
+        o.diameter = diam.value();
+        o.edge_radius_min = rmin.value();
+        o.edge_radius_max = rmax.value();
+        o.description = fields[c_desc.index];
+
+        if (o.is_cylinder()) {
+            if (!(o.diameter > 0.0)) return bad(c_diam.index, "a circle needs diameter_mm > 0");
+            if (o.side != 0.0) return bad(c_side.index, "a circle has no side length; leave side_mm empty");
+        } else {
+            if (!(o.side > 0.0)) return bad(c_side.index, "a " + o.base + " needs side_mm > 0");
+            const double expected = circumscribed_diameter(o.sides, o.side);
+            if (o.diameter == 0.0) {
+                o.diameter = expected;
+            } else if (std::abs(o.diameter - expected) > 0.2) {
+                return bad(c_diam.index, "circumscribed diameter " + csv::format_number(o.diameter) +
+                                             " mm does not match a " + o.base + " of side " +
+                                             csv::format_number(o.side) + " mm (expected " +
+                                             csv::format_number(std::round(expected * 100) / 100) +
+                                             " mm); fix it or leave it empty");
+            }
+            if (o.edge_radius_min < 0.0 || o.edge_radius_max < o.edge_radius_min)
+                return bad(c_rmax.index, "edge radius range must satisfy 0 <= min <= max");
+            // A rounding larger than this would eat a whole face.
+            const double limit = 0.5 * o.side * std::tan(kPi * (0.5 - 1.0 / o.sides));
+            if (o.edge_radius_max >= limit)
+                return bad(c_rmax.index, "edge radius " + csv::format_number(o.edge_radius_max) +
+                                             " mm is too large for a side of " + csv::format_number(o.side) +
+                                             " mm (must be below " + csv::format_number(std::round(limit * 100) / 100) +
+                                             " mm)");
+        }
+        cat.objects_.push_back(std::move(o));
+    }
+    if (cat.objects_.empty())
+        return Error{ErrorCode::parse_error, file.string() + ": the catalogue has a header but no objects"};
+    return cat;
+}
+
+}  // namespace rollsense::sim

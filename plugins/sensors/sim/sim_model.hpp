@@ -1,0 +1,115 @@
+// The whole physical model of one simulated trial, independent of the plugin
+// interface (so tests and the calibration bench drive it directly).
+//
+//   finger angle θ ─▶ kinematics (cylinder roll / polygon tumble) ─▶ contact load
+//     ─▶ layer response at each barometer ─▶ output chain ─▶ ch1..ch3
+//
+// Every number here is a named setting; sim_schema.cpp documents each one with
+// its unit, and docs/simulation.md says which were fitted and how.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "contact_load.hpp"
+#include "kinematics.hpp"
+#include "layer_response.hpp"
+#include "object_catalogue.hpp"
+#include "output_chain.hpp"
+#include "polygon_tumbling.hpp"
+#include "rng.hpp"
+
+namespace rollsense::sim {
+
+inline constexpr int kChannels = 3;
+
+struct SimParameters {
+    HandGeometry hand;
+    double sensor_pitch = 8.0;             // mm between barometer centres
+    double sensor_position_jitter = 0.3;   // mm, per device
+    double kernel_fwhm = 4.5;              // mm, layer response core
+    double kernel_fwhm_jitter = 0.10;      // relative, per device
+    double kernel_tail_at_pitch = 0.015;   // tail / peak at one pitch
+    double kernel_tail_length = 4.0;       // mm
+    double contact_modulus = 0.3;          // MPa, E* for the Hertz contact of a cylinder
+    double foundation_stiffness = 0.15;    // N/mm³, rubber as an elastic foundation under an edge
+    double clamp_line_load = 0.03;         // N/mm, median clamping load at the reference lever arm
+    double clamp_reference_current = 0.0;  // mA; > 0: load scales with current / this
+    double clamp_current_threshold = 5.0;  // mA; below: not clamped
+    double force_log_sigma = 0.17;         // per-trial log-normal spread of the clamping load
+    double palm_oscillation = 0.06;        // relative force modulation at the reference speed
+    double palm_reference_speed = 13.74;   // deg/s (profile velocity 10)
+    double palm_frequency_min = 1.0;       // Hz
+    double palm_frequency_max = 3.0;       // Hz
+    double start_centre = -26.0;           // mm, mean start position of the object's centre
+    double start_range = 20.0;             // mm, width of the uniform start distribution
+    double start_tilt = 1.0;               // deg, σ of a polygon's tilt off face-flat
+    double cylinder_slip_max = 0.04;       // slip fraction, uniform in [0, max]
+    double polygon_slip = 0.3;             // mm, mean slip per landing
+    double face_dwell = 2.0;               // mm of finger slide per unit μ_tip a landed face stays flat
+    double gain_jitter = 0.10;             // relative, per device (uniform ±)
+    double ambient_offset_range = 0.15;    // kPa, per device (uniform ±): quantiser phase
+    OutputChainSettings chain;
+    std::uint64_t device_seed = 1;
+};
+
+// Fixed per-device randomness: where the barometers really are, how wide each
+// one's response is, its gain.
+struct DeviceState {
+    std::array<double, kChannels> sensor_x{};
+    std::array<LayerKernel, kChannels> kernel{};
+    std::array<double, kChannels> gain{};
+    std::array<double, kChannels> ambient_offset{};
+};
+DeviceState make_device(const SimParameters& p);
+
+// One trial's draws, exposed for tests and the bench.
+struct TrialDraws {
+    double start_centre = 0.0;  // mm
+    double tilt = 0.0;          // rad
+    double force_factor = 1.0;
+    double palm_frequency = 2.0, palm_phase = 0.0;
+    double cylinder_slip = 0.0;
+    std::vector<double> edge_radius;
+};
+
+class TrialModel {
+public:
+    // `object` may be null: no object between the fingers (readings are noise).
+    TrialModel(const SimParameters& params, const DeviceState& device, const ObjectSpec* object,
+               std::uint64_t trial_seed);
+
+    // Recording starts with the fingers at theta (rad) at `time` (s).
+    void start(double time, double theta);
+    // One sample: the sensing finger at theta (rad), clamping current (mA).
+    std::array<double, kChannels> sample(double time, double theta, double clamp_current);
+    // The contact stress (kPa) at each barometer for the present pose, before the output chain.
+    const std::array<double, kChannels>& last_stress() const { return stress_; }
+
+    const TrialDraws& draws() const { return draws_; }
+    bool started() const { return started_; }
+    // Present contact position on the sensing finger (mm) and clamping load (N/mm).
+    double contact_position() const { return contact_; }
+    double line_load() const { return line_load_; }
+    const PolygonTumbler* tumbler() const { return polygon_ ? &*polygon_ : nullptr; }
+
+private:
+    void compute_stress(double time, double theta, double clamp_current);
+
+    SimParameters p_;
+    const DeviceState* device_;
+    const ObjectSpec* object_;
+    std::uint64_t seed_;
+    TrialDraws draws_;
+    Rng slip_rng_;
+    std::array<OutputChannel, kChannels> channels_{};
+    std::optional<CylinderRoll> cylinder_;
+    std::optional<PolygonTumbler> polygon_;
+    std::array<double, kChannels> stress_{};
+    bool started_ = false;
+    double last_theta_ = 0.0, last_time_ = 0.0, speed_ = 0.0;  // speed in rad/s, low-passed
+    double contact_ = 0.0, line_load_ = 0.0, line_load_prev_ = 0.0;
+};
+
+}  // namespace rollsense::sim
