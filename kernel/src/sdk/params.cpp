@@ -103,6 +103,11 @@ std::optional<ParamValue> coerce(const ParamValue& v, ParamType type) {
     return std::nullopt;
 }
 
+std::string with_article(std::string_view noun) {
+    const bool vowel = !noun.empty() && std::string_view("aeiou").find(noun[0]) != std::string_view::npos;
+    return (vowel ? "an " : "a ") + std::string(noun);
+}
+
 std::string format_number(double d) {
     std::ostringstream os;
     os.precision(10);
@@ -206,9 +211,9 @@ Result<ParamSet> validate_params(const ParamSchema& schema, const std::map<std::
         }
         auto coerced = coerce(value, spec->type);
         if (!coerced)
-            return Error{ErrorCode::invalid_argument, where + ": key '" + key + "' must be a " +
-                                                          std::string(to_string(spec->type)) + ", got a " +
-                                                          value_type_name(value) + " (" +
+            return Error{ErrorCode::invalid_argument, where + ": key '" + key + "' must be " +
+                                                          with_article(to_string(spec->type)) + ", got " +
+                                                          with_article(value_type_name(value)) + " (" +
                                                           format_param_value(value) + ")"};
         std::optional<std::string> range_error;
         if (auto* d = std::get_if<double>(&*coerced)) range_error = check_range(*spec, *d);

@@ -9,6 +9,13 @@
 namespace rollsense::runtime {
 namespace fs = std::filesystem;
 
+namespace {
+std::string article(PluginKind kind) {
+    const std::string name(to_string(kind));
+    return (kind == PluginKind::actuator ? "an " : "a ") + name;
+}
+}  // namespace
+
 PluginRegistry::PluginRegistry(std::vector<fs::path> search_path) : search_path_(std::move(search_path)) {}
 
 std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::path>& extra) {
@@ -119,9 +126,9 @@ Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::str
     for (const auto& c : scan()) {
         if (c.library && c.library->name() == name) {
             if (c.library->manifest().kind != kind)
-                return Error{ErrorCode::not_found, "plugin '" + name + "' at " + c.path.string() + " is a " +
-                                                       std::string(to_string(c.library->manifest().kind)) +
-                                                       " plugin, not a " + std::string(to_string(kind))};
+                return Error{ErrorCode::not_found, "plugin '" + name + "' at " + c.path.string() + " is " +
+                                                       article(c.library->manifest().kind) + " plugin, not " +
+                                                       article(kind)};
             return c.library;
         }
     }

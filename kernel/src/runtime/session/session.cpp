@@ -341,6 +341,12 @@ Status Session::loop(bool cleanup_phase) {
             Task& t = *tasks_[i];
             if (t.finished) continue;
             if (t.wait == Task::Wait::time && now() >= t.wake_time) t.wait = Task::Wait::none;
+            if (t.wait != Task::Wait::none && now() >= t.wake_time) {
+                // A timeout that falls between control ticks: last look, then give up.
+                const bool met = condition_met(t);
+                if (t.outcome != WaitOutcome::cancelled) t.outcome = met ? WaitOutcome::ready : WaitOutcome::timed_out;
+                t.wait = Task::Wait::none;
+            }
             if (t.wait != Task::Wait::none) continue;
             resume_task(t);
             if (!failure_.ok() && !cleanup_phase) break;

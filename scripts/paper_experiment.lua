@@ -1,0 +1,38 @@
+-- The stock experiment of the paper: 9 objects x 3 speeds x 50 runs = 1,350
+-- trials (Table I procedure, winch reset between runs), recorded into the
+-- run's dataset. Resumable: with --resume, trials already on disk are skipped.
+--
+--   rollsense run scripts/paper_experiment.lua                      (simulated hand)
+--   rollsense run scripts/paper_experiment.lua --profile etroll     (the real hand)
+--
+-- Settings (--set key=value): runs (50), objects ("C1,C2,...,H2"), speeds ("10,15,20").
+local rs = require "rollsense"
+local etroll = require "etroll"
+
+local function list(text)
+  local out = {}
+  for item in tostring(text):gmatch("[^,%s]+") do out[#out + 1] = item end
+  return out
+end
+
+local runs = math.tointeger(rs.setting("runs", 50)) or error("--set runs=N expects a whole number")
+local objects = list(rs.setting("objects", "C1,C2,C3,S1,S2,P1,P2,H1,H2"))
+local speeds = list(rs.setting("speeds", "10,15,20"))
+
+rs.on_cleanup(etroll.park)
+
+local total = #objects * #speeds * runs
+local done = 0
+for _, object in ipairs(objects) do
+  for _, speed in ipairs(speeds) do
+    for repetition = 1, runs do
+      local id = string.format("%s-v%s-r%03d", object, speed, repetition)
+      if not rs.has_trial(id) then
+        etroll.run_trial{ object = object, speed = tonumber(speed), repetition = repetition }
+      end
+      done = done + 1
+      rs.progress(done, total, id)
+    end
+  end
+end
+rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))

@@ -1,0 +1,163 @@
+-- The E-TRoll roll procedure of the paper (Table I), as functions a script
+-- composes: open → clamp → roll (recorded) → return, and the winch reset
+-- between trials. Written against the rollsense API only, so the same code
+-- drives the simulated hand (profile sim), the emulated servos and the real
+-- hand (profile etroll).
+--
+--   local etroll = require "etroll"
+--   etroll.run_trial{ object = "C1", speed = 10, repetition = 1 }
+--
+-- Every number below is a documented setting; override any of them with
+-- etroll.configure{ ... } or from the command line (--set etroll.<key>=...).
+local rs = require "rollsense"
+
+local M = {}
+
+-- Dynamixel profile-velocity unit: 0.229 rev/min = 1.374 deg/s.
+M.DXL_VELOCITY_UNIT_DPS = 0.229 * 360 / 60
+
+-- The paper's three speeds, in profile-velocity units (2.29, 3.435, 4.58 rev/min).
+M.SPEEDS = { 10, 15, 20 }
+
+M.config = {
+  sensing_start = -44,     -- deg, sensing finger at the start of a roll (Table I step 1)
+  sensing_end = 44,        -- deg, end of the roll (step 3)
+  pushing_open = -66,      -- deg, pushing finger open, room for the object (step 1)
+  palm_width = 65,         -- mm, palm width while initialising (step 1)
+  clamp_current = 120,     -- mA, constant clamping current of the pushing finger (steps 2-4)
+  clamp_settle_ms = 300,   -- ms, let the clamp settle before rolling
+  move_velocity = 40,      -- deg/s, fingers between rolls
+  roll_acceleration = 140, -- deg/s^2, sensing finger ramp (servo profile acceleration)
+  record_margin_ms = 45,   -- ms recorded before and after the sweep (start/stop latency)
+  record_margin_jitter_ms = 15, -- ms, simulated latency spread (virtual clock only)
+  winch_payout = 10,       -- mm of string paid out before rolling (step 2)
+  winch_lift = 60,         -- mm the reset lifts the object
+  winch_velocity = 60,     -- mm/s
+  palm_controller = "palm_parallel", -- used when the profile configures it
+}
+
+function M.configure(overrides)
+  for k, v in pairs(overrides) do
+    if M.config[k] == nil then error("etroll.configure: unknown setting '" .. tostring(k) .. "'", 2) end
+    M.config[k] = v
+  end
+end
+
+-- Settings from the command line: --set etroll.clamp_current=150
+for k, v in pairs(M.config) do M.config[k] = rs.setting("etroll." .. k, v) end
+
+local function has_controller(name)
+  for _, c in ipairs(rs.profile().controllers) do if c == name then return true end end
+  return false
+end
+
+local sensing, pushing, palm, winch
+local function joints()
+  if not sensing then
+    sensing, pushing, palm, winch =
+      rs.joint("sensing_finger"), rs.joint("pushing_finger"), rs.joint("palm"), rs.joint("winch")
+  end
+end
+
+function M.palm_controller(on)
+  if has_controller(M.config.palm_controller) then rs.controller(M.config.palm_controller, on) end
+end
+
+-- Step 1: open. Fingers in position mode, palm fixed, object hanging free.
+function M.open()
+  joints()
+  local c = M.config
+  M.palm_controller(false)
+  pushing:move(c.pushing_open, { velocity = c.move_velocity, wait = false })
+  sensing:move(c.sensing_start, { velocity = c.move_velocity, wait = false })
+  palm:move(c.palm_width, { wait = false })
+  winch:move(0, { velocity = c.winch_velocity, wait = false })
+  rs.wait_joints({ pushing, sensing, palm, winch }, { timeout_ms = 15000 })
+end
+
+-- Step 2: clamp. Pushing finger in current mode presses the object against
+-- the sensing finger; the palm controller keeps the fingers parallel; the
+-- winch pays out string so it does not hinder rolling.
+function M.clamp()
+  joints()
+  local c = M.config
+  pushing:push(c.clamp_current)
+  M.palm_controller(true)
+  winch:move(c.winch_payout, { velocity = c.winch_velocity, wait = false })
+  local parallel = rs.wait_until(function()
+    return math.abs(pushing:position() - c.sensing_start) < 1.0 and not pushing:moving()
+  end, 5000)
+  if not parallel then
+    error(string.format("clamp: the pushing finger stopped at %.1f deg, not at %.1f deg (no object?)",
+      pushing:position(), c.sensing_start))
+  end
+  winch:wait({ timeout_ms = 5000 })
+  rs.wait(c.clamp_settle_ms)
+end
+
+-- Step 3: roll and record at `speed` profile-velocity units. Returns the
+-- number of samples recorded.
+function M.roll(speed, opts)
+  joints()
+  local c = M.config
+  opts = opts or {}
+  local margin = c.record_margin_ms
+  if rs.profile().virtual_clock then
+    -- Servo start/stop latency varies on the real hand; model it in simulation.
+    margin = margin + c.record_margin_jitter_ms * (2 * rs.random() - 1)
+  end
+  rs.record_start()
+  rs.wait(margin)
+  sensing:move(opts.to or c.sensing_end, {
+    velocity = speed * M.DXL_VELOCITY_UNIT_DPS,
+    acceleration = c.roll_acceleration,
+  })
+  rs.wait(margin)
+  return rs.record_stop()
+end
+
+-- Step 4: return, still clamped, so the object does not swing.
+function M.return_to_start()
+  joints()
+  sensing:move(M.config.sensing_start, { velocity = M.config.move_velocity })
+end
+
+-- Release the object: pushing finger back open, palm controller off.
+function M.release()
+  joints()
+  M.palm_controller(false)
+  pushing:move(M.config.pushing_open, { velocity = M.config.move_velocity })
+end
+
+-- Between trials: lift the object with the winch and lower it back; its
+-- swinging and free rotation on the string randomise the next start.
+function M.winch_reset()
+  joints()
+  local c = M.config
+  winch:move(-c.winch_lift, { velocity = c.winch_velocity })
+  winch:move(0, { velocity = c.winch_velocity })
+end
+
+-- One whole trial of the stock experiment. Returns the number of samples.
+function M.run_trial(t)
+  local id = rs.trial{ object = t.object, speed = t.speed, repetition = t.repetition }
+  M.open()
+  M.clamp()
+  local samples = M.roll(t.speed)
+  M.return_to_start()
+  M.release()
+  if t.save ~= false then rs.save_trial() end
+  rs.end_trial()
+  M.winch_reset()
+  return samples, id
+end
+
+-- The safe end of any procedure: release, controller off, fingers open.
+function M.park()
+  joints()
+  M.palm_controller(false)
+  pushing:move(M.config.pushing_open, { velocity = M.config.move_velocity, timeout_ms = 10000 })
+  sensing:move(M.config.sensing_start, { velocity = M.config.move_velocity, timeout_ms = 10000 })
+end
+
+return M

@@ -1,0 +1,95 @@
+// Helpers for kernel tests: a temporary folder, and running a Lua script on a
+// small mock hand through a real Session (plugins loaded from the build).
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+#include "runtime/session/session.hpp"
+
+namespace kt {
+
+namespace fs = std::filesystem;
+
+class TempDir {
+public:
+    TempDir() {
+        static std::atomic<int> n{0};
+        path_ = fs::temp_directory_path() / ("rollsense-test-" + std::to_string(::getpid()) + "-" + std::to_string(n++));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    const fs::path& path() const { return path_; }
+    fs::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+    fs::path path_;
+};
+
+inline void write_file(const fs::path& p, const std::string& text) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << text;
+}
+
+inline std::string read_file(const fs::path& p) {
+    std::ifstream in(p);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Two servo joints and a three-cell bump sensor on the virtual clock.
+inline const char* kTestProfile = R"(
+return {
+  description = "test hand",
+  clock = "virtual",
+  sample_rate_hz = 31.1,
+  control_rate_hz = 100,
+  devices = {
+    hand = { plugin = "mock_actuator", params = {
+      joints = { "finger", "pusher" }, units = { "deg", "deg" },
+      min = { -90, -90 }, max = { 90, 90 }, initial = { 0, 0 },
+      max_velocity = { 100, 100 }, max_current = { 500, 500 }, contact = { 0/0, 20 },
+      free_speed_per_ma = 0.2, extended = {} } },
+    tactile = { plugin = "example_bump", params = { joint = "finger" } },
+  },
+  joints = {
+    finger = { min = -50, max = 50, max_velocity = 60, max_current = 300 },
+    pusher = { min = -60, max = 60, max_velocity = 60, max_current = 300, safe = "torque_off" },
+  },
+  record_joints = { "finger" },
+}
+)";
+
+struct ScriptRun {
+    rollsense::runtime::RunSummary summary;
+    fs::path out;
+};
+
+inline rollsense::runtime::SessionOptions options_for(const TempDir& dir, const std::string& script,
+                                                      const std::string& profile = kTestProfile) {
+    write_file(dir / "script.lua", script);
+    write_file(dir / "profiles/test.lua", profile);
+    rollsense::runtime::SessionOptions o;
+    o.script = dir / "script.lua";
+    o.profile = (dir / "profiles/test.lua").string();
+    o.share_dir = ROLLSENSE_SHARE_DIR;
+    o.out_dir = dir / "out";
+    o.plugin_path = {ROLLSENSE_PLUGIN_DIR, ROLLSENSE_TEST_PLUGIN_DIR};
+    o.progress = false;
+    o.sandbox.max_slice_ms = 1000;
+    return o;
+}
+
+inline ScriptRun run_script(const TempDir& dir, const std::string& script, const std::string& profile = kTestProfile) {
+    auto o = options_for(dir, script, profile);
+    rollsense::runtime::Session session(o);
+    return {session.run(), o.out_dir};
+}
+
+}  // namespace kt

@@ -1,0 +1,100 @@
+// Plugin loading through Boost.DLL: real plugins load; every failure mode is
+// reported with its reason; instances keep their library loaded.
+#include <catch2/catch.hpp>
+
+#include "kernel_fixture.hpp"
+#include "runtime/plugin/plugin_registry.hpp"
+
+using namespace rollsense;
+using namespace rollsense::runtime;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path test_plugin(const std::string& name) { return fs::path(ROLLSENSE_TEST_PLUGIN_DIR) / ("lib" + name + ".so"); }
+}  // namespace
+
+TEST_CASE("a real plugin library loads and creates a working instance", "[loader]") {
+    PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    auto sensor = reg.create_sensor("example_bump", "tactile");
+    REQUIRE(sensor.ok());
+    auto& h = **sensor;
+    CHECK(h.plugin_name() == "example_bump");
+    CHECK(h.instance() == "tactile");
+    auto lib = reg.find("example_bump", PluginKind::sensor);
+    REQUIRE(lib.ok());
+    auto schema = PluginRegistry::schema_of(**lib);
+    REQUIRE(schema.ok());
+    auto params = validate_params(*schema, {}, "test");
+    REQUIRE(params.ok());
+    REQUIRE(h.configure(*params, {}).ok());
+    CHECK(h.plugin().channels().size() == 3);
+}
+
+TEST_CASE("an instance keeps its library loaded after the registry is gone", "[loader]") {
+    std::unique_ptr<ActuatorHandle> handle;
+    {
+        PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+        auto a = reg.create_actuator("mock_actuator", "hand");
+        REQUIRE(a.ok());
+        handle = std::move(*a);
+    }
+    // Calling into the plugin's code after its registry died must work.
+    auto joints = handle->plugin().joints();  // unconfigured: empty, but the vtable is live
+    CHECK(joints.empty());
+    handle.reset();  // destroyed through the plugin's destroy() while still mapped
+}
+
+TEST_CASE("a library without the manifest symbol is reported as not a plugin", "[loader]") {
+    auto c = PluginRegistry::load_file(test_plugin("rollsense_test_no_manifest"));
+    CHECK_FALSE(c.library);
+    CHECK_THAT(c.failure, Catch::Contains("missing symbol 'rollsense_plugin_manifest'"));
+}
+
+TEST_CASE("a plugin built for another ABI is reported as an ABI mismatch", "[loader]") {
+    auto c = PluginRegistry::load_file(test_plugin("rollsense_test_bad_abi"));
+    CHECK_FALSE(c.library);
+    CHECK_THAT(c.failure, Catch::Contains("ABI mismatch"));
+    CHECK_THAT(c.failure, Catch::Contains(std::to_string(kPluginAbiVersion + 41)));
+}
+
+TEST_CASE("a file that is not a shared library is reported with the loader's reason", "[loader]") {
+    kt::TempDir dir;
+    kt::write_file(dir / "librollsense_fake.so", "this is text, not ELF\n");
+    auto c = PluginRegistry::load_file(dir / "librollsense_fake.so");
+    CHECK_FALSE(c.library);
+    CHECK_THAT(c.failure, Catch::Contains("cannot be loaded"));
+    CHECK_THAT(c.failure, Catch::Contains("librollsense_fake.so"));
+}
+
+TEST_CASE("a missing plugin names every folder searched and every file found", "[loader]") {
+    kt::TempDir dir;
+    kt::write_file(dir / "libjunk.so", "junk");
+    PluginRegistry reg({dir.path(), ROLLSENSE_TEST_PLUGIN_DIR, "/nonexistent/plugins"});
+    auto r = reg.find("no_such_plugin", PluginKind::sensor);
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().code == ErrorCode::not_found);
+    const auto& m = r.error().message;
+    CHECK_THAT(m, Catch::Contains("no sensor plugin named 'no_such_plugin'"));
+    CHECK_THAT(m, Catch::Contains(dir.path().string()));
+    CHECK_THAT(m, Catch::Contains("/nonexistent/plugins (no such folder)"));
+    CHECK_THAT(m, Catch::Contains("libjunk.so: cannot be loaded"));
+    CHECK_THAT(m, Catch::Contains("ABI mismatch"));
+    CHECK_THAT(m, Catch::Contains("missing symbol"));
+}
+
+TEST_CASE("asking for a plugin of the wrong kind says which kind it is", "[loader]") {
+    PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    auto r = reg.find("mock_actuator", PluginKind::sensor);
+    REQUIRE_FALSE(r.ok());
+    CHECK_THAT(r.error().message, Catch::Contains("is an actuator plugin, not a sensor"));
+}
+
+TEST_CASE("a second plugin with the same name is reported as shadowed", "[loader]") {
+    kt::TempDir dir;
+    fs::copy_file(fs::path(ROLLSENSE_PLUGIN_DIR) / "librollsense_example_bump.so", dir / "librollsense_copy.so");
+    PluginRegistry reg({ROLLSENSE_PLUGIN_DIR, dir.path()});
+    bool shadowed = false;
+    for (const auto& c : reg.scan())
+        if (c.path.filename() == "librollsense_copy.so") shadowed = c.failure.find("shadowed") != std::string::npos;
+    CHECK(shadowed);
+}

@@ -1,0 +1,138 @@
+// Lua procedures on the virtual clock: wait/move semantics, concurrent tasks,
+// errors with file:line and traceback.
+#include <catch2/catch.hpp>
+
+#include "kernel_fixture.hpp"
+
+using namespace rollsense;
+
+namespace {
+// Runs a script that reports values with rs.write_output("result.txt", ...).
+std::string run_and_read(kt::TempDir& dir, const std::string& script) {
+    auto r = kt::run_script(dir, "local rs = require 'rollsense'\n" + script);
+    INFO(r.summary.status.message());
+    REQUIRE(r.summary.status.ok());
+    return kt::read_file(r.out / "result.txt");
+}
+}  // namespace
+
+TEST_CASE("rs.wait advances the virtual clock by exactly the time asked", "[lua]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local t0 = rs.now()
+        rs.wait(250)
+        local t1 = rs.now()
+        rs.wait(1000)
+        rs.write_output("result.txt", string.format("%.6f %.6f", t1 - t0, rs.now() - t1)))");
+    CHECK(out == "0.250000 1.000000");
+}
+
+TEST_CASE("a run of many robot-seconds takes little wall time on the virtual clock", "[lua]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, "local rs = require 'rollsense'\nrs.wait(600000)\n");
+    REQUIRE(r.summary.status.ok());
+    CHECK(r.summary.run_time_s == Approx(600.0).margin(0.02));
+    CHECK(r.summary.wall_time_s < r.summary.run_time_s);  // not a timing threshold: 600 s cannot pass in real time here
+}
+
+TEST_CASE("move waits until the joint arrives, following the servo's profile", "[lua]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local f = rs.joint("finger")
+        local t0 = rs.now()
+        f:move(30, { velocity = 30 })                      -- unlimited acceleration: 1 s
+        local t1 = rs.now()
+        f:move(0, { velocity = 30, acceleration = 60 })    -- trapezoid: 30/30 + 30/60 = 1.5 s
+        local t2 = rs.now()
+        rs.write_output("result.txt", string.format("%.2f %.2f %.3f %s", t1 - t0, t2 - t1, f:position(), tostring(f:moving()))))");
+    double a = 0, b = 0, pos = 1;
+    char moving[8] = {};
+    REQUIRE(std::sscanf(out.c_str(), "%lf %lf %lf %7s", &a, &b, &pos, moving) == 4);
+    // Arrival is noticed at the first control tick (10 ms) after the profile ends.
+    CHECK(a >= 1.0);
+    CHECK(a <= 1.02);
+    CHECK(b >= 1.5);
+    CHECK(b <= 1.52);
+    CHECK(pos == Approx(0.0).margin(1e-9));
+    CHECK(std::string(moving) == "false");
+}
+
+TEST_CASE("a move that cannot arrive in time raises a timeout naming the joint", "[lua]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+rs.joint("finger"):move(40, { velocity = 1, timeout_ms = 500 })
+)");
+    REQUIRE_FALSE(r.summary.status.ok());
+    CHECK(r.summary.status.code() == ErrorCode::timeout);
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("timed out waiting for joint 'finger' to reach 40"));
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("script.lua:2:"));
+}
+
+TEST_CASE("wait_until returns true when the condition holds and false on timeout", "[lua]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local f = rs.joint("finger")
+        f:move(20, { velocity = 10, wait = false })
+        local reached = rs.wait_until(function() return f:position() > 10 end, 5000)
+        local t = rs.now()
+        local never = rs.wait_until(function() return false end, 300)
+        rs.write_output("result.txt", string.format("%s %.1f %s", tostring(reached), t, tostring(never))))");
+    CHECK(out == "true 1.0 false");
+}
+
+TEST_CASE("spawned tasks run concurrently with the main procedure", "[lua]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local log = {}
+        rs.spawn(function() for i = 1, 3 do rs.wait(100); log[#log + 1] = "b" .. i end end)
+        for i = 1, 3 do rs.wait(150); log[#log + 1] = "a" .. i end
+        rs.write_output("result.txt", table.concat(log, " ")))");
+    // At 300 ms both are due: tasks resume in the order they were created (main first).
+    CHECK(out == "b1 a1 b2 a2 b3 a3");
+}
+
+TEST_CASE("a script error comes back with file, line and traceback", "[lua]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, "local rs = require 'rollsense'\n"
+                                 "local function inner() local t = nil; return t.field end\n"
+                                 "local function outer() inner() end\n"
+                                 "outer()\n");
+    REQUIRE_FALSE(r.summary.status.ok());
+    CHECK(r.summary.status.code() == ErrorCode::script_error);
+    const auto& m = r.summary.status.message();
+    CHECK_THAT(m, Catch::Contains("script.lua:2: attempt to index a nil value"));
+    CHECK_THAT(m, Catch::Contains("stack traceback"));
+    CHECK_THAT(m, Catch::Contains("script.lua:3: in"));
+    CHECK_THAT(m, Catch::Contains("script.lua:4: in main chunk"));
+}
+
+TEST_CASE("a syntax error names the line and runs nothing", "[lua]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, "local rs = require 'rollsense'\nrs.wait(10\n");
+    REQUIRE_FALSE(r.summary.status.ok());
+    CHECK(r.summary.status.code() == ErrorCode::parse_error);
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("script.lua:3:"));
+}
+
+TEST_CASE("waiting where a yield would cross C is refused with an explanation", "[lua]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local t = { 3, 1, 2 }
+table.sort(t, function(a, b) rs.wait(1); return a < b end)
+)");
+    REQUIRE_FALSE(r.summary.status.ok());
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("cannot wait here"));
+}
+
+TEST_CASE("recording samples sensors and joints at the profile's rate", "[lua]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        rs.trial{ object = "X", speed = 1, repetition = 1 }
+        rs.record_start()
+        rs.wait(1000)
+        local n = rs.record_stop()
+        local d = rs.recorded()
+        rs.write_output("result.txt", string.format("%d %d %.6f", n, #d.ch1, d.time[2])))");
+    // 31.1 Hz over one second: samples at 0, 1/31.1, ..., 31/31.1 s (32 samples).
+    CHECK(out == "32 32 0.032154");
+}

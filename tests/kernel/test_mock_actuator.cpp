@@ -1,0 +1,73 @@
+// The mock servo model: conformance, trapezoid timing, current mode against a contact.
+#include <catch2/catch.hpp>
+
+#include "conformance.hpp"
+#include "kernel_fixture.hpp"
+#include "motion_profile.hpp"
+#include "runtime/plugin/plugin_registry.hpp"
+
+using namespace rollsense;
+
+TEST_CASE("the mock actuator passes the actuator conformance suite", "[mock][conformance]") {
+    runtime::PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    auto lib = reg.find("mock_actuator", PluginKind::actuator);
+    REQUIRE(lib.ok());
+    auto params = validate_params(*runtime::PluginRegistry::schema_of(**lib), {}, "test");
+    REQUIRE(params.ok());
+    double clock = 0;
+    testing::ActuatorConformance c;
+    c.make = [lib]() { return std::unique_ptr<Actuator>((*lib)->manifest().create_actuator()); };
+    c.params = *params;
+    c.now = [&] { return clock; };
+    c.advance = [&](double dt) { clock += dt; };
+    c.position_tolerance = 1e-6;
+    testing::check_actuator_conformance(c);
+}
+
+TEST_CASE("the example sensor passes the sensor conformance suite", "[example][conformance]") {
+    runtime::PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    auto lib = reg.find("example_bump", PluginKind::sensor);
+    REQUIRE(lib.ok());
+    testing::SensorConformance c;
+    c.make = [lib]() { return std::unique_ptr<Sensor>((*lib)->manifest().create_sensor()); };
+    c.params = *validate_params(*runtime::PluginRegistry::schema_of(**lib), {}, "test");
+    c.joint_names = {"sensing_finger"};
+    c.joints = [](double t) {
+        JointState s;
+        s.position = -44 + 20 * t;
+        return std::vector<JointState>{s};
+    };
+    testing::check_sensor_conformance(c);
+}
+
+TEST_CASE("a trapezoidal profile reaches the goal in the closed-form time", "[mock]") {
+    mock::MotionProfile p;
+    p.plan(0.0, -44.0, 0.0, 44.0, 13.74, 137.4);  // speed 10 units, ramp 0.1 s
+    const double expected = 88.0 / 13.74 + 13.74 / 137.4;
+    CHECK(p.end_time() == Approx(expected).epsilon(1e-12));
+    CHECK(p.at(expected / 2).velocity == Approx(13.74));
+    CHECK(p.at(expected / 2).position == Approx(0.0).margin(1e-9));
+    CHECK(p.at(expected + 1).position == 44.0);
+    CHECK_FALSE(p.at(expected + 1).moving);
+    // short move: triangular profile, peak below the velocity limit
+    p.plan(0.0, 0.0, 0.0, 1.0, 100.0, 100.0);
+    CHECK(p.end_time() == Approx(0.2));
+    // re-planned mid-motion toward the other side: brakes first, ends exactly at the goal
+    p.plan(0.0, 0.0, 10.0, -5.0, 10.0, 50.0);
+    CHECK(p.at(p.end_time()).position == -5.0);
+    CHECK(p.at(0.2).velocity == Approx(0.0).margin(1e-9));
+}
+
+TEST_CASE("in current mode a joint closes until the modelled contact and holds there", "[mock]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local p = rs.joint("pusher")
+p:move(-40, { velocity = 60 })
+p:push(100)
+local ok = rs.wait_until(function() return not p:moving() and p:position() > 0 end, 5000)
+rs.wait(200)
+rs.write_output("result.txt", string.format("%s %.3f %.1f", tostring(ok), p:position(), p:current()))
+)");
+    REQUIRE(r.summary.status.ok());
+    CHECK(kt::read_file(r.out / "result.txt") == "true 20.000 100.0");
+}

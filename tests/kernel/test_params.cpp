@@ -1,0 +1,58 @@
+// Typed parameter validation against a plugin's schema.
+#include <catch2/catch.hpp>
+
+#include "rollsense/params.hpp"
+
+using namespace rollsense;
+
+namespace {
+ParamSchema schema() {
+    return {param_number("gain", 1.0, "gain", 0, 10, "1"), param_int("count", {}, "required count", 1, 100),
+            param_string("mode", std::string("fast"), "mode", {"fast", "slow"}),
+            param_number_list("angles", std::vector<double>{1, 2}, "angles", -90, 90, "deg")};
+}
+}  // namespace
+
+TEST_CASE("defaults are filled and integers widen to numbers", "[params]") {
+    auto p = validate_params(schema(), {{"count", ParamValue{std::int64_t{5}}}, {"gain", ParamValue{std::int64_t{2}}}}, "f.lua: x");
+    REQUIRE(p.ok());
+    CHECK(p->get_number("gain") == 2.0);
+    CHECK(p->get_int("count") == 5);
+    CHECK(p->get_string("mode") == "fast");
+    CHECK(p->get_number_list("angles") == std::vector<double>{1, 2});
+}
+
+TEST_CASE("unknown keys, wrong types, ranges, choices and missing keys name the file and key", "[params]") {
+    auto unknown = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"gian", ParamValue{1.0}}}, "f.lua: dev");
+    REQUIRE_FALSE(unknown.ok());
+    CHECK_THAT(unknown.error().message, Catch::Contains("f.lua: dev: unknown key 'gian'"));
+    CHECK_THAT(unknown.error().message, Catch::Contains("known keys: gain, count, mode, angles"));
+
+    auto type = validate_params(schema(), {{"count", ParamValue{std::string("three")}}}, "f.lua: dev");
+    REQUIRE_FALSE(type.ok());
+    CHECK_THAT(type.error().message, Catch::Contains("key 'count' must be an integer"));
+
+    auto range = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"gain", ParamValue{11.0}}}, "f");
+    REQUIRE_FALSE(range.ok());
+    CHECK_THAT(range.error().message, Catch::Contains("11 is outside the allowed range [0, 10]"));
+
+    auto list_range = validate_params(
+        schema(), {{"count", ParamValue{std::int64_t{1}}}, {"angles", ParamValue{std::vector<double>{0, 95}}}}, "f");
+    REQUIRE_FALSE(list_range.ok());
+    CHECK_THAT(list_range.error().message, Catch::Contains("95 is outside"));
+
+    auto choice = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"mode", ParamValue{std::string("medium")}}}, "f");
+    REQUIRE_FALSE(choice.ok());
+    CHECK_THAT(choice.error().message, Catch::Contains("expected one of: fast, slow"));
+
+    auto missing = validate_params(schema(), {}, "f.lua: dev");
+    REQUIRE_FALSE(missing.ok());
+    CHECK_THAT(missing.error().message, Catch::Contains("required key 'count' is missing"));
+}
+
+TEST_CASE("typed getters refuse the wrong type", "[params]") {
+    auto p = validate_params(schema(), {{"count", ParamValue{std::int64_t{3}}}}, "f");
+    REQUIRE(p.ok());
+    CHECK_THROWS_AS(p->get_string("count"), StatusError);
+    CHECK_THROWS_AS(p->get_number("nope"), StatusError);
+}

@@ -1,0 +1,118 @@
+// Robot profiles: typed, every key known, errors naming the file and the key.
+#include <catch2/catch.hpp>
+
+#include "kernel_fixture.hpp"
+#include "runtime/profile/profile.hpp"
+#include "runtime/robot/robot.hpp"
+
+using namespace rollsense;
+using namespace rollsense::runtime;
+
+namespace {
+Result<Profile> load_text(const kt::TempDir& dir, const std::string& text, const Settings& settings = {}) {
+    kt::write_file(dir / "profiles/p.lua", text);
+    return load_profile((dir / "profiles/p.lua").string(), dir.path(), settings);
+}
+Result<std::unique_ptr<Robot>> robot_from(const kt::TempDir& dir, const std::string& text) {
+    auto p = load_text(dir, text);
+    if (!p) return p.error();
+    PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    return Robot::create(*p, reg, ROLLSENSE_SHARE_DIR);
+}
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+    auto at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+}
+}  // namespace
+
+TEST_CASE("the stock profiles load and build their robot", "[profile]") {
+    Settings settings;
+    for (const char* name : {"mock", "sim"}) {
+        auto p = load_profile(name, ROLLSENSE_SHARE_DIR, settings);
+        INFO(name << ": " << (p ? "" : p.error().message));
+        REQUIRE(p.ok());
+        CHECK(p->virtual_clock);
+        CHECK(p->devices.size() == 2);
+        CHECK(p->joints.size() == 4);
+    }
+    kt::TempDir dir;
+    auto r = robot_from(dir, kt::kTestProfile);
+    REQUIRE(r.ok());
+    CHECK((*r)->joints().size() == 2);
+    CHECK((*r)->channel_columns() == std::vector<std::string>{"ch1", "ch2", "ch3"});
+}
+
+TEST_CASE("an unknown top-level key is an error naming file and key", "[profile]") {
+    kt::TempDir dir;
+    auto p = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",", "clock = \"virtual\", sample_rte_hz = 3,"));
+    REQUIRE_FALSE(p.ok());
+    CHECK_THAT(p.error().message, Catch::Contains("p.lua.sample_rte_hz: unknown key"));
+}
+
+TEST_CASE("a wrong type is an error naming the key", "[profile]") {
+    kt::TempDir dir;
+    auto p = load_text(dir, replace(kt::kTestProfile, "control_rate_hz = 100", "control_rate_hz = \"fast\""));
+    REQUIRE_FALSE(p.ok());
+    CHECK_THAT(p.error().message, Catch::Contains("p.lua.control_rate_hz must be a number"));
+}
+
+TEST_CASE("a plugin parameter with a typo or the wrong type names the device and key", "[profile]") {
+    kt::TempDir dir;
+    auto typo = robot_from(dir, replace(kt::kTestProfile, "joint = \"finger\"", "joint = \"finger\", widht = 3"));
+    REQUIRE_FALSE(typo.ok());
+    CHECK_THAT(typo.error().message, Catch::Contains("p.lua: devices.tactile.params: unknown key 'widht'"));
+    auto type = robot_from(dir, replace(kt::kTestProfile, "joint = \"finger\"", "joint = 7"));
+    REQUIRE_FALSE(type.ok());
+    CHECK_THAT(type.error().message, Catch::Contains("key 'joint' must be a string"));
+}
+
+TEST_CASE("a joint without kernel limits, or limits wider than the device, is refused", "[profile]") {
+    kt::TempDir dir;
+    auto missing = robot_from(dir, replace(kt::kTestProfile,
+                                           "pusher = { min = -60, max = 60, max_velocity = 60, max_current = 300, safe = \"torque_off\" },",
+                                           ""));
+    REQUIRE_FALSE(missing.ok());
+    CHECK_THAT(missing.error().message, Catch::Contains("joint 'pusher' of device 'hand' has no limits"));
+    auto wide = robot_from(dir, replace(kt::kTestProfile, "finger = { min = -50", "finger = { min = -120"));
+    REQUIRE_FALSE(wide.ok());
+    CHECK_THAT(wide.error().message, Catch::Contains("exceed what the device allows"));
+}
+
+TEST_CASE("a missing plugin and a missing profile say where they were looked for", "[profile]") {
+    kt::TempDir dir;
+    auto r = robot_from(dir, replace(kt::kTestProfile, "plugin = \"example_bump\"", "plugin = \"no_such\""));
+    REQUIRE_FALSE(r.ok());
+    CHECK_THAT(r.error().message, Catch::Contains("devices.tactile"));
+    CHECK_THAT(r.error().message, Catch::Contains("Searched:"));
+    Settings settings;
+    auto p = load_profile("nope", ROLLSENSE_SHARE_DIR, settings);
+    REQUIRE_FALSE(p.ok());
+    CHECK_THAT(p.error().message, Catch::Contains("profile 'nope' not found"));
+    CHECK_THAT(p.error().message, Catch::Contains("sim"));
+}
+
+TEST_CASE("a syntax error in a profile gives file and line", "[profile]") {
+    kt::TempDir dir;
+    auto p = load_text(dir, "return {\n  clock = \"virtual\"\n  devices = {}\n}\n");
+    REQUIRE_FALSE(p.ok());
+    CHECK_THAT(p.error().message, Catch::Contains("p.lua:3:"));
+}
+
+TEST_CASE("command-line settings reach profiles through setting() and dotted paths", "[profile]") {
+    kt::TempDir dir;
+    Settings s;
+    REQUIRE(s.add("rate=50").ok());
+    REQUIRE(s.add("devices.tactile.params.width=9").ok());
+    auto p = load_text(dir, replace(kt::kTestProfile, "control_rate_hz = 100", "control_rate_hz = setting('rate', 100)"), s);
+    REQUIRE(p.ok());
+    CHECK(p->control_rate_hz == 50);
+    auto tactile = std::find_if(p->devices.begin(), p->devices.end(), [](auto& d) { return d.name == "tactile"; });
+    CHECK(std::get<std::int64_t>(tactile->params.at("width")) == 9);
+    CHECK(s.unused().empty());
+    Settings bad;
+    REQUIRE(bad.add("devices.nothing.params.x=1").ok());
+    auto q = load_text(dir, kt::kTestProfile, bad);
+    REQUIRE_FALSE(q.ok());
+    CHECK_THAT(q.error().message, Catch::Contains("has no table 'nothing'"));
+}

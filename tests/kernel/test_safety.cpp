@@ -1,0 +1,157 @@
+// The sandbox, cancellation that pcall cannot swallow, cleanup and safe state,
+// and joint limits enforced in C++.
+#include <catch2/catch.hpp>
+
+#include <csignal>
+#include <thread>
+
+#include "kernel_fixture.hpp"
+
+using namespace rollsense;
+
+namespace {
+Status run(kt::TempDir& dir, const std::string& body) {
+    return kt::run_script(dir, "local rs = require 'rollsense'\n" + body).summary.status;
+}
+}  // namespace
+
+TEST_CASE("sandbox escapes are refused", "[sandbox]") {
+    const char* attempts[] = {
+        "io.open('/etc/passwd')",
+        "os.execute('true')",
+        "os.remove('/tmp/x')",
+        "debug.getinfo(1)",
+        "dofile('/etc/passwd')",
+        "loadfile('/etc/passwd')",
+        "string.dump(function() end)",
+        "('x').dump(function() end)",
+        "require('io')",
+        "require('../../etc/passwd')",
+        "assert(load(string.char(27) .. 'Lua', 'x', 'b'))",
+        "assert(load(string.char(27) .. 'LuaT'))",
+        "collectgarbage('stop')",
+        "package.loadlib('libc.so.6', 'system')",
+    };
+    for (const char* code : attempts) {
+        kt::TempDir dir;
+        auto s = run(dir, code);
+        INFO(code << " -> " << s.message());
+        CHECK_FALSE(s.ok());
+    }
+}
+
+TEST_CASE("a runaway loop inside pcall is still cancelled", "[sandbox]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, R"(local rs = require 'rollsense'
+local caught = 0
+while true do
+  pcall(function() while true do end end)
+  caught = caught + 1
+end
+)");
+    o.sandbox.max_slice_ms = 200;
+    rollsense::runtime::Session session(o);
+    auto s = session.run();
+    REQUIRE_FALSE(s.status.ok());
+    CHECK(s.status.code() == ErrorCode::cancelled);
+    CHECK_THAT(s.status.message(), Catch::Contains("without waiting"));
+}
+
+TEST_CASE("the memory cap stops a script that allocates without bound", "[sandbox]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, "local t = {} for i = 1, 1e9 do t[i] = string.rep('x', 64) .. i end\n");
+    o.sandbox.memory_bytes = 32u << 20;
+    o.sandbox.max_slice_ms = 600000;  // a loaded machine must not turn this into a watchdog test
+    rollsense::runtime::Session session(o);
+    auto s = session.run();
+    REQUIRE_FALSE(s.status.ok());
+    CHECK_THAT(s.status.message(), Catch::Contains("not enough memory"));
+}
+
+TEST_CASE("a command outside the joint limits is refused and nothing moves", "[limits]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local f = rs.joint("finger")
+local ok, err = pcall(f.move, f, 70)
+rs.wait(500)
+local ok2, err2 = pcall(f.move, f, 10, { velocity = 500 })
+local ok3, err3 = pcall(f.push, f, 900)
+rs.write_output("result.txt", string.format("%s|%s|%s|%s|%s|%.3f", tostring(ok), err, err2, err3, tostring(f:moving()), f:position()))
+)");
+    REQUIRE(r.summary.status.ok());
+    auto out = kt::read_file(r.out / "result.txt");
+    CHECK_THAT(out, Catch::StartsWith("false|"));
+    CHECK_THAT(out, Catch::Contains("joint 'finger': goal 70 deg is outside the joint limits [-50, 50]"));
+    CHECK_THAT(out, Catch::Contains("nothing was moved"));
+    CHECK_THAT(out, Catch::Contains("velocity 500 deg/s exceeds the limit 60"));
+    CHECK_THAT(out, Catch::Contains("current 900 mA exceeds the limit 300 mA"));
+    CHECK_THAT(out, Catch::EndsWith("|false|0.000"));
+}
+
+TEST_CASE("a failing script gets its cleanup, and the kernel stops every joint first", "[safety]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local f, p = rs.joint("finger"), rs.joint("pusher")
+rs.on_cleanup(function()
+  local at = f:position()
+  rs.wait(500)   -- cleanup may wait; the finger must not be moving any more
+  rs.write_output("cleanup.txt", string.format("%.3f %.3f %s %s", at, f:position(), tostring(f:moving()),
+                                               tostring(p:state().torque)))
+end)
+p:push(100)
+f:move(45, { velocity = 10, wait = false })
+rs.wait(1000)
+error("something went wrong mid-roll")
+)");
+    REQUIRE_FALSE(r.summary.status.ok());
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("something went wrong mid-roll"));
+    auto out = kt::read_file(r.out / "cleanup.txt");
+    double at = 0, later = 0;
+    char moving[8] = {}, torque[8] = {};
+    REQUIRE(std::sscanf(out.c_str(), "%lf %lf %7s %7s", &at, &later, moving, torque) == 4);
+    CHECK(at == Approx(10.0).margin(0.5));      // stopped where it was (about 1 s at 10 deg/s)
+    CHECK(later == Approx(at).margin(1e-6));    // and stays there
+    CHECK(std::string(moving) == "false");
+    CHECK(std::string(torque) == "false");      // the pusher's profile safe state is torque off
+}
+
+TEST_CASE("the time budget cancels a script, pcall cannot hold on, and cleanup runs", "[safety]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, R"(local rs = require 'rollsense'
+rs.on_cleanup(function() rs.write_output("cleanup.txt", "ran") end)
+while true do pcall(rs.wait, 1000) end
+)");
+    o.time_limit_s = 5;
+    rollsense::runtime::Session session(o);
+    auto s = session.run();
+    REQUIRE_FALSE(s.status.ok());
+    CHECK(s.status.code() == ErrorCode::cancelled);
+    CHECK_THAT(s.status.message(), Catch::Contains("--time-limit"));
+    CHECK(kt::read_file(o.out_dir / "cleanup.txt") == "ran");
+    CHECK(s.run_time_s <= 5.0 + 1e-6);
+}
+
+TEST_CASE("Ctrl-C cancels the script, runs its cleanup and leaves the hand safe", "[safety]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, R"(local rs = require 'rollsense'
+local f = rs.joint("finger")
+rs.on_cleanup(function()
+  rs.wait(500)  -- a servo told to hold decelerates first, as the real one does
+  rs.write_output("cleanup.txt", string.format("%s", tostring(f:moving())))
+end)
+while true do
+  f:move(40, { velocity = 20 }); f:move(-40, { velocity = 20 })
+end
+)");
+    rollsense::runtime::Session session(o);
+    std::thread interrupter([] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        std::raise(SIGINT);
+    });
+    auto s = session.run();
+    interrupter.join();
+    REQUIRE_FALSE(s.status.ok());
+    CHECK(s.status.code() == ErrorCode::cancelled);
+    CHECK_THAT(s.status.message(), Catch::Contains("interrupted"));
+    CHECK(kt::read_file(o.out_dir / "cleanup.txt") == "false");
+}
