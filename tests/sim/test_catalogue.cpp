@@ -24,7 +24,7 @@ const std::string kHeader = "id,base,sides,side_mm,diameter_mm,edge_radius_min_m
 
 TEST_CASE("the stock catalogue holds the nine objects of the paper's Table II", "[sim][catalogue]") {
     auto cat = ObjectCatalogue::load(std::filesystem::path(ROLLSENSE_SHARE_DIR) / "objects" / "paper_table2.csv");
-    INFO(cat.ok() ? "" : cat.error().describe());
+    INFO((cat.ok() ? std::string() : cat.error().describe()));
     REQUIRE(cat.ok());
     REQUIRE(cat->objects().size() == 9);
     CHECK(cat->find("C2")->is_cylinder());
@@ -50,7 +50,7 @@ TEST_CASE("a malformed catalogue entry is an error naming file, line and column"
         {"S1,sqaure,4,13,18.4,0.3,1.5,x\n", "base", "unknown base 'sqaure'"},
         {"S1,square,5,13,18.4,0.3,1.5,x\n", "sides", "contradicts base"},
         {"S1,square,4,13,25.5,0.3,1.5,x\n", "diameter_mm", "expected 18.38"},
-        {"C1,circle,0,,,,,x\n", "diameter_mm", "diameter_mm > 0"},
+        {"C9,circle,0,,,,,x\n", "diameter_mm", "diameter_mm > 0"},
         {"S1,square,4,13,18.4,1.5,0.3,x\n", "edge_radius_max_mm", "min <= max"},
         {"S1,square,4,13,18.4,0.3,9,x\n", "edge_radius_max_mm", "too large"},
         {",square,4,13,18.4,0.3,1.5,x\n", "id", "needs an id"},
@@ -89,7 +89,7 @@ TEST_CASE("catalogue structure errors are explained", "[sim][catalogue]") {
 
 TEST_CASE("a user-added object loads, diameter derived when left empty", "[sim][catalogue]") {
     auto cat = ObjectCatalogue::load(write_temp("user.csv", kHeader + "T1,triangle,3,20,,0.2,0.4,my prism\n"));
-    INFO(cat.ok() ? "" : cat.error().describe());
+    INFO((cat.ok() ? std::string() : cat.error().describe()));
     REQUIRE(cat.ok());
     CHECK(cat->find("T1")->diameter == Approx(20.0 / std::sin(3.14159265358979323846 / 3)));
 }

@@ -64,9 +64,9 @@ TEST_CASE("constant torque: the pushing finger's lever arm changes as the object
     hand.finger_offset_sum = 36.0;
     hand.array_distance = 70.0;
     CylinderRoll roll(hand, 18.0, -25.0, -44.0 * kDeg, 0.0);
-    // u = x + L - d tan θ: the pushing contact slides back along its finger by
-    // half the relative slide while the sensing contact moves forward by half.
+    // u = x + L - d tan θ: the sensing contact moves forward by half the relative
+    // slide d·Δtanθ, so the pushing contact moves back along its finger by the other half.
     const double d = 54.0;
     CHECK(roll.lever_arm(0.0) == Approx(roll.contact(0.0) + 70.0));
-    CHECK(roll.lever_arm(-44.0 * kDeg) - roll.lever_arm(44.0 * kDeg) == Approx(0.9657 * d / 2.0).epsilon(1e-3));
+    CHECK(roll.lever_arm(-44.0 * kDeg) - roll.lever_arm(44.0 * kDeg) == Approx(0.9657 * d).epsilon(1e-3));
 }

@@ -109,7 +109,8 @@ TEST_CASE("a full roll crosses ch1, then ch2, then ch3", "[sim][sensor]") {
         const auto rec = roll(*s, object, 11);
         CHECK(argmax(rec.channels[0]) < argmax(rec.channels[1]));
         CHECK(argmax(rec.channels[1]) < argmax(rec.channels[2]));
-        for (const auto& ch : rec.channels) CHECK(max_of(ch) > 0.05);
+        // The object loads every barometer it passes (paper: every channel > 0.01 in all trials).
+        for (const auto& ch : rec.channels) CHECK(max_of(ch) > 0.01);
     }
 }
 

@@ -17,6 +17,9 @@ double sech(double x) {
     return 2.0 * e / (1.0 + e * e);
 }
 
+// Gudermannian: ∫₀ᵗ sech.
+double gd(double t) { return 2.0 * std::atan(std::tanh(0.5 * t)); }
+
 }  // namespace
 
 LayerKernel::LayerKernel(double fwhm, double tail_at_pitch, double pitch, double tail_length)
@@ -50,13 +53,10 @@ double LayerKernel::linear_segment(double x, double u0, double u1, double p0, do
     const double z0 = (u0 - x) / sigma_;
     const double z1 = (u1 - x) / sigma_;
     const double core = (A + B * x) * (Phi(z1) - Phi(z0)) + B * sigma_ * (phi(z0) - phi(z1));
-    // Tail: broad compared with a segment, so the segment's load is taken at its centroid.
-    const double force = 0.5 * (p0 + p1) * length;
-    double tail = 0.0;
-    if (force > 0.0) {
-        const double centroid = u0 + length * (p0 + 2.0 * p1) / (3.0 * (p0 + p1));
-        tail = force * sech((x - centroid) / tail_length_) / (kPi * tail_length_);
-    }
+    // Tail: exact for the segment's mean pressure (∫ sech = gd, the Gudermannian);
+    // the tail is broad, so the linear variation within a segment hardly matters.
+    const double mean_p = 0.5 * (p0 + p1);
+    const double tail = mean_p * (gd((x - u0) / tail_length_) - gd((x - u1) / tail_length_)) / kPi;
     return (1.0 - tail_weight_) * core + tail_weight_ * tail;
 }
 

@@ -125,15 +125,15 @@ Result<ObjectCatalogue> ObjectCatalogue::load(const std::filesystem::path& file)
         } else {
             if (!(o.side > 0.0)) return bad(c_side.index, "a " + o.base + " needs side_mm > 0");
             const double expected = circumscribed_diameter(o.sides, o.side);
-            if (o.diameter == 0.0) {
-                o.diameter = expected;
-            } else if (std::abs(o.diameter - expected) > 0.2) {
+            if (o.diameter != 0.0 && std::abs(o.diameter - expected) > 0.2) {
                 return bad(c_diam.index, "circumscribed diameter " + csv::format_number(o.diameter) +
                                              " mm does not match a " + o.base + " of side " +
                                              csv::format_number(o.side) + " mm (expected " +
                                              csv::format_number(std::round(expected * 100) / 100) +
                                              " mm); fix it or leave it empty");
             }
+            // The table's value is rounded; the geometry uses the exact one.
+            o.diameter = expected;
             if (o.edge_radius_min < 0.0 || o.edge_radius_max < o.edge_radius_min)
                 return bad(c_rmax.index, "edge radius range must satisfy 0 <= min <= max");
             // A rounding larger than this would eat a whole face.

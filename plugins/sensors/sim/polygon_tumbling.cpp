@@ -155,6 +155,7 @@ void PolygonTumbler::land(double direction) {
     const double dx = std::abs((cx(b_, psi_)) - cx(a_, psi_));
     const double dy = gap(psi_);
     const double mu_tip = dy > 0.0 ? dx / dy : 0.0;
+    if (landing_log_.size() < 64) landing_log_.push_back({theta_, sensing_contact(psi_), dy, mu_tip});
     double slip = 0.0;
     if (rng_ && slip_mean_ > 0.0) slip = rng_->uniform(0.0, 2.0 * slip_mean_);
     lock_needed_ = dwell_per_mu_ * mu_tip + slip;

@@ -42,6 +42,14 @@ struct PolygonContact {
     bool dwelling = false;   // a landed face is still flat
 };
 
+// One landing: an edge reached a finger and became a pivot.
+struct Landing {
+    double theta = 0.0;    // rad
+    double contact = 0.0;  // sensing pivot's contact after the landing, mm
+    double gap = 0.0;      // finger gap at the landing, mm
+    double mu_tip = 0.0;   // friction needed to tip over the new pivots
+};
+
 class PolygonTumbler {
 public:
     PolygonTumbler() = default;
@@ -70,6 +78,8 @@ public:
     int sensing_pivot() const { return a_; }
     int pushing_pivot() const { return b_; }
     int landings() const { return landings_; }
+    // The first landings of the roll (kept for tests and diagnostics; at most 64).
+    const std::vector<Landing>& landing_log() const { return landing_log_; }
     double centre_x() const;
     double centre_y() const { return centre_y(psi_); }
     // Deepest penetration of a non-pivot edge into either finger (mm, <= ~0 when consistent).
@@ -109,6 +119,7 @@ private:
     double dwell_per_mu_ = 0.0, slip_mean_ = 0.0;
     Rng* rng_ = nullptr;
     int landings_ = 0;
+    std::vector<Landing> landing_log_;
 };
 
 }  // namespace rollsense::sim
