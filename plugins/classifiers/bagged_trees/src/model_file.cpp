@@ -1,0 +1,317 @@
+// The bagged-trees model file: versioned, line-oriented text so a model can be
+// inspected, diffed and loaded anywhere; numbers are written in the shortest
+// form that reads back as the same double, so a reloaded model predicts
+// exactly what the saved one did. A checksum line at the end catches both
+// truncation and damage.
+//
+//   rollsense-bagged-trees 1
+//   classes K            then K lines "class <name>"
+//   features P           then P lines "feature <name>"
+//   options learners=30 min_leaf_size=1 min_parent_size=2 max_num_splits=0 predictors_per_split=0 criterion=gdi seed=1
+//   trees B
+//   tree <b> <nodes> <leaves>, then <nodes> lines "<feature> <threshold> <child>"
+//                              and <leaves> lines of K class probabilities
+//   checksum <FNV-1a 64 of every byte before this line, 16 hex digits>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "rollsense/atomic_file.hpp"
+#include "rollsense/bagged_trees/ensemble.hpp"
+
+namespace rollsense::bagged_trees {
+namespace {
+
+constexpr const char* kMagic = "rollsense-bagged-trees";
+constexpr int kVersion = 1;
+
+std::uint64_t fnv1a(std::string_view s) {
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : s) {
+        h ^= c;
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+std::string hex(std::uint64_t v) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+    return buf;
+}
+
+void put_number(std::string& out, double v) {
+    char buf[32];
+    auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, ec == std::errc() ? ptr : buf);
+}
+
+// Reads the file line by line, every error naming the source and the line.
+class Parser {
+public:
+    Parser(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
+
+    Error fail(const std::string& what) const {
+        // A last line without its newline is a cut file, whatever it contains.
+        if (cut_) return truncated("in the middle of a line");
+        return Error{ErrorCode::parse_error,
+                     "model file '" + source_ + "' line " + std::to_string(line_no_) + ": " + what};
+    }
+    Error truncated(const std::string& while_doing) const {
+        return Error{ErrorCode::parse_error, "model file '" + source_ + "' is truncated: it ends after line " +
+                                                 std::to_string(line_no_) + " while " + while_doing +
+                                                 "; save the model again or retrain with 'rollsense train'"};
+    }
+
+    bool next(std::string_view& line) {
+        if (pos_ >= text_.size()) return false;
+        const auto nl = text_.find('\n', pos_);
+        if (nl == std::string_view::npos) {  // last line without newline: the file was cut
+            line = text_.substr(pos_);
+            line_start_ = pos_;
+            pos_ = text_.size();
+            ++line_no_;
+            cut_ = true;
+            return true;
+        }
+        line_start_ = pos_;
+        line = text_.substr(pos_, nl - pos_);
+        pos_ = nl + 1;
+        ++line_no_;
+        return true;
+    }
+    std::size_t line_start() const { return line_start_; }
+    bool cut() const { return cut_; }
+
+private:
+    std::string_view text_;
+    std::string source_;
+    std::size_t pos_ = 0, line_start_ = 0, line_no_ = 0;
+    bool cut_ = false;
+};
+
+// "<keyword> <rest>": the rest, or nullopt when the keyword differs.
+bool keyword(std::string_view line, std::string_view key, std::string_view& rest) {
+    if (line.size() < key.size() || line.substr(0, key.size()) != key) return false;
+    if (line.size() == key.size()) {
+        rest = {};
+        return true;
+    }
+    if (line[key.size()] != ' ') return false;
+    rest = line.substr(key.size() + 1);
+    return true;
+}
+
+template <class T>
+bool parse_value(std::string_view& s, T& out) {
+    while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+    const char* begin = s.data();
+    const char* end = s.data() + s.size();
+    auto [ptr, ec] = std::from_chars(begin, end, out);
+    if (ec != std::errc() || (ptr != end && *ptr != ' ')) return false;
+    s.remove_prefix(static_cast<std::size_t>(ptr - begin));
+    return true;
+}
+
+bool at_end(std::string_view s) {
+    while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
+    return s.empty();
+}
+
+}  // namespace
+
+std::string Ensemble::serialize() const {
+    std::string out;
+    out += std::string(kMagic) + " " + std::to_string(kVersion) + "\n";
+    out += "classes " + std::to_string(class_names_.size()) + "\n";
+    for (const auto& c : class_names_) out += "class " + c + "\n";
+    out += "features " + std::to_string(feature_names_.size()) + "\n";
+    for (const auto& f : feature_names_) out += "feature " + f + "\n";
+    const auto& o = options_;
+    out += "options learners=" + std::to_string(o.learners) + " min_leaf_size=" +
+           std::to_string(o.tree.min_leaf_size) + " min_parent_size=" + std::to_string(o.tree.min_parent_size) +
+           " max_num_splits=" + std::to_string(o.tree.max_num_splits) +
+           " predictors_per_split=" + std::to_string(o.tree.predictors_per_split) +
+           " criterion=" + std::string(to_string(o.tree.criterion)) + " seed=" + std::to_string(o.seed) + "\n";
+    out += "trees " + std::to_string(trees_.size()) + "\n";
+    const std::size_t k = classes();
+    for (std::size_t b = 0; b < trees_.size(); ++b) {
+        const Tree& t = trees_[b];
+        const std::size_t leaves = t.leaf_probs.size() / std::max<std::size_t>(k, 1);
+        out += "tree " + std::to_string(b) + " " + std::to_string(t.nodes()) + " " + std::to_string(leaves) + "\n";
+        for (std::size_t i = 0; i < t.nodes(); ++i) {
+            out += std::to_string(t.feature[i]);
+            out += ' ';
+            put_number(out, t.threshold[i]);
+            out += ' ';
+            out += std::to_string(t.child[i]);
+            out += '\n';
+        }
+        for (std::size_t l = 0; l < leaves; ++l) {
+            for (std::size_t c = 0; c < k; ++c) {
+                if (c) out += ' ';
+                put_number(out, t.leaf_probs[l * k + c]);
+            }
+            out += '\n';
+        }
+    }
+    out += "checksum " + hex(fnv1a(out)) + "\n";
+    return out;
+}
+
+Status Ensemble::deserialize(std::string_view text, const std::string& source) {
+    Parser in(text, source);
+    std::string_view line, rest;
+    if (!in.next(line) || !keyword(line, kMagic, rest))
+        return Error{ErrorCode::parse_error, "'" + source +
+                                                 "' is not a rollsense bagged-trees model (it should start with '" +
+                                                 kMagic + " " + std::to_string(kVersion) + "')"};
+    int version = 0;
+    if (!parse_value(rest, version) || !at_end(rest)) return in.fail("malformed format version");
+    if (version != kVersion)
+        return in.fail("model format version " + std::to_string(version) + " is not supported by this build (it reads version " +
+                       std::to_string(kVersion) + "); retrain with 'rollsense train'");
+
+    auto count_line = [&](std::string_view key, std::size_t& n, const char* doing) -> Status {
+        if (!in.next(line)) return in.truncated(doing);
+        if (!keyword(line, key, rest) || !parse_value(rest, n) || !at_end(rest))
+            return in.fail("expected '" + std::string(key) + " <count>'");
+        return {};
+    };
+    auto names = [&](std::string_view key, std::size_t n, std::vector<std::string>& out) -> Status {
+        out.clear();
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!in.next(line)) return in.truncated("reading the " + std::string(key) + " names");
+            if (!keyword(line, key, rest)) return in.fail("expected '" + std::string(key) + " <name>'");
+            out.emplace_back(rest);
+        }
+        return {};
+    };
+
+    std::size_t k = 0, p = 0, b = 0;
+    std::vector<std::string> classes, features;
+    if (auto s = count_line("classes", k, "reading the class count"); !s) return s;
+    if (k == 0 || k > 100000) return in.fail("implausible class count " + std::to_string(k));
+    if (auto s = names("class", k, classes); !s) return s;
+    if (auto s = count_line("features", p, "reading the feature count"); !s) return s;
+    if (p == 0 || p > 1000000) return in.fail("implausible feature count " + std::to_string(p));
+    if (auto s = names("feature", p, features); !s) return s;
+
+    EnsembleOptions opts;
+    if (!in.next(line)) return in.truncated("reading the options");
+    if (!keyword(line, "options", rest)) return in.fail("expected the 'options' line");
+    {
+        std::istringstream words{std::string(rest)};
+        std::string word;
+        while (words >> word) {
+            const auto eq = word.find('=');
+            if (eq == std::string::npos) return in.fail("option '" + word + "' is not key=value");
+            const std::string key = word.substr(0, eq);
+            std::string_view value = std::string_view(word).substr(eq + 1);
+            bool ok = true;
+            if (key == "learners") ok = parse_value(value, opts.learners);
+            else if (key == "min_leaf_size") ok = parse_value(value, opts.tree.min_leaf_size);
+            else if (key == "min_parent_size") ok = parse_value(value, opts.tree.min_parent_size);
+            else if (key == "max_num_splits") ok = parse_value(value, opts.tree.max_num_splits);
+            else if (key == "predictors_per_split") ok = parse_value(value, opts.tree.predictors_per_split);
+            else if (key == "seed") ok = parse_value(value, opts.seed);
+            else if (key == "criterion") {
+                auto c = parse_split_criterion(value);
+                if (!c) return in.fail(c.error().message);
+                opts.tree.criterion = *c;
+            }  // unknown keys are informational: a newer writer may add some
+            if (!ok) return in.fail("option '" + word + "' has a malformed value");
+        }
+    }
+    if (auto s = count_line("trees", b, "reading the tree count"); !s) return s;
+    if (b == 0 || b > 1000000) return in.fail("implausible tree count " + std::to_string(b));
+
+    std::vector<Tree> trees(b);
+    for (std::size_t ti = 0; ti < b; ++ti) {
+        const std::string doing = "reading tree " + std::to_string(ti + 1) + " of " + std::to_string(b);
+        if (!in.next(line)) return in.truncated(doing);
+        std::size_t index = 0, nodes = 0, leaves = 0;
+        if (!keyword(line, "tree", rest) || !parse_value(rest, index) || !parse_value(rest, nodes) ||
+            !parse_value(rest, leaves) || !at_end(rest))
+            return in.fail("expected 'tree <index> <nodes> <leaves>'");
+        if (index != ti) return in.fail("tree " + std::to_string(index) + " where tree " + std::to_string(ti) + " belongs");
+        if (nodes == 0 || leaves == 0 || leaves > nodes) return in.fail("tree with " + std::to_string(nodes) +
+                                                                        " nodes and " + std::to_string(leaves) + " leaves");
+        Tree& t = trees[ti];
+        t.feature.resize(nodes);
+        t.threshold.resize(nodes);
+        t.child.resize(nodes);
+        std::size_t leaf_seen = 0;
+        for (std::size_t i = 0; i < nodes; ++i) {
+            if (!in.next(line)) return in.truncated(doing);
+            rest = line;
+            if (!parse_value(rest, t.feature[i]) || !parse_value(rest, t.threshold[i]) ||
+                !parse_value(rest, t.child[i]) || !at_end(rest))
+                return in.fail("expected '<feature> <threshold> <child>'");
+            // Structure checks: children come after their parent (no loops),
+            // features and leaves in range, so a damaged file cannot crash predict().
+            if (t.feature[i] >= 0) {
+                if (static_cast<std::size_t>(t.feature[i]) >= p) return in.fail("feature index out of range");
+                if (t.child[i] <= static_cast<std::int32_t>(i) || static_cast<std::size_t>(t.child[i]) + 1 >= nodes)
+                    return in.fail("child index out of range");
+                if (!std::isfinite(t.threshold[i])) return in.fail("threshold is not finite");
+            } else {
+                if (t.feature[i] != -1 || t.child[i] < 0 || static_cast<std::size_t>(t.child[i]) >= leaves)
+                    return in.fail("leaf index out of range");
+                ++leaf_seen;
+            }
+        }
+        if (leaf_seen != leaves) return in.fail("tree declares " + std::to_string(leaves) + " leaves but has " +
+                                                std::to_string(leaf_seen));
+        t.leaf_probs.resize(leaves * k);
+        for (std::size_t l = 0; l < leaves; ++l) {
+            if (!in.next(line)) return in.truncated(doing);
+            rest = line;
+            for (std::size_t c = 0; c < k; ++c) {
+                double& v = t.leaf_probs[l * k + c];
+                if (!parse_value(rest, v) || !std::isfinite(v) || v < 0.0 || v > 1.0)
+                    return in.fail("expected " + std::to_string(k) + " class probabilities in [0, 1]");
+            }
+            if (!at_end(rest)) return in.fail("more than " + std::to_string(k) + " class probabilities");
+        }
+    }
+    if (!in.next(line)) return in.truncated("looking for the checksum line");
+    if (!keyword(line, "checksum", rest)) return in.fail("expected the 'checksum' line after the last tree");
+    const std::string expected = hex(fnv1a(text.substr(0, in.line_start())));
+    if (in.cut()) return in.truncated("reading the checksum");
+    if (rest != expected)
+        return Error{ErrorCode::parse_error, "model file '" + source + "' is corrupt: checksum " + std::string(rest) +
+                                                 " does not match its content (" + expected +
+                                                 "); the file was modified or damaged — retrain with 'rollsense train'"};
+
+    class_names_ = std::move(classes);
+    feature_names_ = std::move(features);
+    trees_ = std::move(trees);
+    options_ = opts;
+    return {};
+}
+
+Status Ensemble::save(const std::filesystem::path& file) const {
+    if (!trained()) return {ErrorCode::state_error, "bagged_trees: nothing to save to '" + file.string() +
+                                                        "': the model is not trained"};
+    for (const auto* names : {&class_names_, &feature_names_})
+        for (const auto& n : *names)
+            if (n.find('\n') != std::string::npos || n.find('\r') != std::string::npos)
+                return {ErrorCode::invalid_argument, "bagged_trees: name '" + n + "' contains a line break"};
+    return write_file_atomic(file, serialize());
+}
+
+Status Ensemble::load(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+        return {ErrorCode::not_found, "model file '" + file.string() + "' cannot be opened (does it exist? train one "
+                                                                         "with 'rollsense train DATASET -o MODEL')"};
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) return {ErrorCode::io_error, "model file '" + file.string() + "' could not be read"};
+    return deserialize(ss.str(), file.string());
+}
+
+}  // namespace rollsense::bagged_trees
