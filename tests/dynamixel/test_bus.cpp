@@ -16,7 +16,7 @@ struct Rig {
     std::unique_ptr<PtyBusEmulator> emu;
     std::unique_ptr<Bus> bus;
 
-    explicit Rig(PtyEmulatorOptions options = {false, 0}, BusOptions bus_options = {30ms, 3}) {
+    explicit Rig(PtyEmulatorOptions options = {false, 0}, BusOptions bus_options = {100ms, 3}) {
         BusEmulator e;
         for (const auto& s : etroll_servos()) e.add_servo(s);
         auto started = PtyBusEmulator::start(std::move(e), options);

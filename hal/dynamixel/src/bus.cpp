@@ -67,6 +67,10 @@ Result<Packet> Bus::receive_status(std::uint8_t id, Instruction inst) {
 Result<std::vector<Packet>> Bus::transact(std::uint8_t target, Instruction inst, const Bytes& params,
                                           std::span<const std::uint8_t> ids) {
     const Bytes packet = build_instruction(target, inst, params);
+    // Protocol 2.0 has no sequence numbers: a duplicate reply left over from
+    // an earlier retried transaction would pass for this one's answer. Start clean.
+    (void)port_.discard_input();
+    parser_.clear();
     Error last;
     for (int attempt = 0; attempt <= options_.retries; ++attempt) {
         if (attempt > 0) {
