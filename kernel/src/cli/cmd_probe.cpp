@@ -50,6 +50,7 @@ std::vector<int> parse_strips(const std::string& text) {
 }
 
 int probe_i2c(const std::string& spec, const std::vector<int>& strips, bool simulate) {
+    if (simulate && spec.rfind("fake:", 0) != 0) throw UsageError("--simulate needs a fake:<name> bus, not " + spec);
     auto bus = hal::open_i2c_bus(spec);
     if (!bus.ok()) {
         std::fprintf(stderr, "rollsense probe: %s\n", bus.error().describe().c_str());

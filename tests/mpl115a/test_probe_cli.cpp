@@ -1,0 +1,68 @@
+// `rollsense probe i2c` end to end: the program, its output and exit status.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+namespace {
+
+struct Run {
+    std::string out;
+    int status = -1;
+};
+
+Run run(const std::string& args) {
+    const std::string cmd = std::string(ROLLSENSE_BIN_DIR) + "/rollsense " + args + " 2>&1";
+    Run r;
+    std::FILE* p = ::popen(cmd.c_str(), "r");
+    REQUIRE(p);
+    char buf[512];
+    while (std::fgets(buf, sizeof buf, p)) r.out += buf;
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+int count(const std::string& text, const std::string& what) {
+    int n = 0;
+    for (auto pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("probe lists every modelled sensor with coefficients and a reading", "[mpl115a][probe][cli]") {
+    auto r = run("probe i2c fake:cli --simulate --strips 0,1");
+    INFO(r.out);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("SMBus quick yes"));
+    CHECK_THAT(r.out, Catch::Contains("all-strips address 0x06: ACK"));
+    CHECK(count(r.out, "MPL115A ok") == 12);
+    CHECK(count(r.out, "a0=") == 12);
+    CHECK(count(r.out, " kPa (Padc ") == 12);
+    CHECK_THAT(r.out, Catch::Contains("strip 1 slot 5 (select 0x0d)"));
+    CHECK_THAT(r.out, Catch::Contains("12 sensor(s) working, 0 with problems"));
+}
+
+TEST_CASE("probe on an empty bus or a missing node fails with exit status 4", "[mpl115a][probe][cli]") {
+    auto empty = run("probe i2c fake:nothing-here");
+    INFO(empty.out);
+    CHECK(empty.status == 4);
+    CHECK_THAT(empty.out, Catch::Contains("nothing answered"));
+
+    auto missing = run("probe i2c /dev/i2c-247");
+    INFO(missing.out);
+    CHECK(missing.status == 4);
+    CHECK_THAT(missing.out, Catch::Contains("/dev/i2c-247 not found"));
+}
+
+TEST_CASE("probe refuses bad command lines with exit status 2", "[mpl115a][probe][cli]") {
+    CHECK(run("probe").status == 2);
+    CHECK(run("probe spi 0").status == 2);
+    CHECK(run("probe i2c fake:x --strips 12").status == 2);
+    CHECK(run("probe i2c fake:x --strips a-b").status == 2);
+    CHECK(run("probe i2c fake:x --frobnicate").status == 2);
+    CHECK(run("probe i2c /dev/i2c-247 --simulate").status == 2);
+}
