@@ -7,13 +7,15 @@
 # rewritten, e.g. -DROLLSENSE_ONLY="plugins/actuators/mock;tests/kernel".
 set(ROLLSENSE_ONLY "" CACHE STRING "Only add these discovered folders (relative to the source root); empty = all")
 
+# Pass ALWAYS for infrastructure (the HAL) that ROLLSENSE_ONLY must not filter.
 function(rollsense_add_discovered pattern)
+  cmake_parse_arguments(ARG "ALWAYS" "" "" ${ARGN})
   file(GLOB lists LIST_DIRECTORIES false CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${pattern}")
   list(SORT lists)
   foreach(list_file IN LISTS lists)
     get_filename_component(dir "${list_file}" DIRECTORY)
     file(RELATIVE_PATH rel "${PROJECT_SOURCE_DIR}" "${dir}")
-    if(ROLLSENSE_ONLY AND NOT rel IN_LIST ROLLSENSE_ONLY)
+    if(ROLLSENSE_ONLY AND NOT ARG_ALWAYS AND NOT rel IN_LIST ROLLSENSE_ONLY)
       continue()
     endif()
     add_subdirectory("${dir}")

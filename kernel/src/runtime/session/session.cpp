@@ -102,10 +102,52 @@ Status Session::prepare() {
     if (!options_.out_dir.empty())
         if (auto s = open_dataset(); !s.ok()) return s;
 
+    if (auto s = open_safety_lines(); !s.ok()) return s;
     if (auto s = robot_->activate(clock_->now()); !s.ok()) return s;
     next_control_ = clock_->now();
     prepared_ = true;
     return {};
+}
+
+Status Session::open_safety_lines() {
+    const std::string file = profile_.path.string();
+    if (profile_.estop) {
+        hal::GpioLineConfig c{profile_.estop->chip, profile_.estop->line, profile_.estop->active_low, "rollsense-estop"};
+        auto in = hal::open_gpio_input(c);
+        if (!in) return Status(in.error()).with_context(file + ": safety.estop");
+        estop_ = std::move(*in);
+        auto active = estop_->is_active();
+        if (!active) return Status(active.error()).with_context(file + ": safety.estop");
+        if (*active)
+            return {ErrorCode::cancelled, "the emergency stop (" + c.chip + " line " + std::to_string(c.line) +
+                                              ") is asserted; release it before starting a run"};
+    }
+    if (profile_.trigger) {
+        hal::GpioLineConfig c{profile_.trigger->chip, profile_.trigger->line, profile_.trigger->active_low,
+                              "rollsense-trigger"};
+        auto out = hal::open_gpio_output(c, false);
+        if (!out) return Status(out.error()).with_context(file + ": safety.trigger");
+        trigger_ = std::move(*out);
+    }
+    return {};
+}
+
+void Session::check_estop() {
+    if (!estop_ || estop_tripped_) return;
+    auto active = estop_->is_active();
+    if (active && !*active) return;
+    estop_tripped_ = true;
+    const std::string reason = active ? "emergency stop asserted"
+                                      : "emergency stop input unreadable (" + active.error().message + ")";
+    robot_->safe_state(now());  // first, within this control period
+    robot_->set_commands_locked(true, reason + "; commands are refused until the run ends");
+    request_cancel(reason);
+}
+
+void Session::update_trigger() {
+    if (!trigger_ || trigger_off_time_ < 0 || now() < trigger_off_time_) return;
+    trigger_off_time_ = -1;
+    if (auto s = trigger_->set_active(false); !s.ok()) log_warning("kernel", "trigger output: " + s.message());
 }
 
 Status Session::open_dataset() {
@@ -295,6 +337,7 @@ void Session::check_conditions() {
 }
 
 Status Session::control_tick() {
+    check_estop();
     const double t = now();
     auto s = robot_->control_tick(t, t - last_control_);
     last_control_ = t;
@@ -357,6 +400,7 @@ Status Session::loop(bool cleanup_phase) {
 
         double next = next_control_;
         if (recording_) next = std::min(next, next_sample_);
+        if (trigger_off_time_ >= 0) next = std::min(next, trigger_off_time_);
         for (auto& t : tasks_)
             if (!t->finished && t->wait != Task::Wait::none) next = std::min(next, t->wake_time);
         if (next > deadline) {
@@ -370,6 +414,7 @@ Status Session::loop(bool cleanup_phase) {
             continue;
         }
         clock_->sleep_until(next);
+        update_trigger();
         if (now() >= next_control_) {
             if (auto s = control_tick(); !s.ok()) {
                 fail(s);
@@ -452,6 +497,10 @@ Status Session::record_start() {
     data_.channels.resize(robot_->channel_columns().size());
     data_.joints.resize(robot_->recorded_joints().size());
     recording_ = true;
+    if (trigger_) {  // a pulse marks the recording's start for cameras and loggers
+        if (auto s = trigger_->set_active(true); !s.ok()) log_warning("kernel", "trigger output: " + s.message());
+        trigger_off_time_ = t + quantize(profile_.trigger->pulse_ms / 1000.0);
+    }
     sample_epoch_ = t;
     sample_m_ = 0;
     next_sample_ = t;

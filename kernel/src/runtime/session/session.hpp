@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rollsense/dataset.hpp"
+#include "rollsense/hal/gpio.hpp"
 #include "runtime/lua/sandbox.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
 #include "runtime/profile/profile.hpp"
@@ -132,6 +133,11 @@ public:
 
 private:
     Status open_dataset();
+    Status open_safety_lines();
+    // Emergency stop: checked every control period; asserted (or unreadable)
+    // stops every joint at once, locks out commands and cancels the script.
+    void check_estop();
+    void update_trigger();
     Status loop(bool cleanup_phase);
     bool resume_task(Task& t);
     bool condition_met(Task& t);
@@ -177,6 +183,10 @@ private:
     std::atomic<bool> cancel_flag_{false};
     std::string cancel_reason_;
     bool prepared_ = false;
+    std::unique_ptr<hal::GpioInput> estop_;
+    std::unique_ptr<hal::GpioOutput> trigger_;
+    double trigger_off_time_ = -1;  // run-clock time to end the current pulse, -1 = none
+    bool estop_tripped_ = false;
     ErrorCode raised_code_ = ErrorCode::ok;
 };
 
