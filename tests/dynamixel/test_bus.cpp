@@ -198,3 +198,18 @@ TEST_CASE("with wire pacing a 4-servo control period costs about what the wire w
     // SYNC_READ (18 bytes) + 4 x (25 bytes + 500 us return delay) at 57600 baud >= 22.5 ms.
     CHECK(took >= std::chrono::microseconds((18 + 4 * 25) * 10 * 1000000LL / 57600 + 4 * 500));
 }
+
+TEST_CASE("a servo only answers at its own baud rate, as on a real bus") {
+    Rig rig;
+    // Move servo 2 to 1 Mbps (EEPROM, torque is off): it answers that write at the old rate.
+    REQUIRE(rig.bus->write_value(2, addr::baud_rate, 1, *index_from_baud(1000000)).ok());
+    auto lost = rig.bus->ping(2);
+    REQUIRE_FALSE(lost.ok());
+    CHECK(lost.error().code == ErrorCode::timeout);
+    CHECK(rig.bus->ping(1).ok());
+    REQUIRE(rig.bus->port().set_baud(1000000).ok());
+    auto p = rig.bus->ping(2);
+    REQUIRE(p.ok());
+    CHECK(p->model_number == 1020);
+    CHECK_FALSE(rig.bus->ping(1).ok());  // and now the others are the ones out of step
+}

@@ -22,6 +22,16 @@ const EmulatedServo* BusEmulator::servo(std::uint8_t id) const {
     return nullptr;
 }
 
+bool BusEmulator::hears(const EmulatedServo& s) const {
+    if (line_baud_ == 0) return true;
+    return baud_from_index(static_cast<std::uint8_t>(s.item(addr::baud_rate, 1))) == line_baud_;
+}
+
+EmulatedServo* BusEmulator::listener(std::uint8_t id) {
+    auto* s = servo(id);
+    return s && hears(*s) ? s : nullptr;
+}
+
 std::vector<std::uint8_t> BusEmulator::ids() const {
     std::vector<std::uint8_t> out;
     for (const auto& s : servos_) out.push_back(s.id());
@@ -63,7 +73,7 @@ std::vector<Bytes> BusEmulator::receive(std::span<const std::uint8_t> bytes) {
         if (p->event == PacketParser::Event::crc_mismatch) {
             // A servo that recognises its id in a corrupted packet says so.
             ++crc_errors_;
-            if (auto* s = servo(p->id)) reply(*s, E_CRC, {}, out);
+            if (auto* s = listener(p->id)) reply(*s, E_CRC, {}, out);
             continue;
         }
         if (p->event != PacketParser::Event::packet || p->packet.is_status()) continue;
@@ -81,8 +91,9 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
     auto targets = [&]() {
         std::vector<EmulatedServo*> t;
         if (broadcast) {
-            for (auto& s : servos_) t.push_back(&s);
-        } else if (auto* s = servo(in.id)) {
+            for (auto& s : servos_)
+                if (hears(s)) t.push_back(&s);
+        } else if (auto* s = listener(in.id)) {
             t.push_back(s);
         }
         return t;
@@ -104,7 +115,7 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
             return out;
         case Instruction::read: {
             if (broadcast) return out;  // no reply to a broadcast READ
-            auto* s = servo(in.id);
+            auto* s = listener(in.id);
             if (!s) return out;
             if (prm.size() != 4) {
                 reply(*s, E_LENGTH, {}, out);
@@ -128,10 +139,11 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
         }
         case Instruction::reboot: {
             if (broadcast) {
-                for (auto& s : servos_) s.reboot();
+                for (auto& s : servos_)
+                    if (hears(s)) s.reboot();
                 return out;
             }
-            if (auto* s = servo(in.id)) {
+            if (auto* s = listener(in.id)) {
                 reply(*s, 0, {}, out);  // the servo answers, then restarts
                 s->reboot();
             }
@@ -143,7 +155,7 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
             const std::size_t address = get_le(&prm[0], 2), length = get_le(&prm[2], 2);
             if (length == 0 || (prm.size() - 4) % (length + 1) != 0) return out;  // malformed: ignored, as broadcast
             for (std::size_t at = 4; at < prm.size(); at += length + 1)
-                if (auto* s = servo(prm[at]))
+                if (auto* s = listener(prm[at]))
                     (void)s->write(static_cast<std::uint16_t>(address),
                                    std::span<const std::uint8_t>(prm).subspan(at + 1, length));
             return out;
@@ -154,7 +166,7 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
             const auto address = static_cast<std::uint16_t>(get_le(&prm[0], 2));
             const auto length = static_cast<std::uint16_t>(get_le(&prm[2], 2));
             for (std::size_t at = 4; at < prm.size(); ++at) {
-                auto* s = servo(prm[at]);
+                auto* s = listener(prm[at]);
                 if (!s) continue;
                 Bytes data;
                 const auto err = s->read(address, length, data);
@@ -166,7 +178,7 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
             // REG_WRITE/ACTION, FACTORY_RESET, CLEAR, BULK_* and unknown
             // instructions are not emulated: say so, as firmware does for unknown ones.
             if (!broadcast)
-                if (auto* s = servo(in.id)) reply(*s, E_INSTRUCTION, {}, out);
+                if (auto* s = listener(in.id)) reply(*s, E_INSTRUCTION, {}, out);
             return out;
     }
 }

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <array>
+
+#include "rollsense/hal/baud_rate.hpp"
 #include <cerrno>
 
 namespace rollsense::hal::dxl {
@@ -58,6 +60,7 @@ void PtyBusEmulator::serve() {
             if (r > 0 && (p.revents & POLLIN)) {
                 const ssize_t n = ::read(pty_.master_fd(), buf.data(), buf.size());
                 if (n > 0) {
+                    if (auto line = query_baud(pty_.slave_fd()); line.ok()) bus_.set_line_baud(*line);
                     replies = bus_.receive(std::span<const std::uint8_t>(buf.data(), static_cast<std::size_t>(n)));
                     if (options_.wire_baud > 0) {
                         // Instruction on the wire, then each servo's return delay and reply.

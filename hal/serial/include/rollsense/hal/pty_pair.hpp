@@ -23,6 +23,9 @@ public:
     static Result<PtyPair> open();
 
     int master_fd() const noexcept { return master_; }
+    // The pair's own descriptor on the slave: termios belongs to the tty, so
+    // this reads the line settings (e.g. the baud rate) a client has set.
+    int slave_fd() const noexcept { return slave_keepalive_; }
     const std::string& slave_path() const noexcept { return slave_path_; }
 
     void close() noexcept;

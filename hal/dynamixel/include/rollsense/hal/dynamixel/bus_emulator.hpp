@@ -36,6 +36,11 @@ public:
     // Handle one parsed instruction packet.
     std::vector<Bytes> handle(const Packet& instruction);
 
+    // The rate the client's line runs at (0 = unknown: every servo listens).
+    // A servo set to another Baud Rate sees only noise and never answers,
+    // as on a real bus.
+    void set_line_baud(std::uint32_t baud) { line_baud_ = baud; }
+
     // Advance every servo's motion model.
     void advance(double seconds);
 
@@ -53,11 +58,15 @@ public:
 
 private:
     // Build a status packet for `s`, applying its fault plan; false = no reply.
+    // The servo with this id if it can hear the line at its rate.
+    EmulatedServo* listener(std::uint8_t id);
+    bool hears(const EmulatedServo& s) const;
     bool reply(EmulatedServo& s, std::uint8_t error, std::span<const std::uint8_t> params, std::vector<Bytes>& out);
 
     std::vector<EmulatedServo> servos_;
     std::map<std::uint8_t, FaultPlan> faults_;
     Bytes garbage_;
+    std::uint32_t line_baud_ = 0;
     PacketParser parser_;
     std::uint64_t handled_ = 0, crc_errors_ = 0, sync_writes_ = 0, sync_reads_ = 0;
 };
