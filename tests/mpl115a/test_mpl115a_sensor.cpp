@@ -2,6 +2,8 @@
 // select/convert/read sequence and its timing, compensation, baseline, scale.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
+
 #include "mpl115a_test_rig.hpp"
 #include "rollsense/hal/takkstrip.hpp"
 
@@ -197,4 +199,28 @@ TEST_CASE("deactivate leaves no chip selected", "[mpl115a]") {
     REQUIRE(rig.bus->quick_write(0x02).ok());  // someone left slot 2 selected
     REQUIRE(s.on_deactivate().ok());
     CHECK_FALSE(rig.strip->selected(2));
+}
+
+// On a rig: ROLLSENSE_TEST_I2C_BUS=/dev/i2c-1 test_mpl115a "[.hw]"
+// (a TakkStrip at strip 0 with chips in slots 0–2, nobody touching it).
+TEST_CASE("the sensor on a real TakkStrip", "[.hw][mpl115a]") {
+    const char* bus = std::getenv("ROLLSENSE_TEST_I2C_BUS");
+    REQUIRE(bus);
+    plugins::Mpl115aSensor s;
+    auto st = s.on_configure(params(bus, {{"raw_channels", true}}), {});
+    INFO(st.message());
+    REQUIRE(st.ok());
+    REQUIRE(s.on_activate().ok());
+    REQUIRE(s.start_recording({}).ok());
+    for (int i = 0; i < 31; ++i) {
+        auto f = read_frame(s, i / 31.1);
+        INFO(f.reason);
+        CHECK(f.valid);
+        for (int k = 0; k < 3; ++k) {
+            CHECK(std::abs(f.values[k]) < 0.05);               // untouched: a few counts of noise
+            CHECK(f.values[3 + k] > 80.0);                      // room air, kPa
+            CHECK(f.values[3 + k] < 110.0);
+        }
+    }
+    REQUIRE(s.on_deactivate().ok());
 }
