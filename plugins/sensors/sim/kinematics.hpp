@@ -13,7 +13,7 @@ namespace rollsense::sim {
 struct HandGeometry {
     // T: sum of the distances from each finger's joint axis to its contact
     // surface (finger body, PCB, rubber), mm. Fitted (docs/simulation.md §6).
-    double finger_offset_sum = 36.0;
+    double finger_offset_sum = 41.0;
     // Distance along a finger from its joint axis to barometer 2, mm: sets the
     // lever arm of the pushing finger's constant torque.
     double array_distance = 70.0;

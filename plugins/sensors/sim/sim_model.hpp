@@ -33,7 +33,7 @@ struct SimParameters {
     double kernel_tail_at_pitch = 0.015;   // tail / peak at one pitch
     double kernel_tail_length = 4.0;       // mm
     double contact_modulus = 0.3;          // MPa, E* for the Hertz contact of a cylinder
-    double foundation_stiffness = 0.15;    // N/mm³, rubber as an elastic foundation under an edge
+    double foundation_stiffness = 0.05;    // N/mm³, rubber as an elastic foundation under an edge
     double clamp_line_load = 0.03;         // N/mm, median clamping load at the reference lever arm
     double clamp_reference_current = 0.0;  // mA; > 0: load scales with current / this
     double clamp_current_threshold = 5.0;  // mA; below: not clamped
@@ -42,12 +42,12 @@ struct SimParameters {
     double palm_reference_speed = 13.74;   // deg/s (profile velocity 10)
     double palm_frequency_min = 1.0;       // Hz
     double palm_frequency_max = 3.0;       // Hz
-    double start_centre = -26.0;           // mm, mean start position of the object's centre
+    double start_centre = -27.5;          // mm, mean start position of the object's centre
     double start_range = 20.0;             // mm, width of the uniform start distribution
     double start_tilt = 1.0;               // deg, σ of a polygon's tilt off face-flat
     double cylinder_slip_max = 0.04;       // slip fraction, uniform in [0, max]
     double polygon_slip = 0.3;             // mm, mean slip per landing
-    double face_dwell = 2.0;               // mm of finger slide per unit μ_tip a landed face stays flat
+    double face_dwell = 4.0;               // mm of finger slide per unit μ_tip a landed face stays flat
     double gain_jitter = 0.10;             // relative, per device (uniform ±)
     double ambient_offset_range = 0.15;    // kPa, per device (uniform ±): quantiser phase
     OutputChainSettings chain;
