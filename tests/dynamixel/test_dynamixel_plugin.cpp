@@ -369,3 +369,41 @@ TEST_CASE("a goal outside the joint's limits is refused before it reaches the bu
     const auto hi = on_bus(*emu, [](BusEmulator& b) { return b.servo(3)->item(addr::max_position_limit, 4); });
     CHECK(hi == degrees_to_ticks((100.0 - 65.0) / (2 * kPinionRadius * M_PI / 180.0)));
 }
+
+TEST_CASE("a goal the servo's own position limits would silently drop from the sync write is refused") {
+    auto emu = start_emulator(false);
+    on_bus(*emu, [](BusEmulator& b) {
+        Bytes d;
+        put_le(d, 2100, 4);  // someone narrowed servo 1's Max Position Limit to +4.6 deg
+        return b.servo(1)->write(addr::max_position_limit, d);
+    });
+    auto raw = etroll_raw(emu->device());
+    raw["write_position_limits"] = false;
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[0].position = 20.0;
+    auto st = a.write(0, cmd);
+    CHECK(st.code() == ErrorCode::limit_violation);
+    CHECK(st.message().find("sensing_finger") != std::string::npos);
+    CHECK(st.message().find("2100") != std::string::npos);
+}
+
+TEST_CASE("velocity mode clamps the goal to the servo's Velocity Limit") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[0].mode = ControlMode::velocity;
+    cmd[0].velocity = 1000.0;  // deg/s, far above 200 units = 274.8 deg/s
+    REQUIRE(a.write(0, cmd).ok());
+    REQUIRE(a.read(0, s).ok());
+    CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::goal_velocity, 4); }) == 200);
+    CHECK(s[0].mode == ControlMode::velocity);
+}

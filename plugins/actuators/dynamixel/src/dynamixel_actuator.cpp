@@ -132,6 +132,13 @@ Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
     for (const auto& c : changes)
         if (auto st = bus_->write_value(id, c.address, c.size, c.value); !st.ok()) return with_joint(i, st);
     rt_[i].mode = mode;
+    rt_[i].velocity_limit = item(addr::velocity_limit, 4);
+    rt_[i].min_ticks = item(addr::min_position_limit, 4);
+    rt_[i].max_ticks = item(addr::max_position_limit, 4);
+    for (const auto& c : changes) {
+        if (c.address == addr::min_position_limit) rt_[i].min_ticks = static_cast<std::int32_t>(c.value);
+        if (c.address == addr::max_position_limit) rt_[i].max_ticks = static_cast<std::int32_t>(c.value);
+    }
     return {};
 }
 
@@ -277,8 +284,17 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
         if (c.mode == ControlMode::current_based_position)
             goal_current = std::clamp(std::abs(j.ma_to_current_units(c.current)), 0, limit);
         std::int32_t goal_velocity = 0;
-        if (c.mode == ControlMode::velocity) goal_velocity = j.joint_to_velocity_units(c.velocity);
+        if (c.mode == ControlMode::velocity)
+            goal_velocity = std::clamp(j.joint_to_velocity_units(c.velocity), -rt_[i].velocity_limit,
+                                       rt_[i].velocity_limit);
         const std::int32_t goal_ticks = is_position_mode(c.mode) ? j.joint_to_ticks(c.position) : rt_[i].present_ticks;
+        // The servo would silently drop a SYNC_WRITE entry outside its position limits.
+        if (c.mode == ControlMode::position && (goal_ticks < rt_[i].min_ticks || goal_ticks > rt_[i].max_ticks))
+            return {ErrorCode::limit_violation,
+                    who(i) + ": goal " + std::to_string(c.position) + " " + j.unit + " is tick " +
+                        std::to_string(goal_ticks) + ", outside the servo's position limits " +
+                        std::to_string(rt_[i].min_ticks) + ".." + std::to_string(rt_[i].max_ticks) +
+                        " (check 'rollsense dxl info', or let the plugin write them: write_position_limits = true)"};
 
         Bytes d;
         d.reserve(kCommandBlockLength);

@@ -38,6 +38,10 @@ private:
         bool torque = false;
         std::int32_t present_ticks = hal::dxl::kCentreTick;
         std::uint8_t hardware_error = 0;
+        // The servo's own limits, as read back at prepare(): a SYNC_WRITE has
+        // no reply, so a value the servo would refuse must be caught here.
+        std::int32_t velocity_limit = 0;
+        std::int32_t min_ticks = 0, max_ticks = 4095;
     };
 
     std::string who(std::size_t i) const;
