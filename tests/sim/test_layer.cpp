@@ -122,3 +122,10 @@ TEST_CASE("Winkler pivot load: forces add up, a steep edge is narrow, a flat fac
     CHECK(tilted.segments[1].p1 == Approx(0.0).margin(1e-15));
     CHECK(tilted.segments[0].force() + tilted.segments[1].force() == Approx(F));
 }
+
+TEST_CASE("the two-face pivot response equals its two segments", "[sim][layer]") {
+    const LayerKernel k(4.5, 0.015, 8.0, 4.0);
+    for (double x : {-8.0, -1.0, 0.0, 3.0, 8.0})
+        CHECK(k.two_segments(x, -2.0, 0.5, 4.0, 0.0, 0.02, 0.004) ==
+              Approx(k.linear_segment(x, -2.0, 0.5, 0.0, 0.02) + k.linear_segment(x, 0.5, 4.0, 0.02, 0.004)).epsilon(1e-12));
+}

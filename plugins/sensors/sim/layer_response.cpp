@@ -17,8 +17,12 @@ double sech(double x) {
     return 2.0 * e / (1.0 + e * e);
 }
 
-// Gudermannian: ∫₀ᵗ sech.
-double gd(double t) { return 2.0 * std::atan(std::tanh(0.5 * t)); }
+// Gudermannian: ∫₀ᵗ sech = 2 atan(eᵗ) − π/2 (one exp, one atan).
+double gd(double t) {
+    if (t > 40.0) return 0.5 * kPi;
+    if (t < -40.0) return -0.5 * kPi;
+    return 2.0 * std::atan(std::exp(t)) - 0.5 * kPi;
+}
 
 }  // namespace
 
@@ -57,6 +61,28 @@ double LayerKernel::linear_segment(double x, double u0, double u1, double p0, do
     // the tail is broad, so the linear variation within a segment hardly matters.
     const double mean_p = 0.5 * (p0 + p1);
     const double tail = mean_p * (gd((x - u0) / tail_length_) - gd((x - u1) / tail_length_)) / kPi;
+    return (1.0 - tail_weight_) * core + tail_weight_ * tail;
+}
+
+double LayerKernel::two_segments(double x, double u0, double u1, double u2, double q0, double q1,
+                                 double q2) const {
+    const double z[3] = {(u0 - x) / sigma_, (u1 - x) / sigma_, (u2 - x) / sigma_};
+    const double u[3] = {u0, u1, u2}, q[3] = {q0, q1, q2};
+    double Phi_z[3], phi_z[3], gd_z[3];
+    for (int i = 0; i < 3; ++i) {
+        Phi_z[i] = Phi(z[i]);
+        phi_z[i] = phi(z[i]);
+        gd_z[i] = gd((x - u[i]) / tail_length_);
+    }
+    double core = 0.0, tail = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        const double length = u[i + 1] - u[i];
+        if (!(length > 0.0)) continue;
+        const double B = (q[i + 1] - q[i]) / length;
+        const double A = q[i] - B * u[i];
+        core += (A + B * x) * (Phi_z[i + 1] - Phi_z[i]) + B * sigma_ * (phi_z[i] - phi_z[i + 1]);
+        tail += 0.5 * (q[i] + q[i + 1]) * (gd_z[i] - gd_z[i + 1]) / kPi;
+    }
     return (1.0 - tail_weight_) * core + tail_weight_ * tail;
 }
 

@@ -29,6 +29,10 @@ public:
     // Response at x to a pressure distribution that is linear from p0 at u0 to p1
     // at u1 (u1 > u0; pressures in N/mm² give a stress in N/mm²).
     double linear_segment(double x, double u0, double u1, double p0, double p1) const;
+    // Response at x to a continuous piecewise-linear pressure over three nodes
+    // u0 <= u1 <= u2 (pressures q0, q1, q2): the two faces beside a pivot. Same
+    // result as two linear_segment calls, with the shared node evaluated once.
+    double two_segments(double x, double u0, double u1, double u2, double q0, double q1, double q2) const;
 
     double sigma() const { return sigma_; }
     double fwhm() const { return fwhm_; }

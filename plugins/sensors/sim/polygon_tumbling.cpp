@@ -8,7 +8,7 @@ namespace rollsense::sim {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kMaxStep = 0.5 * kPi / 180.0;  // θ sub-step: keeps one landing per step
+constexpr double kMaxStep = 1.0 * kPi / 180.0;  // θ sub-step: a pivot spans tens of degrees
 constexpr double kTouch = 1e-7;                 // mm: an edge this close to a finger touches it
 }  // namespace
 
@@ -84,6 +84,7 @@ double PolygonTumbler::solve(double theta, double psi_guess) const {
     const double tan_theta = std::tan(theta);
     for (int it = 0; it < 30; ++it) {
         const double g = constraint(psi, tan_theta);
+        if (std::abs(g) < 1e-11) break;  // mm: far below anything the rubber can feel
         const double slope = constraint_slope(psi, tan_theta);
         if (slope == 0.0) break;
         double step = g / slope;

@@ -122,12 +122,12 @@ void TrialModel::compute_stress(double time, double theta, double clamp_current)
     const PivotLoad pl = winkler_pivot_load(
         PivotProfile{c.contact, c.slope_rear, c.slope_front, c.extent_rear, c.extent_front}, load,
         p_.foundation_stiffness);
-    for (std::size_t i = 0; i < kChannels; ++i) {
-        double s = 0.0;
-        for (const auto& seg : pl.segments)
-            if (seg.u1 > seg.u0) s += device_->kernel[i].linear_segment(device_->sensor_x[i], seg.u0, seg.u1, seg.p0, seg.p1);
-        stress_[i] = 1000.0 * s;
-    }
+    // Rear and front faces meet at the pivot: one continuous piecewise-linear load.
+    const PressureSegment& rear = pl.segments[0];
+    const PressureSegment& front = pl.segments[1];
+    for (std::size_t i = 0; i < kChannels; ++i)
+        stress_[i] = 1000.0 * device_->kernel[i].two_segments(device_->sensor_x[i], rear.u0, rear.u1, front.u1, rear.p0,
+                                                              rear.p1, front.p1);
 }
 
 std::array<double, kChannels> TrialModel::sample(double time, double theta, double clamp_current) {
