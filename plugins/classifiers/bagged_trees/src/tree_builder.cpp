@@ -63,10 +63,65 @@ inline double xlogx(double v) { return v > 0.0 ? v * std::log(v) : 0.0; }
 
 }  // namespace
 
+template <SplitCriterion C>
+void TreeBuilder::sweep(std::size_t f, std::size_t begin, std::size_t end, const std::vector<double>& counts,
+                        double total, double sq_parent, double h_parent, double min_leaf, Split& best) {
+    const std::size_t k = data_.classes;
+    const Entry* ord = order_[f].data();
+    std::fill(left_.begin(), left_.end(), 0.0);
+    std::copy(counts.begin(), counts.end(), right_.begin());
+    double* left = left_.data();
+    double* right = right_.data();
+    double wl = 0.0, wr = total;
+    double sql = 0.0, sqr = sq_parent;  // Σ count² per side (Gini)
+    double hl = 0.0, hr = h_parent;     // Σ count·ln count per side (deviance)
+    for (std::size_t i = begin; i + 1 < end; ++i) {
+        const Entry& e = ord[i];
+        const double rw = static_cast<double>(e.weight);
+        const std::size_t c = e.label;
+        if constexpr (C == SplitCriterion::gdi) {
+            sql += rw * (2.0 * left[c] + rw);
+            sqr -= rw * (2.0 * right[c] - rw);
+        } else if constexpr (C == SplitCriterion::deviance) {
+            hl += xlogx(left[c] + rw) - xlogx(left[c]);
+            hr += xlogx(right[c] - rw) - xlogx(right[c]);
+        }
+        left[c] += rw;
+        right[c] -= rw;
+        wl += rw;
+        wr -= rw;
+        const double xv = e.x;
+        const double xn = ord[i + 1].x;
+        if (!(xn > xv)) continue;  // no threshold between equal values
+        if (wl < min_leaf || wr < min_leaf) continue;
+        double score = 0.0;
+        if constexpr (C == SplitCriterion::gdi) {
+            // sql/wl + sqr/wr > best without two divisions per candidate.
+            const double den = wl * wr;
+            if (!(sql * wr + sqr * wl > best.score * den)) continue;
+            score = (sql * wr + sqr * wl) / den;
+        } else if constexpr (C == SplitCriterion::deviance) {
+            score = hl + hr - xlogx(wl) - xlogx(wr);
+        } else {
+            double diff = 0.0;
+            for (std::size_t j = 0; j < k; ++j) diff += std::abs(left[j] / wl - right[j] / wr);
+            score = (wl / total) * (wr / total) * diff * diff / 4.0;
+        }
+        if (score > best.score) {
+            best.found = true;
+            best.score = score;
+            best.feature = f;
+            best.left_count = i + 1 - begin;
+            double mid = 0.5 * (xv + xn);
+            if (!(mid > xv)) mid = xn;  // adjacent doubles: keep xv < threshold <= xn
+            best.threshold = mid;
+        }
+    }
+}
+
 TreeBuilder::Split TreeBuilder::best_split(std::size_t begin, std::size_t end, const std::vector<double>& counts,
                                            double total, const TreeOptions& opt, Rng& rng) {
     const std::size_t p = data_.predictors;
-    const std::size_t k = data_.classes;
     std::size_t tries = p;
     if (opt.predictors_per_split < 0)
         tries = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(p))));
@@ -92,64 +147,20 @@ TreeBuilder::Split TreeBuilder::best_split(std::size_t begin, std::size_t end, c
         case SplitCriterion::deviance: parent = h_parent - xlogx(total); break;
         case SplitCriterion::twoing: parent = 0.0; break;
     }
-    const double eps = 1e-12 * std::max(1.0, std::abs(parent));
-
     Split best;
-    best.score = parent + eps;
-    const auto* labels = data_.labels.data();
-    const auto* w = weights_.data();
+    best.score = parent + 1e-12 * std::max(1.0, std::abs(parent));
     for (std::size_t fi = 0; fi < tries; ++fi) {
         const std::size_t f = feature_pool_[fi];
-        const std::uint32_t* ord = order_[f].data();
-        const double* col = data_.column(f);
-        std::fill(left_.begin(), left_.end(), 0.0);
-        std::copy(counts.begin(), counts.end(), right_.begin());
-        double wl = 0.0, wr = total;
-        double sql = 0.0, sqr = sq_parent;  // Σ count² per side (Gini)
-        double hl = 0.0, hr = h_parent;     // Σ count·ln count per side (deviance)
-        for (std::size_t i = begin; i + 1 < end; ++i) {
-            const std::uint32_t r = ord[i];
-            const double rw = static_cast<double>(w[r]);
-            const auto c = static_cast<std::size_t>(labels[r]);
-            switch (opt.criterion) {
-                case SplitCriterion::gdi:
-                    sql += rw * (2.0 * left_[c] + rw);
-                    sqr -= rw * (2.0 * right_[c] - rw);
-                    break;
-                case SplitCriterion::deviance:
-                    hl += xlogx(left_[c] + rw) - xlogx(left_[c]);
-                    hr += xlogx(right_[c] - rw) - xlogx(right_[c]);
-                    break;
-                case SplitCriterion::twoing: break;
-            }
-            left_[c] += rw;
-            right_[c] -= rw;
-            wl += rw;
-            wr -= rw;
-            const double xv = col[r];
-            const double xn = col[ord[i + 1]];
-            if (!(xn > xv)) continue;  // no threshold between equal values
-            if (wl < min_leaf || wr < min_leaf) continue;
-            double score = 0.0;
-            switch (opt.criterion) {
-                case SplitCriterion::gdi: score = sql / wl + sqr / wr; break;
-                case SplitCriterion::deviance: score = hl + hr - xlogx(wl) - xlogx(wr); break;
-                case SplitCriterion::twoing: {
-                    double diff = 0.0;
-                    for (std::size_t j = 0; j < k; ++j) diff += std::abs(left_[j] / wl - right_[j] / wr);
-                    score = (wl / total) * (wr / total) * diff * diff / 4.0;
-                    break;
-                }
-            }
-            if (score > best.score) {
-                best.found = true;
-                best.score = score;
-                best.feature = f;
-                best.left_count = i + 1 - begin;
-                double mid = 0.5 * (xv + xn);
-                if (!(mid > xv)) mid = xn;  // adjacent doubles: keep xv < threshold <= xn
-                best.threshold = mid;
-            }
+        switch (opt.criterion) {
+            case SplitCriterion::gdi:
+                sweep<SplitCriterion::gdi>(f, begin, end, counts, total, sq_parent, h_parent, min_leaf, best);
+                break;
+            case SplitCriterion::deviance:
+                sweep<SplitCriterion::deviance>(f, begin, end, counts, total, sq_parent, h_parent, min_leaf, best);
+                break;
+            case SplitCriterion::twoing:
+                sweep<SplitCriterion::twoing>(f, begin, end, counts, total, sq_parent, h_parent, min_leaf, best);
+                break;
         }
     }
     return best;
@@ -157,16 +168,23 @@ TreeBuilder::Split TreeBuilder::best_split(std::size_t begin, std::size_t end, c
 
 void TreeBuilder::partition(std::size_t begin, std::size_t end, const Split& split) {
     const auto& chosen = order_[split.feature];
-    for (std::size_t i = begin; i < end; ++i) goes_left_[chosen[i]] = i < begin + split.left_count ? 1 : 0;
+    for (std::size_t i = begin; i < end; ++i) goes_left_[chosen[i].row] = i < begin + split.left_count ? 1 : 0;
     scratch_.resize(end - begin);
     for (std::size_t f = 0; f < data_.predictors; ++f) {
         if (f == split.feature) continue;  // already ordered left | right
         auto& ord = order_[f];
         std::size_t l = begin, r = 0;
+        // Branch-free: which side a row goes is unpredictable, so write the
+        // entry to both places and advance only the matching cursor.
+        Entry* out_left = ord.data();
+        Entry* out_right = scratch_.data();
         for (std::size_t i = begin; i < end; ++i) {
-            const std::uint32_t row = ord[i];
-            if (goes_left_[row]) ord[l++] = row;
-            else scratch_[r++] = row;
+            const Entry e = ord[i];
+            const std::size_t gl = goes_left_[e.row];
+            out_left[l] = e;
+            out_right[r] = e;
+            l += gl;
+            r += 1 - gl;
         }
         std::copy(scratch_.begin(), scratch_.begin() + static_cast<std::ptrdiff_t>(r),
                   ord.begin() + static_cast<std::ptrdiff_t>(l));
@@ -186,8 +204,10 @@ Tree TreeBuilder::build(std::span<const std::uint32_t> weights, const TreeOption
         auto& ord = order_[f];
         ord.clear();
         ord.reserve(in_bag);
+        const double* col = data_.column(f);
         for (std::uint32_t r : data_.sorted[f])
-            if (weights[r] > 0) ord.push_back(r);
+            if (weights[r] > 0)
+                ord.push_back({col[r], r, static_cast<std::uint32_t>(data_.labels[r]), weights[r], 0});
     }
     const double max_splits =
         opt.max_num_splits > 0 ? static_cast<double>(opt.max_num_splits) : std::max(1.0, sample_size - 1.0);
@@ -208,9 +228,9 @@ Tree TreeBuilder::build(std::span<const std::uint32_t> weights, const TreeOption
         std::fill(counts_.begin(), counts_.end(), 0.0);
         double total = 0.0;
         for (std::size_t i = node.begin; i < node.end; ++i) {
-            const std::uint32_t r = any_order[i];
-            counts_[static_cast<std::size_t>(data_.labels[r])] += weights[r];
-            total += weights[r];
+            const Entry& e = any_order[i];
+            counts_[e.label] += e.weight;
+            total += e.weight;
         }
         const bool pure =
             std::count_if(counts_.begin(), counts_.end(), [](double c) { return c > 0.0; }) <= 1;

@@ -41,15 +41,28 @@ private:
         double threshold = 0.0;
         double score = 0.0;
     };
+    // One in-bag row in a feature's sorted order, carrying what the split
+    // sweep needs, so the sweep reads memory sequentially instead of
+    // gathering value, label and weight from three arrays.
+    struct Entry {
+        double x;
+        std::uint32_t row;
+        std::uint32_t label;
+        std::uint32_t weight;
+        std::uint32_t pad;
+    };
     Split best_split(std::size_t begin, std::size_t end, const std::vector<double>& counts, double total,
                      const TreeOptions& options, Rng& rng);
+    template <SplitCriterion C>
+    void sweep(std::size_t f, std::size_t begin, std::size_t end, const std::vector<double>& counts, double total,
+               double sq_parent, double h_parent, double min_leaf, Split& best);
     void partition(std::size_t begin, std::size_t end, const Split& split);
 
     const TrainingSet& data_;
     std::span<const std::uint32_t> weights_;
-    std::vector<std::vector<std::uint32_t>> order_;  // per predictor, in-bag rows; node = segment
+    std::vector<std::vector<Entry>> order_;  // per predictor, in-bag rows; node = segment
     std::vector<std::uint8_t> goes_left_;
-    std::vector<std::uint32_t> scratch_;
+    std::vector<Entry> scratch_;
     std::vector<double> left_, right_, counts_;
     std::vector<std::size_t> feature_pool_;
 };

@@ -1,0 +1,272 @@
+// Benchmark: feature extraction throughput, bagged-trees 5-fold CV time and
+// accuracy against scikit-learn on the same features file and folds, and the
+// latency of a single prediction. Prints figures; asserts nothing.
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "rollsense/bagged_trees/bagged_trees.hpp"
+#include "rollsense/csv.hpp"
+#include "rollsense/features.hpp"
+#include "runtime/learn/cross_validation.hpp"
+#include "runtime/learn/folds.hpp"
+#include "synthetic_trials.hpp"
+
+using namespace rollsense;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// CPU time of the process: on a shared, loaded machine it is a fairer
+// single-threaded comparison than wall time (both are printed).
+double cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+struct Options {
+    std::string features_file, dataset_dir;
+    fs::path out = fs::temp_directory_path() / "rollsense-bench-classifier";
+    int folds = 5;
+    std::uint64_t seed = 1;
+    int model_seeds = 5;
+    std::string python = "/usr/bin/python3";
+};
+
+[[noreturn]] void usage() {
+    std::fprintf(stderr,
+                 "usage: bench_classifier [--features FILE | --dataset DIR] [--out DIR] [--folds K] [--seed S]\n"
+                 "                        [--model-seeds N] [--python PATH]\n");
+    std::exit(2);
+}
+
+// Raw trials as spans for the extractor; from a dataset or the synthetic generator.
+struct Trials {
+    std::vector<features::FeatureRow> meta;            // id, object, speed, repetition
+    std::vector<std::vector<std::vector<double>>> channels;
+    std::vector<std::vector<double>> time;
+};
+
+Trials load_trials(const Options& o) {
+    Trials t;
+    if (!o.dataset_dir.empty()) {
+        auto ds = DatasetReader::open(o.dataset_dir);
+        if (!ds) throw StatusError(ds.status());
+        for (const auto& rec : ds->trials()) {
+            auto d = ds->load(rec);
+            if (!d) throw StatusError(d.status());
+            features::FeatureRow m;
+            m.trial_id = rec.info.id;
+            m.object = rec.info.object;
+            m.speed = rec.info.speed;
+            m.repetition = rec.info.repetition;
+            t.meta.push_back(m);
+            d->channels.resize(3);
+            t.channels.push_back(d->channels);
+            t.time.push_back(d->time);
+        }
+        return t;
+    }
+    for (auto& s : bench::synthetic_trials(50, o.seed)) {
+        features::FeatureRow m;
+        m.trial_id = s.id;
+        m.object = s.object;
+        m.speed = s.speed;
+        m.repetition = s.repetition;
+        t.meta.push_back(m);
+        t.channels.push_back(std::move(s.channels));
+        t.time.push_back(std::move(s.time));
+    }
+    return t;
+}
+
+std::vector<features::FeatureRow> extract_timed(const Trials& trials) {
+    features::FeatureExtractor fx;
+    std::vector<features::FeatureRow> rows = trials.meta;
+    auto run_once = [&] {
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            auto tf = fx.extract(trials.channels[i], trials.time[i]);
+            if (!tf) throw StatusError(tf.status());
+            rows[i].clean = tf->clean;
+            rows[i].reason = tf->reason;
+            rows[i].values = tf->values;
+            for (std::size_t c = 0; c < 3; ++c) rows[i].windows[c] = tf->channels[c].window;
+        }
+    };
+    run_once();  // warm-up (buffers)
+    std::size_t done = 0;
+    const auto t0 = Clock::now();
+    const double c0 = cpu_seconds();
+    while (seconds_since(t0) < 1.0) {
+        run_once();
+        done += rows.size();
+    }
+    const double s = seconds_since(t0), cpu = cpu_seconds() - c0;
+    std::size_t clean = 0;
+    for (const auto& r : rows) clean += r.clean;
+    std::printf("feature extraction (1 thread, MATLAB windows per channel): %.0f trials/s wall, %.0f trials/s per "
+                "CPU-second  (target >= 100000)  (%zu trials, %zu clean)\n",
+                static_cast<double>(done) / s, static_cast<double>(done) / cpu, rows.size(), clean);
+    return rows;
+}
+
+learn::ClassifierFactory factory() {
+    return [](const ParamSet& p) -> Result<learn::ClassifierPtr> {
+        auto o = bagged_trees::options_from(p);
+        if (!o) return o.error();
+        return learn::ClassifierPtr(std::make_shared<bagged_trees::BaggedTrees>(*o));
+    };
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage();
+            return argv[++i];
+        };
+        if (a == "--features") o.features_file = value();
+        else if (a == "--dataset") o.dataset_dir = value();
+        else if (a == "--out") o.out = value();
+        else if (a == "--folds") o.folds = std::stoi(value());
+        else if (a == "--seed") o.seed = std::stoull(value());
+        else if (a == "--model-seeds") o.model_seeds = std::stoi(value());
+        else if (a == "--python") o.python = value();
+        else usage();
+    }
+    try {
+        fs::create_directories(o.out);
+        std::vector<features::FeatureRow> rows;
+        if (!o.features_file.empty()) {
+            auto r = features::read_features_csv(o.features_file);
+            if (!r) throw StatusError(r.status());
+            rows = std::move(r).value();
+            std::printf("features: %s\n", o.features_file.c_str());
+        } else {
+            const Trials trials = load_trials(o);
+            std::printf("trials: %s\n", o.dataset_dir.empty() ? "synthetic (bench/classifier/synthetic_trials.cpp)"
+                                                                : o.dataset_dir.c_str());
+            rows = extract_timed(trials);
+        }
+        const fs::path features_csv = o.out / "features.csv";
+        throw_if_error(features::write_features_csv(features_csv, rows));
+
+        std::vector<std::size_t> index;
+        const FeatureTable table = features::to_feature_table(rows, &index);
+        auto folds = learn::stratified_folds(table.y, o.folds, o.seed);
+        if (!folds) throw StatusError(folds.status());
+        std::string folds_text = "trial_id,fold\n";
+        for (std::size_t i = 0; i < table.rows; ++i)
+            folds_text += csv::escape(rows[index[i]].trial_id) + "," + std::to_string((*folds)[i]) + "\n";
+        const fs::path folds_csv = o.out / "folds.csv";
+        throw_if_error(write_file_atomic(folds_csv, folds_text));
+        std::printf("clean trials %zu, classes %zu, %d-fold partition seed %llu -> %s\n", table.rows,
+                    table.class_names.size(), o.folds, static_cast<unsigned long long>(o.seed),
+                    folds_csv.c_str());
+
+        // C++ bagged trees, single-threaded and on every core, several model seeds.
+        const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+        double cpp_time_1 = 1e30, cpp_cpu_1 = 1e30, cpp_time_n = 1e30, cpp_acc = 0.0;
+        for (int s = 1; s <= o.model_seeds; ++s) {
+            for (unsigned threads : {1u, cores}) {
+                ParamSet p;
+                p.set("seed", std::int64_t{s});
+                p.set("threads", std::int64_t{threads});
+                const auto t0 = Clock::now();
+                const double c0 = cpu_seconds();
+                auto cv = learn::cross_validate(table, *folds, o.folds, factory(), p);
+                const double t = seconds_since(t0), cpu = cpu_seconds() - c0;
+                if (!cv) throw StatusError(cv.status());
+                if (threads == 1) {
+                    cpp_time_1 = std::min(cpp_time_1, t);
+                    cpp_cpu_1 = std::min(cpp_cpu_1, cpu);
+                    cpp_acc += cv->accuracy();
+                    std::printf("c++     seed=%d seconds=%.6f cpu=%.6f accuracy=%.6f (1 thread)\n", s, t, cpu,
+                                cv->accuracy());
+                } else {
+                    cpp_time_n = std::min(cpp_time_n, t);
+                }
+                if (cores == 1) break;
+            }
+        }
+        cpp_acc /= o.model_seeds;
+
+        // scikit-learn on the same files.
+        std::string cmd = "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 '" + o.python + "' '" +
+                          std::string(ROLLSENSE_BENCH_DIR) + "/sklearn_reference.py' '" + features_csv.string() +
+                          "' '" + folds_csv.string() + "'";
+        for (int s = 1; s <= o.model_seeds; ++s) cmd += " " + std::to_string(s);
+        std::fflush(stdout);
+        FILE* py = ::popen(cmd.c_str(), "r");
+        double sk_time = 1e30, sk_cpu = 1e30, sk_acc = 0.0;
+        int sk_runs = 0;
+        if (py) {
+            char line[512];
+            while (std::fgets(line, sizeof line, py)) {
+                std::fputs(line, stdout);
+                int seed = 0;
+                double secs = 0, cpu = 0, acc = 0;
+                if (std::sscanf(line, "sklearn seed=%d seconds=%lf cpu=%lf accuracy=%lf", &seed, &secs, &cpu, &acc) ==
+                    4) {
+                    sk_time = std::min(sk_time, secs);
+                    sk_cpu = std::min(sk_cpu, cpu);
+                    sk_acc += acc;
+                    ++sk_runs;
+                }
+            }
+            ::pclose(py);
+        }
+
+        // A single prediction, model trained on every clean trial.
+        bagged_trees::BaggedTrees model;
+        throw_if_error(model.train(table));
+        std::size_t n_pred = 0;
+        const auto t0 = Clock::now();
+        double sink = 0.0;
+        while (seconds_since(t0) < 0.5) {
+            for (std::size_t r = 0; r < table.rows; ++r) {
+                auto p = model.predict(table.row(r));
+                sink += p->scores[0];
+            }
+            n_pred += table.rows;
+        }
+        const double us_per_prediction = 1e6 * seconds_since(t0) / static_cast<double>(n_pred);
+
+        std::printf("\n=== summary (%d-fold CV, same features and folds, 30 learners) ===\n", o.folds);
+        std::printf("c++ bagged trees   : %.4f s wall / %.4f s CPU (1 thread), %.4f s wall (%u threads), accuracy "
+                    "%.2f %% (mean of %d seeds)\n",
+                    cpp_time_1, cpp_cpu_1, cpp_time_n, cores, 100.0 * cpp_acc, o.model_seeds);
+        if (sk_runs > 0) {
+            sk_acc /= sk_runs;
+            std::printf("scikit-learn       : %.4f s wall / %.4f s CPU (1 thread), accuracy %.2f %% (mean of %d seeds)\n",
+                        sk_time, sk_cpu, 100.0 * sk_acc, sk_runs);
+            std::printf("speed-up, 1 thread vs 1 thread: %.1fx wall, %.1fx CPU   (target >= 10x; best of each side)\n",
+                        sk_time / cpp_time_1, sk_cpu / cpp_cpu_1);
+            std::printf("accuracy difference c++ - sklearn: %+.2f points   (target within 1 point)\n",
+                        100.0 * (cpp_acc - sk_acc));
+        } else {
+            std::printf("scikit-learn       : not run (is %s with python3-sklearn installed?)\n", o.python.c_str());
+        }
+        std::printf("single prediction  : %.2f us   (target < 50 us)%s\n", us_per_prediction, sink < 0 ? " " : "");
+        std::printf("files: %s %s\n", features_csv.c_str(), folds_csv.c_str());
+        return 0;
+    } catch (const StatusError& e) {
+        std::fprintf(stderr, "bench_classifier: %s\n", e.what());
+        return 1;
+    }
+}
