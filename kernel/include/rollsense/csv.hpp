@@ -58,5 +58,8 @@ void append_row(std::string& out, const std::vector<std::string>& fields);
 // Shortest text that reads back as the same double ("%.17g"-exact, but short
 // for round values), so files are byte-identical for identical data.
 std::string format_number(double value);
+// A measured value with 9 significant digits: far finer than any sensor's
+// resolution, and less than half the bytes of an exact double. Deterministic.
+std::string format_sample(double value);
 
 }  // namespace rollsense::csv

@@ -4,14 +4,19 @@
 //   <dir>/dataset-info.csv   key,value: format, version, sample rate, channel and
 //                            joint column names, profile, seed (deterministic)
 //   <dir>/manifest.csv       one row per trial, in recording order
-//   <dir>/trials/<id>.csv    time,<channels...>,<joints...>,valid
+//   <dir>/trials/<id>.csv    time,<channels...>,<joints...>,valid  (time from the
+//                            recording's start; values with 9 significant digits)
 //   <dir>/run-info.csv       wall-clock provenance (date, command line, host);
 //                            kept apart so the rest is byte-identical per seed
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -47,7 +52,6 @@ struct TrialRecord {
     TrialInfo info;
     std::string file;             // relative to the dataset folder, e.g. trials/C1-v10-r001.csv
     std::size_t samples = 0;
-    double start_time = 0.0;      // run clock at the first sample
     std::size_t invalid_samples = 0;
 };
 
@@ -79,6 +83,10 @@ enum class DatasetOpenMode {
 // rewritten atomically after the trial files it lists, so after a crash every
 // trial in the manifest is complete, and a trial file not yet in the manifest
 // is simply written again on resume.
+//
+// Batches of `commit_every` trials are formatted and synced by a background
+// thread, so a fast simulated run overlaps its disk syncs with computing the
+// next trials. An I/O error is returned by the next add_trial() or flush().
 class DatasetWriter {
 public:
     static Result<std::unique_ptr<DatasetWriter>> open(const std::filesystem::path& dir, const DatasetInfo& info,
@@ -99,14 +107,28 @@ public:
     Status write_run_info(const std::vector<std::pair<std::string, std::string>>& entries);
 
 private:
+    struct Batch {
+        std::vector<std::pair<std::filesystem::path, TrialData>> trials;
+        std::string manifest;  // the manifest listing every trial up to this batch
+    };
     DatasetWriter() = default;
-    Status write_manifest_pending(std::vector<PendingFile>& files) const;
+    std::string manifest_text() const;
+    void hand_over();           // pending trials → the writer thread
+    void writer_loop();
+    Status take_error();
 
     std::filesystem::path dir_;
     DatasetInfo info_;
     std::vector<TrialRecord> trials_;
-    std::vector<PendingFile> pending_;
+    Batch pending_;
     std::size_t commit_every_ = 1;
+
+    std::thread writer_;
+    std::mutex mutex_;
+    std::condition_variable wake_, idle_;
+    std::deque<Batch> queue_;
+    bool busy_ = false, stopping_ = false;
+    Status error_;
 };
 
 // Render a trial as its CSV file content (used by the writer and by tests).

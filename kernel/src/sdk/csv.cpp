@@ -147,4 +147,11 @@ std::string format_number(double value) {
     return std::string(buf, ptr);
 }
 
+std::string format_sample(double value) {
+    if (!std::isfinite(value)) return format_number(value);
+    char buf[32];
+    const int n = std::snprintf(buf, sizeof buf, "%.9g", value);
+    return std::string(buf, static_cast<std::size_t>(n));
+}
+
 }  // namespace rollsense::csv

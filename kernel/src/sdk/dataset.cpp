@@ -1,5 +1,6 @@
 #include "rollsense/dataset.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -12,9 +13,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kManifestColumns = {"trial_id", "file",       "object",     "speed",
-                                                    "repetition", "seed",    "samples",    "start_time",
-                                                    "invalid_samples", "extra"};
+const std::vector<std::string> kManifestColumns = {"trial_id",   "file", "object",  "speed",          "repetition",
+                                                    "seed",       "samples", "invalid_samples", "extra"};
 
 std::string join(const std::vector<std::string>& v, char sep) {
     std::string out;
@@ -123,7 +123,7 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
     if (!reader) return reader.error();
     std::vector<std::size_t> col;
     for (const auto& name : kManifestColumns) {
-        if (name == "extra" || name == "invalid_samples" || name == "start_time" || name == "seed") {
+        if (name == "extra" || name == "invalid_samples" || name == "seed") {
             auto c = reader->column(name);
             col.push_back(c ? *c : SIZE_MAX);  // optional in hand-made manifests
             continue;
@@ -163,15 +163,10 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
         auto samples = integer(col[6]);
         if (!samples) return samples.error();
         r.samples = static_cast<std::size_t>(*samples);
-        if (col[7] != SIZE_MAX) {
-            auto t = reader->number(f, col[7]);
-            if (!t) return t.error();
-            r.start_time = *t;
-        }
-        auto invalid = integer(col[8]);
+        auto invalid = integer(col[7]);
         if (!invalid) return invalid.error();
         r.invalid_samples = static_cast<std::size_t>(*invalid);
-        if (col[9] != SIZE_MAX) r.info.extra = parse_extra(f[col[9]]);
+        if (col[8] != SIZE_MAX) r.info.extra = parse_extra(f[col[8]]);
         if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader->where(col[0]) + ": empty trial id"};
         if (!ids.insert(r.info.id).second)
             return Error{ErrorCode::parse_error, reader->where(col[0]) + ": trial id '" + r.info.id + "' appears twice"};
@@ -194,11 +189,11 @@ std::string format_trial_csv(const DatasetInfo& info, const TrialData& data) {
         out += csv::format_number(data.time[i]);
         for (const auto& ch : data.channels) {
             out.push_back(',');
-            out += csv::format_number(ch[i]);
+            out += csv::format_sample(ch[i]);
         }
         for (const auto& j : data.joints) {
             out.push_back(',');
-            out += csv::format_number(j[i]);
+            out += csv::format_sample(j[i]);
         }
         out += (i < data.valid.size() && !data.valid[i]) ? ",0\n" : ",1\n";
     }
@@ -257,6 +252,19 @@ Result<TrialData> DatasetReader::load(const TrialRecord& record) const {
         auto col = reader->column(j);
         if (!col) return col.error();
         joint_cols.push_back(*col);
+    }
+    // A "ch..." column the dataset does not know is a file from another setup
+    // (or a hand-made dataset whose files disagree): refuse it rather than
+    // silently drop a channel.
+    for (const auto& h : reader->header()) {
+        if (h.rfind("ch", 0) != 0) continue;
+        if (std::find(info_.channels.begin(), info_.channels.end(), h) != info_.channels.end() ||
+            std::find(info_.joints.begin(), info_.joints.end(), h) != info_.joints.end())
+            continue;
+        return Error{ErrorCode::parse_error, (dir_ / record.file).string() + ":1: column '" + h +
+                                                 "' is not a channel of this dataset, which has " +
+                                                 std::to_string(info_.channels.size()) + " (" +
+                                                 join(info_.channels, ' ') + "): a file from another setup?"};
     }
     std::size_t valid_col = SIZE_MAX;
     if (auto v = reader->column("valid"); v) valid_col = *v;
@@ -336,14 +344,20 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                                                         "choose another folder with --out"};
         w->trials_ = on_disk->trials();
     }
-    std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)}};
-    if (auto s = w->write_manifest_pending(files); !s.ok()) return s.error();
+    std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)},
+                                   {dir / "manifest.csv", w->manifest_text()}};
     if (auto s = write_files_atomic(files); !s.ok()) return s.error();
     return w;
 }
 
 DatasetWriter::~DatasetWriter() {
     if (auto s = flush(); !s.ok()) log_error("dataset", s.error().describe());
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    wake_.notify_all();
+    if (writer_.joinable()) writer_.join();
 }
 
 bool DatasetWriter::has_trial(const std::string& trial_id) const {
@@ -352,19 +366,23 @@ bool DatasetWriter::has_trial(const std::string& trial_id) const {
     return false;
 }
 
-Status DatasetWriter::write_manifest_pending(std::vector<PendingFile>& files) const {
+std::string DatasetWriter::manifest_text() const {
     std::string out;
     csv::append_row(out, kManifestColumns);
     for (const auto& t : trials_)
         csv::append_row(out, {t.info.id, t.file, t.info.object, t.info.speed, std::to_string(t.info.repetition),
-                              std::to_string(t.info.seed), std::to_string(t.samples),
-                              csv::format_number(t.start_time), std::to_string(t.invalid_samples),
+                              std::to_string(t.info.seed), std::to_string(t.samples), std::to_string(t.invalid_samples),
                               format_extra(t.info.extra)});
-    files.push_back({dir_ / "manifest.csv", std::move(out)});
-    return {};
+    return out;
+}
+
+Status DatasetWriter::take_error() {
+    std::lock_guard lock(mutex_);
+    return error_;
 }
 
 Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
+    if (auto s = take_error(); !s.ok()) return s;
     if (record.info.id.empty() || record.info.id.find_first_of("/\\") != std::string::npos ||
         record.info.id[0] == '.')
         return {ErrorCode::invalid_argument,
@@ -379,21 +397,55 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     record.samples = data.samples();
     record.invalid_samples = 0;
     for (auto v : data.valid) record.invalid_samples += v ? 0 : 1;
-    if (!data.time.empty()) record.start_time = data.time.front();
-    pending_.push_back({dir_ / record.file, format_trial_csv(info_, data)});
+    pending_.trials.emplace_back(dir_ / record.file, data);
     trials_.push_back(std::move(record));
-    if (pending_.size() >= commit_every_) return flush();
+    if (pending_.trials.size() >= commit_every_) hand_over();
     return {};
 }
 
+void DatasetWriter::hand_over() {
+    if (pending_.trials.empty()) return;
+    pending_.manifest = manifest_text();
+    {
+        std::lock_guard lock(mutex_);
+        queue_.push_back(std::move(pending_));
+        if (!writer_.joinable()) writer_ = std::thread(&DatasetWriter::writer_loop, this);
+    }
+    pending_ = Batch{};
+    wake_.notify_one();
+}
+
+void DatasetWriter::writer_loop() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;  // stopping, nothing left
+        Batch batch = std::move(queue_.front());
+        queue_.pop_front();
+        busy_ = true;
+        const bool failed = !error_.ok();
+        lock.unlock();
+        Status s;
+        if (!failed) {  // after an error nothing more is written: the manifest stays truthful
+            std::vector<PendingFile> files;
+            files.reserve(batch.trials.size());
+            for (const auto& [path, data] : batch.trials) files.push_back({path, format_trial_csv(info_, data)});
+            // Trial files first (synced and renamed), then the manifest that lists them.
+            s = write_files_atomic(files);
+            if (s.ok()) s = write_file_atomic(dir_ / "manifest.csv", batch.manifest);
+        }
+        lock.lock();
+        if (!s.ok() && error_.ok()) error_ = s;
+        busy_ = false;
+        idle_.notify_all();
+    }
+}
+
 Status DatasetWriter::flush() {
-    if (pending_.empty()) return {};
-    // Trial files first (synced and renamed), then the manifest that lists them.
-    if (auto s = write_files_atomic(pending_); !s.ok()) return s;
-    pending_.clear();
-    std::vector<PendingFile> manifest;
-    (void)write_manifest_pending(manifest);
-    return write_files_atomic(manifest);
+    hand_over();
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [&] { return queue_.empty() && !busy_; });
+    return error_;
 }
 
 Status DatasetWriter::write_run_info(const std::vector<std::pair<std::string, std::string>>& entries) {
