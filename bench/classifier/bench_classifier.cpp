@@ -43,12 +43,13 @@ struct Options {
     std::uint64_t seed = 1;
     int model_seeds = 5;
     std::string python = "/usr/bin/python3";
+    std::string write_dataset;  // also record the synthetic trials as a dataset folder here
 };
 
 [[noreturn]] void usage() {
     std::fprintf(stderr,
                  "usage: bench_classifier [--features FILE | --dataset DIR] [--out DIR] [--folds K] [--seed S]\n"
-                 "                        [--model-seeds N] [--python PATH]\n");
+                 "                        [--model-seeds N] [--python PATH] [--write-dataset DIR]\n");
     std::exit(2);
 }
 
@@ -147,6 +148,7 @@ int main(int argc, char** argv) {
         else if (a == "--seed") o.seed = std::stoull(value());
         else if (a == "--model-seeds") o.model_seeds = std::stoi(value());
         else if (a == "--python") o.python = value();
+        else if (a == "--write-dataset") o.write_dataset = value();
         else usage();
     }
     try {
@@ -159,6 +161,31 @@ int main(int argc, char** argv) {
             std::printf("features: %s\n", o.features_file.c_str());
         } else {
             const Trials trials = load_trials(o);
+            if (!o.write_dataset.empty()) {
+                // The synthetic trials as a real dataset folder, e.g. to try the CLI on.
+                DatasetInfo info;
+                info.channels = {"ch1", "ch2", "ch3"};
+                info.profile = "bench_classifier synthetic";
+                info.seed = o.seed;
+                auto w = DatasetWriter::open(o.write_dataset, info, DatasetOpenMode::create);
+                if (!w) throw StatusError(w.status());
+                (*w)->set_commit_every(100);
+                for (std::size_t i = 0; i < trials.meta.size(); ++i) {
+                    TrialRecord rec;
+                    rec.info.id = trials.meta[i].trial_id;
+                    rec.info.object = trials.meta[i].object;
+                    rec.info.speed = trials.meta[i].speed;
+                    rec.info.repetition = trials.meta[i].repetition;
+                    rec.samples = trials.time[i].size();
+                    TrialData d;
+                    d.time = trials.time[i];
+                    d.channels = trials.channels[i];
+                    d.valid.assign(d.time.size(), 1);
+                    throw_if_error((*w)->add_trial(rec, d));
+                }
+                throw_if_error((*w)->flush());
+                std::printf("wrote dataset %s\n", o.write_dataset.c_str());
+            }
             std::printf("trials: %s\n", o.dataset_dir.empty() ? "synthetic (bench/classifier/synthetic_trials.cpp)"
                                                                 : o.dataset_dir.c_str());
             rows = extract_timed(trials);

@@ -44,6 +44,7 @@ int window_from_rho(std::size_t rho, std::size_t n) {
 struct Column {
     std::vector<double> centred;
     double total = 0.0;  // Σ_{k=0}^{N-1} |F[k]|² of the 2N-point DFT
+    double bin0 = 0.0;   // |F[0]|² = (Σc)², zero up to rounding
     double cumulative = 0.0;
     bool constant = true;
 
@@ -67,6 +68,7 @@ struct Column {
         // Parseval over all 2N bins gives 2N·Σc²; bins k and 2N−k are equal for
         // real data, so the half k = 0 … N−1 holds (2N·Σc² + |F0|² − |FN|²) / 2.
         total = (2.0 * static_cast<double>(n) * energy + f0 * f0 - fn * fn) / 2.0;
+        bin0 = f0 * f0;
         cumulative = 0.0;
     }
 
@@ -76,16 +78,28 @@ struct Column {
     // bin at a time); bins beyond N−1 are computed but never used.
     void power4(std::size_t k, double out[4]) const {
         const double n = static_cast<double>(centred.size());
-        double coeff[4], s1[4] = {0, 0, 0, 0}, s2[4] = {0, 0, 0, 0};
-        for (int j = 0; j < 4; ++j) coeff[j] = 2.0 * std::cos(std::numbers::pi * static_cast<double>(k + j) / n);
-        for (double c : centred)
-            for (int j = 0; j < 4; ++j) {
-                const double v = c + coeff[j] * s1[j] - s2[j];
-                s2[j] = s1[j];
-                s1[j] = v;
-            }
-        for (int j = 0; j < 4; ++j)
-            out[j] = std::max(0.0, s1[j] * s1[j] + s2[j] * s2[j] - coeff[j] * s1[j] * s2[j]);
+        const double q0 = 2.0 * std::cos(std::numbers::pi * static_cast<double>(k) / n);
+        const double q1 = 2.0 * std::cos(std::numbers::pi * static_cast<double>(k + 1) / n);
+        const double q2 = 2.0 * std::cos(std::numbers::pi * static_cast<double>(k + 2) / n);
+        const double q3 = 2.0 * std::cos(std::numbers::pi * static_cast<double>(k + 3) / n);
+        // Named scalars rather than arrays so that all eight states stay in
+        // registers; (c − s2) first keeps one multiply and one add on each
+        // recurrence's critical path.
+        double a1 = 0, a2 = 0, b1 = 0, b2 = 0, c1 = 0, c2 = 0, d1 = 0, d2 = 0;
+        for (double c : centred) {
+            const double a = (c - a2) + q0 * a1;
+            const double b = (c - b2) + q1 * b1;
+            const double cc = (c - c2) + q2 * c1;
+            const double d = (c - d2) + q3 * d1;
+            a2 = a1, a1 = a;
+            b2 = b1, b1 = b;
+            c2 = c1, c1 = cc;
+            d2 = d1, d1 = d;
+        }
+        out[0] = std::max(0.0, a1 * a1 + a2 * a2 - q0 * a1 * a2);
+        out[1] = std::max(0.0, b1 * b1 + b2 * b2 - q1 * b1 * b2);
+        out[2] = std::max(0.0, c1 * c1 + c2 * c2 - q2 * c1 * c2);
+        out[3] = std::max(0.0, d1 * d1 + d2 * d2 - q3 * d1 * d2);
     }
 };
 
@@ -94,8 +108,17 @@ int window_for_columns(std::vector<Column>& cols, std::size_t n, double tau) {
     for (const auto& c : cols)
         if (!c.constant && c.total > 0.0) ++active;
     if (active == 0) return 1;  // constant data: MATLAB returns the data unsmoothed
+    // Bin 0 of a mean-free series is |Σc|², known from prepare(): the sweep
+    // starts at bin 1, which saves a whole block when ρ is 5…8.
+    double mean_cdf0 = 0.0;
+    for (auto& c : cols) {
+        if (c.constant || c.total <= 0.0) continue;
+        c.cumulative = c.bin0;
+        mean_cdf0 += c.cumulative / c.total;
+    }
+    if (mean_cdf0 / static_cast<double>(active) > tau) return window_from_rho(1, n);
     double block[4];
-    for (std::size_t k0 = 0; k0 < n; k0 += 4) {
+    for (std::size_t k0 = 1; k0 < n; k0 += 4) {
         double mean_cdf[4] = {0, 0, 0, 0};
         for (auto& c : cols) {
             if (c.constant || c.total <= 0.0) continue;
@@ -173,18 +196,33 @@ void gaussian_smooth(std::span<const double> x, int window, std::span<double> ou
     const long first_full = std::min(before, len);
     const long last_full = std::max(first_full, len - after);  // exclusive
     for (long i = 0; i < first_full; ++i) edge(i);
-    // Interior: every offset inside. Loop over offsets outside and samples
-    // inside, so the inner loop is independent multiply-adds the compiler
-    // vectorises, instead of one long dependent sum per sample.
+    // Interior: every offset inside. Four outputs at a time, each with its own
+    // running sum, so four independent multiply-add chains are in flight
+    // instead of one long dependent sum per sample.
     const double inv = 1.0 / full_sum;
     double* o = out.data();
-    for (long i = first_full; i < last_full; ++i) o[i] = 0.0;
-    for (long e = -before; e <= after; ++e) {
-        const double we = w[e] * inv;
-        const double* xe = xp + e;
-        for (long i = first_full; i < last_full; ++i) o[i] += we * xe[i];
+    long i = first_full;
+    for (; i + 4 <= last_full; i += 4) {
+        double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
+        const double* xi = xp + i;
+        for (long e = -before; e <= after; ++e) {
+            const double we = w[e];
+            a0 += we * xi[e];
+            a1 += we * xi[e + 1];
+            a2 += we * xi[e + 2];
+            a3 += we * xi[e + 3];
+        }
+        o[i] = a0 * inv;
+        o[i + 1] = a1 * inv;
+        o[i + 2] = a2 * inv;
+        o[i + 3] = a3 * inv;
     }
-    for (long i = last_full; i < len; ++i) edge(i);
+    for (; i < last_full; ++i) {
+        double a = 0.0;
+        for (long e = -before; e <= after; ++e) a += w[e] * xp[i + e];
+        o[i] = a * inv;
+    }
+    for (; i < len; ++i) edge(i);
 }
 
 std::vector<double> gaussian_smooth(std::span<const double> x, int window) {
