@@ -524,6 +524,11 @@ Status Session::save_trial() {
     return s;
 }
 
+Status Session::flush_dataset() {
+    if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR"};
+    return dataset_->flush();
+}
+
 Status Session::end_trial() {
     if (recording_) (void)record_stop();
     trial_open_ = false;

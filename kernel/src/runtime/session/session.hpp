@@ -106,6 +106,8 @@ public:
     bool recording() const { return recording_; }
     const TrialData& recorded() const { return data_; }
     Status save_trial();
+    // Make every saved trial durable and listed in the manifest (before analysing the dataset).
+    Status flush_dataset();
     Status end_trial();
     bool has_trial(const std::string& id) const;
     std::mt19937_64& trial_random() { return trial_rng_; }
