@@ -1,0 +1,120 @@
+// End to end through the program: rollsense features / evaluate / train on a
+// small recorded dataset, with the bagged_trees plugin loaded by the registry.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "rollsense/dataset.hpp"
+#include "rollsense/features.hpp"
+
+namespace fs = std::filesystem;
+using namespace rollsense;
+
+namespace {
+
+struct Run {
+    int status = -1;
+    std::string output;
+};
+
+Run rollsense_cli(const std::string& args) {
+    const std::string cmd = std::string(ROLLSENSE_BIN_DIR) + "/rollsense " + args + " 2>&1";
+    Run r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    REQUIRE(p != nullptr);
+    char buf[4096];
+    while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+std::vector<double> bump(std::size_t n, double amp, double centre, double width) {
+    std::vector<double> x(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double u = (static_cast<double>(i) - centre) / width;
+        x[i] = amp * std::exp(-0.5 * u * u);
+    }
+    return x;
+}
+
+// Three objects whose peaks differ in amplitude and spacing; one trial per
+// object stops on the sensor (incomplete ch3) and must be rejected.
+fs::path make_dataset() {
+    const auto dir = fs::temp_directory_path() / ("rollsense-test-cli-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    DatasetInfo info;
+    info.channels = {"ch1", "ch2", "ch3"};
+    auto w = DatasetWriter::open(dir / "dataset", info, DatasetOpenMode::create);
+    REQUIRE(w.ok());
+    const char* objects[] = {"C1", "P1", "S2"};
+    for (int o = 0; o < 3; ++o)
+        for (int r = 0; r < 12; ++r) {
+            TrialRecord rec;
+            rec.info.id = std::string(objects[o]) + "-r" + std::to_string(r);
+            rec.info.object = objects[o];
+            rec.info.speed = "10";
+            rec.info.repetition = r;
+            TrialData d;
+            const std::size_t n = 140;
+            for (std::size_t i = 0; i < n; ++i) d.time.push_back(static_cast<double>(i) / 31.1);
+            const double spacing = 12.0 + 6.0 * o + 0.3 * r;
+            const double stop = r == 11 ? 60.0 : 0.0;
+            d.channels = {bump(n, 0.2 + 0.1 * o, 35, 6), bump(n, 0.25 + 0.1 * o, 35 + spacing, 6),
+                          bump(n, 0.2 + 0.05 * o, 35 + 2 * spacing + stop, 6)};
+            d.valid.assign(n, 1);
+            rec.samples = n;
+            REQUIRE((*w)->add_trial(rec, d).ok());
+        }
+    REQUIRE((*w)->flush().ok());
+    return dir;
+}
+
+}  // namespace
+
+TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const auto features = dir / "features.csv";
+    auto r = rollsense_cli("features " + (dir / "dataset").string() + " -o " + features.string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("clean 33 of 36") && Catch::Contains("ch3 incomplete_end 3"));
+    auto rows = features::read_features_csv(features);
+    REQUIRE(rows.ok());
+    CHECK(rows->size() == 36);
+
+    r = rollsense_cli("evaluate " + features.string() + " --repeats 2 --folds 3 --set learners=10 -o " +
+                      (dir / "report.txt").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("2 x repeated stratified 3-fold") && Catch::Contains("Wilson"));
+    CHECK(fs::exists(dir / "report.txt"));
+
+    const auto model = dir / "model.rbt";
+    r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    std::ifstream in(model);
+    std::string first;
+    std::getline(in, first);
+    CHECK(first == "rollsense-bagged-trees 1");
+    fs::remove_all(dir);
+}
+
+TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][cli]") {
+    auto r = rollsense_cli("features /nonexistent/dataset -o /tmp/x.csv");
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("/nonexistent/dataset"));
+    r = rollsense_cli("features /tmp");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("-o FILE is required"));
+    r = rollsense_cli("evaluate /nonexistent.csv");
+    CHECK(r.status == 3);
+    r = rollsense_cli("evaluate /tmp --frobnicate");
+    CHECK(r.status == 2);
+}
