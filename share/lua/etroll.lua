@@ -27,7 +27,7 @@ M.config = {
   clamp_current = 120,     -- mA, constant clamping current of the pushing finger (steps 2-4)
   clamp_settle_ms = 300,   -- ms, let the clamp settle before rolling
   move_velocity = 40,      -- deg/s, fingers between rolls
-  roll_acceleration = 140, -- deg/s^2, sensing finger ramp (servo profile acceleration)
+  roll_ramp_ms = 100,      -- ms to reach the roll speed (sets the servo's profile acceleration)
   record_margin_ms = 45,   -- ms recorded before and after the sweep (start/stop latency)
   record_margin_jitter_ms = 15, -- ms, simulated latency spread (virtual clock only)
   winch_payout = 10,       -- mm of string paid out before rolling (step 2)
@@ -110,7 +110,7 @@ function M.roll(speed, opts)
   rs.wait(margin)
   sensing:move(opts.to or c.sensing_end, {
     velocity = speed * M.DXL_VELOCITY_UNIT_DPS,
-    acceleration = c.roll_acceleration,
+    acceleration = speed * M.DXL_VELOCITY_UNIT_DPS / (c.roll_ramp_ms / 1000),
   })
   rs.wait(margin)
   return rs.record_stop()
