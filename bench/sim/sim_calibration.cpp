@@ -4,14 +4,18 @@
 // target of simulation.md §6 beside the paper's value, plus the cost per frame.
 //
 //   sim_calibration [--runs N] [--seed S] [--features out.csv] [--set key=value ...]
+//   sim_calibration --dataset DIR [--features out.csv]
 //
 // --set overrides a sim parameter (any key of the plugin's schema), which is how
 // the free parameters were fitted. --features writes the 13 features of every
 // trial for an external classifier check (bench/sim/check_classifier.py).
+// --dataset judges a dataset recorded by `rollsense run` (manifest.csv + trial
+// CSVs with ch1..ch3 columns) by the same rule: the cross-check through the kernel.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <ctime>
 #include <fstream>
 #include <map>
@@ -35,6 +39,7 @@ struct Options {
     int runs = 50;
     std::uint64_t seed = 2024;
     std::string features;
+    std::string dataset;
     std::map<std::string, ParamValue> overrides;
 };
 
@@ -45,6 +50,7 @@ bool parse(int argc, char** argv, Options& o) {
         if (a == "--runs") o.runs = std::stoi(next());
         else if (a == "--seed") o.seed = std::stoull(next());
         else if (a == "--features") o.features = next();
+        else if (a == "--dataset") o.dataset = next();
         else if (a == "--set") {
             const std::string kv = next();
             const auto eq = kv.find('=');
@@ -87,11 +93,96 @@ struct Stats {
     double max() const { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
 };
 
+// Judge every trial of a recorded dataset (the kernel's run through the plugin).
+int judge_dataset(const Options& opt) {
+    const std::filesystem::path dir = opt.dataset;
+    auto manifest = csv::Reader::open(dir / "manifest.csv");
+    if (!manifest) {
+        std::fprintf(stderr, "%s\n", manifest.error().describe().c_str());
+        return 1;
+    }
+    auto c_file = manifest->column("file");
+    auto c_object = manifest->column("object");
+    auto c_speed = manifest->column("speed");
+    auto c_id = manifest->column("trial_id");
+    if (!c_file || !c_object || !c_speed || !c_id) {
+        std::fprintf(stderr, "%s: manifest lacks trial_id/file/object/speed columns\n", dir.string().c_str());
+        return 1;
+    }
+    std::map<std::string, Stats> samples;
+    std::map<std::string, std::pair<int, int>> per_object;  // clean, total
+    int trials = 0, clean = 0, cyl = 0, cyl_clean = 0, all_above = 0;
+    std::string features_csv =
+        "trial_id,object,speed,repetition,clean,reason,F1,F2,F3,F4,F5,F6,F7,F8,F9,F10,F11,F12,F13\n";
+    std::vector<std::string> row, fields;
+    while (true) {
+        auto more = manifest->next(row);
+        if (!more) {
+            std::fprintf(stderr, "%s\n", more.error().describe().c_str());
+            return 1;
+        }
+        if (!more.value()) break;
+        auto trial = csv::Reader::open(dir / row[*c_file]);
+        if (!trial) {
+            std::fprintf(stderr, "%s\n", trial.error().describe().c_str());
+            return 1;
+        }
+        std::array<std::size_t, 3> cols{};
+        for (std::size_t c = 0; c < 3; ++c) {
+            auto idx = trial->column("ch" + std::to_string(c + 1));
+            if (!idx) {
+                std::fprintf(stderr, "%s\n", idx.error().describe().c_str());
+                return 1;
+            }
+            cols[c] = idx.value();
+        }
+        std::array<std::vector<double>, 3> ch;
+        while (true) {
+            auto got = trial->next(fields);
+            if (!got || !got.value()) break;
+            for (std::size_t c = 0; c < 3; ++c) {
+                auto v = trial->number(fields, cols[c]);
+                ch[c].push_back(v ? v.value() : std::nan(""));
+            }
+        }
+        const std::string& object = row[*c_object];
+        const auto verdict = bench::judge_trial(ch);
+        ++trials;
+        samples[row[*c_speed]].add(static_cast<double>(ch[0].size()));
+        auto& po = per_object[object];
+        ++po.second;
+        if (verdict.all_above_threshold) ++all_above;
+        if (object[0] == 'C') ++cyl;
+        if (verdict.clean) {
+            ++clean;
+            ++po.first;
+            if (object[0] == 'C') ++cyl_clean;
+        }
+        std::vector<std::string> out{row[*c_id], object, row[*c_speed], "0", verdict.clean ? "1" : "0", verdict.reason};
+        for (double f : verdict.features) out.push_back(std::isfinite(f) ? csv::format_number(f) : "");
+        csv::append_row(features_csv, out);
+    }
+    std::printf("dataset %s: %d trials\n", dir.string().c_str(), trials);
+    for (const auto& [speed, s] : samples)
+        std::printf("samples per trial, speed %s: %.1f +- %.1f [%g..%g]\n", speed.c_str(), s.mean(), s.sd(), s.min(), s.max());
+    std::printf("clean %d/%d = %.1f %% (cylinders %d/%d, polygons %d/%d); every channel > 0.01 in %d/%d\n", clean, trials,
+                100.0 * clean / std::max(1, trials), cyl_clean, cyl, clean - cyl_clean, trials - cyl, all_above, trials);
+    std::printf("clean per object:");
+    for (const auto& [o, n] : per_object) std::printf(" %s %d/%d", o.c_str(), n.first, n.second);
+    std::printf("\n");
+    if (!opt.features.empty()) {
+        std::ofstream(opt.features) << features_csv;
+        std::printf("features written to %s\n", opt.features.c_str());
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     Options opt;
     if (!parse(argc, argv, opt)) return 2;
+    if (!opt.dataset.empty()) return judge_dataset(opt);
     auto params = validate_params(sim_schema(), opt.overrides, "sim_calibration --set");
     if (!params) {
         std::fprintf(stderr, "%s\n", params.error().describe().c_str());
