@@ -63,6 +63,7 @@ void TrialModel::start(double time, double theta) {
     }
     last_theta_ = theta;
     last_time_ = time;
+    start_time_ = time;
     speed_ = 0.0;
     line_load_prev_ = 0.0;
     started_ = true;
@@ -103,7 +104,7 @@ void TrialModel::compute_stress(double time, double theta, double clamp_current)
     double modulation = 0.0;
     if (omega > 0.2 * p_.palm_reference_speed)
         modulation = p_.palm_oscillation * std::min(2.0, p_.palm_reference_speed / omega);
-    load *= 1.0 + modulation * std::sin(2.0 * kPi * draws_.palm_frequency * time + draws_.palm_phase);
+    load *= 1.0 + modulation * std::sin(2.0 * kPi * draws_.palm_frequency * (time - start_time_) + draws_.palm_phase);
 
     if (cylinder_) {
         load *= p_.hand.array_distance / std::max(lever, 10.0);

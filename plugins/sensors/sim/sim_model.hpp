@@ -108,6 +108,7 @@ private:
     std::optional<PolygonTumbler> polygon_;
     std::array<double, kChannels> stress_{};
     bool started_ = false;
+    double start_time_ = 0.0;  // recording start: times inside a trial are relative to it (resume-identical)
     double last_theta_ = 0.0, last_time_ = 0.0, speed_ = 0.0;  // speed in rad/s, low-passed
     double contact_ = 0.0, line_load_ = 0.0, line_load_prev_ = 0.0;
 };
