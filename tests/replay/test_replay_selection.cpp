@@ -73,7 +73,7 @@ TEST_CASE("select = order plays the manifest's trials one after the other", "[re
           std::string::npos);
 }
 
-TEST_CASE("call('select') pins the next trial; call('trials') lists them", "[replay][select]") {
+TEST_CASE("call('select') pins the next trial, call('trials') lists them", "[replay][select]") {
     rt::TempDir dir;
     rt::write_dataset(dir / "ds", kTrials);
     auto s = rt::open_replay(dir / "ds");

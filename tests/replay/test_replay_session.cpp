@@ -36,7 +36,9 @@ runtime::RunSummary run(const runtime::SessionOptions& o) {
 }
 
 const fs::path kPaperScript = fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua";
-const std::vector<std::string> kExperiment = {"runs=2", "objects=C1,P1", "speeds=10,20"};
+// Small enough to run in seconds, large enough for the script's 5-fold
+// evaluation at its end (rs.analyse: features.csv, evaluation.txt, model).
+const std::vector<std::string> kExperiment = {"runs=3", "objects=C1,P1", "speeds=10,20"};
 
 std::vector<std::string> with(std::vector<std::string> a, const std::string& kv) {
     a.push_back(kv);
@@ -52,6 +54,20 @@ DatasetReader open_dataset(const fs::path& dir) {
 
 bool same_value(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 
+// evaluation.txt without its wall-clock line ("evaluation took 0.3 s").
+std::string evaluation_text(const fs::path& file) {
+    std::string text = rt::read_file(file), out;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        auto end = text.find('\n', pos);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(pos, end - pos);
+        if (line.rfind("evaluation took", 0) != 0) out += line + "\n";
+        pos = end + 1;
+    }
+    return out;
+}
+
 }  // namespace
 
 TEST_CASE("paper_experiment.lua re-run on the replay profile reproduces the recording and its features",
@@ -61,7 +77,7 @@ TEST_CASE("paper_experiment.lua re-run on the replay profile reproduces the reco
     auto recorded = run(session_options(kPaperScript, "mock", dir / "recorded", 11, kExperiment));
     INFO(recorded.status.message());
     REQUIRE(recorded.status.ok());
-    REQUIRE(recorded.trials_saved == 8);
+    REQUIRE(recorded.trials_saved == 12);
 
     // Replay it through the same script with the recording's seed.
     rt::LogCapture log;
@@ -69,7 +85,7 @@ TEST_CASE("paper_experiment.lua re-run on the replay profile reproduces the reco
                                         with(kExperiment, "dataset=" + (dir / "recorded").string())));
     INFO(replayed.status.message());
     REQUIRE(replayed.status.ok());
-    REQUIRE(replayed.trials_saved == 8);
+    REQUIRE(replayed.trials_saved == 12);
     INFO(log.all());
     CHECK(log.lines().empty());  // no roll mismatch, no seed warning, nothing left unplayed
 
@@ -88,7 +104,7 @@ TEST_CASE("paper_experiment.lua re-run on the replay profile reproduces the reco
     auto fb = features::extract_dataset(b, {}, 1);
     REQUIRE(fa.ok());
     REQUIRE(fb.ok());
-    REQUIRE(fa->size() == 8);
+    REQUIRE(fa->size() == 12);
     REQUIRE(fb->size() == fa->size());
     for (std::size_t i = 0; i < fa->size(); ++i) {
         const auto &x = (*fa)[i], &y = (*fb)[i];
@@ -100,12 +116,23 @@ TEST_CASE("paper_experiment.lua re-run on the replay profile reproduces the reco
         for (std::size_t k = 0; k < features::kFeatureCount; ++k) CHECK(same_value(x.values[k], y.values[k]));
     }
     CHECK(features::format_features_csv(*fa) == features::format_features_csv(*fb));
+
+    // The script's own analysis (rs.analyse at its end) agrees too: the same
+    // features file, the same evaluation, and features equal to extracting
+    // the recorded dataset directly.
+    const std::string recorded_features = rt::read_file(dir / "recorded/features.csv");
+    REQUIRE_FALSE(recorded_features.empty());
+    CHECK(rt::read_file(dir / "replayed/features.csv") == recorded_features);
+    CHECK(recorded_features == features::format_features_csv(*fa));
+    const std::string recorded_evaluation = evaluation_text(dir / "recorded/evaluation.txt");
+    REQUIRE_FALSE(recorded_evaluation.empty());
+    CHECK(evaluation_text(dir / "replayed/evaluation.txt") == recorded_evaluation);
 }
 
 TEST_CASE("a replay with another seed plays by time and marks what the recording lacks",
           "[replay][session][seed]") {
     rt::TempDir dir;
-    const std::vector<std::string> one = {"runs=3", "objects=C1", "speeds=20"};
+    const std::vector<std::string> one = {"runs=3", "objects=C1", "speeds=20", "analyse=false"};
     REQUIRE(run(session_options(kPaperScript, "mock", dir / "recorded", 11, one)).status.ok());
     rt::LogCapture log;
     auto replayed = run(session_options(kPaperScript, "replay", dir / "replayed", 12,
@@ -177,7 +204,7 @@ rs.end_trial()
 TEST_CASE("a bad trial file stops the replay with its place, and the trials before it are kept",
           "[replay][session][malformed]") {
     rt::TempDir dir;
-    const std::vector<std::string> two = {"runs=2", "objects=C1", "speeds=10"};
+    const std::vector<std::string> two = {"runs=2", "objects=C1", "speeds=10", "analyse=false"};
     REQUIRE(run(session_options(kPaperScript, "mock", dir / "recorded", 5, two)).status.ok());
     // Break the second trial's third row.
     const fs::path bad = dir / "recorded/trials/C1-v10-r002.csv";
