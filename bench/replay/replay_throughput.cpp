@@ -126,7 +126,7 @@ runtime::RunSummary run_session(const std::string& profile, const fs::path& out,
 void bench_session(const fs::path& dir, int runs) {
     auto rec = run_session("mock", dir / "recorded", runs, {});
     auto rep = run_session("replay", dir / "replayed", runs, dir / "recorded");
-    std::printf("session  paper_experiment.lua, %zu trials (virtual clock, %.0f s of run time each):\n",
+    std::printf("session  paper_experiment.lua, %zu trials (virtual clock, %.0f s of run time in all):\n",
                 rec.trials_saved, rec.run_time_s);
     std::printf("         recorded on mock:   %.3f s wall = %.1f trials/s\n", rec.wall_time_s,
                 rec.trials_saved / rec.wall_time_s);
