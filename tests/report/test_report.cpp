@@ -246,7 +246,7 @@ TEST_CASE("the tables carry the evaluation's figures", "[report][structure]") {
 
     // The paper's analyses: ours from the evaluation, the paper's numbers beside them.
     const auto paper = table_rows(element(h, "table", "paper-comparison"));
-    REQUIRE(paper.size() == 12);
+    REQUIRE(paper.size() == 13);
     const auto& a = ev.analysis;
     auto count = [](const learn::Count& c) {
         return std::to_string(c.k) + " / " + std::to_string(c.n) + " (" + percent(c.fraction()) + ")";
@@ -257,6 +257,9 @@ TEST_CASE("the tables carry the evaluation's figures", "[report][structure]") {
     CHECK(paper[6][1] == count(a.cylinders_misclassified));
     CHECK(paper[6][2] == "7 / 450 (1.6\u00a0%)");
     CHECK(paper[7][1] == count(a.polygon_edge_correct));
+    // 120 samples at 31.1 Hz: the fast speed's recordings.
+    CHECK_THAT(paper[12][0], Catch::Contains("fastest speed, 20"));
+    CHECK(paper[12][1] == fixed(120 / 31.1, 2) + " s");
 
     // Without --optimize the tuned rows say how to get them.
     const auto protocols = table_rows(element(h, "table", "protocols"));

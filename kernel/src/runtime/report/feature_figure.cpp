@@ -34,8 +34,8 @@ std::optional<std::size_t> pick_feature_trial(const DatasetReader& dataset,
 }
 
 std::string feature_figure(const PlottedTrial& t, const std::string& id) {
-    const double width = 1000.0, height = 470.0;
-    const double left = 60.0, right = 30.0, top = 110.0, bottom = 60.0;
+    const double width = 1000.0, height = 520.0;
+    const double left = 60.0, right = 30.0, top = 110.0, bottom = 110.0;
     Svg svg(width, height, id, "The 13 features of trial " + t.info.id + " drawn on its smoothed peaks");
     const auto& ch = t.features.channels;
 
@@ -65,7 +65,7 @@ std::string feature_figure(const PlottedTrial& t, const std::string& id) {
     svg.line(left, height - bottom, width - right, height - bottom, axis);
     svg.line(left, top - 10.0, left, height - bottom, axis);
     svg.line(left, sy(0.0), width - right, sy(0.0), {"#bbb", 0.8, "2 3"});
-    svg.text((left + width - right) / 2.0, height - 20.0, "time (samples; only ratios of times become features)",
+    svg.text((left + width - right) / 2.0, height - 14.0, "time (samples; only ratios of times become features)",
              {12.0, Anchor::middle});
     svg.text(18.0, (top + height - bottom) / 2.0, "smoothed reading", {12.0, Anchor::middle, false, "#000", -90.0});
     svg.text(left - 6.0, sy(0.0) + 4.0, "0", {11.0, Anchor::end});
@@ -88,13 +88,21 @@ std::string feature_figure(const PlottedTrial& t, const std::string& id) {
         const double xm = sx(p.t_max);
         svg.arrow(xm, sy(0.0), xm, sy(p.amplitude), dashed, false, true);
         svg.text(xm + 4.0, sy(p.amplitude) - 6.0, "F" + cn[c] + " amplitude", {11.0, Anchor::start, true, colour});
-        // Width: the 5 % crossings; the skewness compares its mid-point with the maximum.
-        const double level5 = sy(p.peak.max * 0.05) + 10.0 + 9.0 * static_cast<double>(c);
+        // Width: the 5 % crossings, one band per channel under the axis; the
+        // skewness compares its mid-point (tick) with the maximum.
+        const double level5 = height - bottom + 18.0 + 17.0 * static_cast<double>(c);
+        svg.line(sx(p.t_start), sy(p.peak.max * 0.05), sx(p.t_start), level5, {colour, 0.8, "2 2"});
+        svg.line(sx(p.t_end), sy(p.peak.max * 0.05), sx(p.t_end), level5, {colour, 0.8, "2 2"});
         svg.arrow(sx(p.t_start), level5, sx(p.t_end), level5, mark, true, true);
-        const char* width_label = c == 0 ? "width ch1 (F10 = ÷ width ch2)"
-                                  : c == 1 ? "width ch2 (divides F7–F13)"
-                                           : "width ch3 (F11 = ÷ width ch2)";
-        svg.text(sx(p.t_end) + 4.0, level5 + 4.0, width_label, {10.0, Anchor::start, false, colour});
+        const std::string width_label = c == 0 ? "width ch1 (F10 = width ch1 / width ch2)"
+                                        : c == 1 ? "width ch2 (the divisor of F7–F13)"
+                                                 : "width ch3 (F11 = width ch3 / width ch2)";
+        // Right of the bar if it fits, else left of it (about 5.5 px per character).
+        const double label_w = 5.5 * static_cast<double>(width_label.size());
+        if (sx(p.t_end) + 6.0 + label_w < width)
+            svg.text(sx(p.t_end) + 6.0, level5 + 4.0, width_label, {10.0, Anchor::start, false, colour});
+        else
+            svg.text(sx(p.t_start) - 6.0, level5 + 4.0, width_label, {10.0, Anchor::end, false, colour});
         const double mid = sx(0.5 * (p.t_start + p.t_end));
         svg.line(mid, level5 - 5.0, mid, level5 + 5.0, {colour, 2.0, {}});
         // Half-width: the extent at or above half the maximum.
@@ -104,7 +112,7 @@ std::string feature_figure(const PlottedTrial& t, const std::string& id) {
         svg.text(sx(t.x[h1]) + 4.0, y50 - 3.0, "F" + std::to_string(7 + c) + " half-width",
                  {10.0, Anchor::start, false, colour});
         // Skewness label next to the maximum: (mid-point − t_max) / width.
-        svg.text(xm + 4.0, sy(p.amplitude) + 8.0, "F" + std::to_string(4 + c) + " skew " + fixed(p.skewness, 2),
+        svg.text(xm + 9.0, sy(p.amplitude) + 9.0, "F" + std::to_string(4 + c) + " skew " + fixed(p.skewness, 2),
                  {10.0, Anchor::start, false, colour});
     }
     // Time between maxima, above the peaks.

@@ -147,7 +147,9 @@ Result<std::string> peak_grid_figure(const DatasetReader& dataset, const TrialSe
                     if (std::isfinite(t->smoothed[c][i])) pts.emplace_back(sx(t->x[i]), sy(t->smoothed[c][i]));
                 svg.polyline(pts, {channel_colour(c), 1.6, {}});
             }
-            const std::string tag(1, static_cast<char>('A' + letter % 26));
+            // A…Z, then AA, AB, … as a spreadsheet labels columns.
+            std::string tag;
+            for (int k = letter + 1; k > 0; k = (k - 1) / 26) tag.insert(tag.begin(), static_cast<char>('A' + (k - 1) % 26));
             ++letter;
             svg.text(x0 + 6.0, y0 + 15.0, tag, {12.0, Anchor::start, true});
             svg.text(x0 + cell_w - 6.0, y0 + 15.0, t->info.id, {10.0, Anchor::end, false, "#555"});

@@ -98,7 +98,7 @@ std::string breakdown_table(const std::vector<BreakdownRow>& rows, const std::st
     return h + "</tbody></table>\n";
 }
 
-std::string paper_comparison_table(const learn::PaperAnalysis& ours) {
+std::string paper_comparison_table(const learn::PaperAnalysis& ours, const std::vector<ExtraRow>& extra) {
     const learn::PaperAnalysis& paper = learn::paper_figures();
     struct Line {
         const char* label;
@@ -108,7 +108,7 @@ std::string paper_comparison_table(const learn::PaperAnalysis& ours) {
         {"clean trials / collected", &learn::PaperAnalysis::clean},
         {"cylinder trials clean", &learn::PaperAnalysis::cylinders_clean},
         {"polygon trials clean", &learn::PaperAnalysis::polygons_clean},
-        {"accuracy, one 5-fold CV (correct / clean)", &learn::PaperAnalysis::accuracy},
+        {"accuracy, first CV repetition (correct / clean)", &learn::PaperAnalysis::accuracy},
         {"cylinder vs polygon correct", &learn::PaperAnalysis::family_correct},
         {"cylinders misclassified", &learn::PaperAnalysis::cylinders_misclassified},
         {"polygons with the correct base edge length", &learn::PaperAnalysis::polygon_edge_correct},
@@ -124,6 +124,7 @@ std::string paper_comparison_table(const learn::PaperAnalysis& ours) {
         h += "<tr>" + td(l.label) + td(count(ours.*l.field), true) +
              td(no_count ? "almost perfectly separated" : count(paper.*l.field), true) + "</tr>\n";
     }
+    for (const auto& e : extra) h += "<tr>" + td(e.label) + td(e.ours, true) + td(e.paper, true) + "</tr>\n";
     h += "</tbody></table>\n";
     if (!ours.unknown_objects.empty()) {
         h += "<p class=\"note\">Objects not in the catalogue, left out of the shape rows:";

@@ -15,8 +15,12 @@ namespace rollsense::report {
 std::string accuracy_table(const learn::EvaluationReport& report, const std::string& classifier);
 std::string breakdown_table(const std::vector<BreakdownRow>& rows, const std::string& what,
                             const learn::ConfusionMatrix* pooled);
-// method.md §6: each of the paper's analyses for this data, beside the paper's number.
-std::string paper_comparison_table(const learn::PaperAnalysis& ours);
+// method.md §6: each of the paper's analyses for this data, beside the paper's
+// number; `extra` rows come from elsewhere (e.g. the recording's durations).
+struct ExtraRow {
+    std::string label, ours, paper;
+};
+std::string paper_comparison_table(const learn::PaperAnalysis& ours, const std::vector<ExtraRow>& extra = {});
 // The parameters used, and with tuning the ones the optimiser chose (per outer fold for nested CV).
 std::string hyperparameter_table(const learn::EvaluationReport& report);
 // Preset CV, tuned-on-the-same-folds (optimistic) and nested CV side by side.
