@@ -12,6 +12,7 @@
 #include "runtime/learn/plugin_factory.hpp"
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
+#include "runtime/report/report.hpp"
 
 namespace rollsense::runtime::lua_api {
 namespace {
@@ -70,7 +71,18 @@ int l_analyse(lua_State* L) {
     check(L, report.status());
     const std::string text = learn::format_report(*report);
     check(L, s.write_output_text("evaluation.txt", text));
-    std::fprintf(stderr, "\n%s\n", text.c_str());
+
+    // report.html: the paper's figures and tables for this dataset, and the terminal summary.
+    report::ReportInputs ri;
+    ri.dataset_dir = s.output_dir();
+    ri.rows = *rows;
+    ri.evaluation = *report;
+    ri.classifier = plugin;
+    ri.command_line = s.options().command_line;
+    auto page = report::write_report(ri);
+    check(L, page.status());
+    std::fprintf(stderr, "\n%s", report::text_summary(ri).c_str());
+    log_info("analysis", "report written to " + page->string() + "; the full evaluation is in evaluation.txt");
 
     auto final_model = learn::fit_final(*rows, *factory, eo);
     check(L, final_model.status());
@@ -103,6 +115,8 @@ int l_analyse(lua_State* L) {
     lua_setfield(L, -2, "model");
     lua_pushstring(L, (s.output_dir() / "features.csv").c_str());
     lua_setfield(L, -2, "features");
+    lua_pushstring(L, page->c_str());
+    lua_setfield(L, -2, "report");
     return 1;
 }
 
