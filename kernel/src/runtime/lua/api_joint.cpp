@@ -53,11 +53,7 @@ int l_move(lua_State* L) {
     Joint& j = check_joint(L, 1);
     const double goal = luaL_checknumber(L, 2);
     JointCommand c;
-    c.mode = j.info.modes.front() == ControlMode::extended_position ? ControlMode::extended_position
-                                                                    : ControlMode::position;
-    if (std::find(j.info.modes.begin(), j.info.modes.end(), ControlMode::position) != j.info.modes.end() &&
-        c.mode != ControlMode::extended_position)
-        c.mode = ControlMode::position;
+    c.mode = position_mode_of(j.info);
     c.position = goal;
     c.profile_velocity = opt_field_number(L, 3, "velocity", j.limit.max_velocity);
     c.profile_acceleration = opt_field_number(L, 3, "acceleration", 0);
@@ -106,11 +102,7 @@ int l_spin(lua_State* L) {
 // j:hold(): position mode at the present position.
 int l_hold(lua_State* L) {
     Joint& j = check_joint(L, 1);
-    JointCommand c;
-    c.mode = j.info.modes.front() == ControlMode::extended_position ? ControlMode::extended_position
-                                                                    : ControlMode::position;
-    c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
-    command_or_raise(L, j, c);
+    command_or_raise(L, j, hold_command(j));
     return 0;
 }
 

@@ -19,6 +19,19 @@ bool is_position_mode(ControlMode m) {
 }
 }  // namespace
 
+ControlMode position_mode_of(const JointInfo& info) {
+    return !info.modes.empty() && info.modes.front() == ControlMode::extended_position ? ControlMode::extended_position
+                                                                                      : ControlMode::position;
+}
+
+JointCommand hold_command(const Joint& j) {
+    JointCommand c;
+    c.mode = position_mode_of(j.info);
+    c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
+    c.profile_velocity = j.limit.max_velocity;
+    return c;
+}
+
 Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegistry& registry,
                                              const std::filesystem::path& share_dir) {
     std::unique_ptr<Robot> r(new Robot());
@@ -188,14 +201,7 @@ Status Robot::activate(double time) {
             if (auto st = a.handle->activate(); !st.ok()) return st;
     // Latch the measured position as the command: no jump to a stale goal.
     if (auto st = read_actuators(time); !st.ok()) return st;
-    for (auto& j : joints_) {
-        j.command = JointCommand{};
-        j.command.mode = j.info.modes.empty() || j.info.modes.front() == ControlMode::current
-                             ? ControlMode::position
-                             : j.info.modes.front();
-        j.command.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
-        j.command.profile_velocity = j.limit.max_velocity;
-    }
+    for (auto& j : joints_) j.command = hold_command(j);
     return {};
 }
 
@@ -238,12 +244,8 @@ std::vector<JointCommand> Robot::safe_commands(const ActuatorHandle& actuator) c
     std::vector<JointCommand> out;
     for (const auto& j : joints_) {
         if (j.actuator != &actuator) continue;
-        JointCommand c;
-        c.mode = j.info.modes.empty() || j.info.modes.front() == ControlMode::current ? ControlMode::position
-                                                                                     : j.info.modes.front();
-        c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
+        JointCommand c = hold_command(j);
         c.torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty();
-        c.profile_velocity = j.limit.max_velocity;
         out.push_back(c);
     }
     return out;

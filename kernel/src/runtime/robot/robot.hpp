@@ -25,6 +25,13 @@ struct Joint {
     JointState state;
 };
 
+// The position mode a joint holds and moves in: extended position where that is
+// the joint's default (a multi-turn winch), plain position otherwise.
+ControlMode position_mode_of(const JointInfo& info);
+// "Stay where you are": the joint's position mode at its present position,
+// clamped into its limits. Used on activation, for the safe state and by hold().
+JointCommand hold_command(const Joint& joint);
+
 class Robot final : public JointAccess {
 public:
     // Creates and configures every device of the profile (parameters checked

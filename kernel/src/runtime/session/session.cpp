@@ -535,9 +535,9 @@ Status Session::end_trial() {
     return robot_->end_trial();
 }
 
-bool Session::has_trial(const std::string& id) const {
+bool Session::has_trial(const std::string& id) {
     if (!dataset_ || !dataset_->has_trial(id)) return false;
-    const_cast<Session*>(this)->trials_skipped_++;
+    ++trials_skipped_;
     return true;
 }
 

@@ -109,7 +109,8 @@ public:
     // Make every saved trial durable and listed in the manifest (before analysing the dataset).
     Status flush_dataset();
     Status end_trial();
-    bool has_trial(const std::string& id) const;
+    // Already in the dataset (a resumed run skips it; counted as skipped).
+    bool has_trial(const std::string& id);
     std::mt19937_64& trial_random() { return trial_rng_; }
 
     void spawn(lua_State* L, int function_index, std::string name);
