@@ -1,9 +1,11 @@
 // rollsense-dxl-emu: a bus of emulated X-series servos on a pseudo-terminal.
 //
 //   rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]
-//                     [--wire-baud N] [--status-every SECONDS]
+//                     [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]
+//                     [--baud N] [--wire-baud N|line|0] [--status-every SECONDS]
 //
-// Without --servo it emulates the E-TRoll bus (ids 1-4). It prints the pty
+// Without --servo it emulates the E-TRoll bus (ids 1-4) holding an object
+// between the fingers (clamped_object.hpp). It prints the pty
 // path (and makes --link a symlink to it) so a profile can point its `device`
 // there; it runs until Ctrl-C.
 #include <unistd.h>
@@ -12,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -30,12 +33,22 @@ int usage(const char* why) {
     if (why) std::fprintf(stderr, "rollsense-dxl-emu: %s\n", why);
     std::fprintf(stderr,
                  "usage: rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]\n"
+                 "                         [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]\n"
                  "                         [--wire-baud N] [--status-every SECONDS]\n"
                  "  --servo         one emulated servo (repeatable); default: the E-TRoll bus,\n"
                  "                  1-3 XM430-W350 (position), 4 XL330-M288 (extended_position)\n"
                  "                  MODE: position|extended_position|current|current_based_position|velocity\n"
                  "  --link PATH     also create PATH as a symlink to the pty (removed on exit)\n"
-                 "  --wire-baud N   delay replies as a real bus at N baud would (default: instant)\n"
+                 "  --object        an object between the fingers (servos 1 sensing, 2 pushing, 3 palm):\n"
+                 "                  its effective width in mm (object + both fingers' thickness);\n"
+                 "                  default 65 on the E-TRoll bus, none with --servo\n"
+                 "  --object-lever  joint axes to the contact along the fingers, mm (default 60)\n"
+                 "  --palm          palm width per palm-servo degree and at its centre tick\n"
+                 "                  (default 0.349:65, the etroll profile's radius 10, ratio 2, offset 65)\n"
+                 "  --baud N        every servo's Baud Rate item (default: 1000000 on the E-TRoll bus,\n"
+                 "                  as configured at bring-up; 57600, the factory value, with --servo)\n"
+                 "  --wire-baud N   delay replies as a real bus at N baud would; 'line' (default): at the\n"
+                 "                  rate the client set on the port; 0: answer instantly\n"
                  "  --status-every  print every servo's state each SECONDS (default: off)\n");
     return 2;
 }
@@ -44,10 +57,15 @@ int usage(const char* why) {
 
 int main(int argc, char** argv) {
     BusEmulator bus;
+    std::vector<ServoSetup> servos;
     bool any = false;
     std::string link;
     PtyEmulatorOptions options;
+    options.wire_baud_from_line = true;
+    std::optional<std::uint8_t> baud_index;
     double status_every = 0;
+    std::optional<bool> object_wanted;  // default: an object on the E-TRoll bus only
+    ClampedObject geometry;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
@@ -57,17 +75,49 @@ int main(int argc, char** argv) {
             if (!v) return usage("--servo needs a value");
             auto s = parse_servo_spec(v);
             if (!s.ok()) return usage(s.error().message.c_str());
-            if (bus.servo(s->id)) return usage(("servo id " + std::to_string(s->id) + " given twice").c_str());
-            bus.add_servo(*s);
+            for (const auto& other : servos)
+                if (other.id == s->id) return usage(("servo id " + std::to_string(s->id) + " given twice").c_str());
+            servos.push_back(*s);
             any = true;
         } else if (a == "--link") {
             const char* v = value();
             if (!v) return usage("--link needs a path");
             link = v;
+        } else if (a == "--object") {
+            const char* v = value();
+            if (!v) return usage("--object needs a width in mm or 'none'");
+            object_wanted = std::string(v) != "none";
+            if (*object_wanted) {
+                char* end = nullptr;
+                geometry.effective_width_mm = std::strtod(v, &end);
+                if (*end != '\0' || geometry.effective_width_mm <= 0)
+                    return usage(("--object: bad width '" + std::string(v) + "' (a positive number of mm, or none)").c_str());
+            }
+        } else if (a == "--object-lever") {
+            const char* v = value();
+            char* end = nullptr;
+            geometry.lever_mm = v ? std::strtod(v, &end) : 0.0;
+            if (!v || *end != '\0' || geometry.lever_mm <= 0) return usage("--object-lever needs a positive length in mm");
+        } else if (a == "--palm") {
+            const char* v = value();
+            char* end = nullptr;
+            if (v) geometry.palm_mm_per_degree = std::strtod(v, &end);
+            if (!v || *end != ':' || geometry.palm_mm_per_degree == 0)
+                return usage("--palm needs MM_PER_DEG:CENTRE_MM, e.g. 0.349:65");
+            const char* centre = end + 1;
+            geometry.palm_centre_mm = std::strtod(centre, &end);
+            if (*end != '\0' || end == centre) return usage("--palm needs MM_PER_DEG:CENTRE_MM, e.g. 0.349:65");
+        } else if (a == "--baud") {
+            const char* v = value();
+            const auto index = v ? index_from_baud(static_cast<std::uint32_t>(std::strtoul(v, nullptr, 10)))
+                                 : std::nullopt;
+            if (!index) return usage("--baud needs a Dynamixel rate (9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000)");
+            baud_index = *index;
         } else if (a == "--wire-baud") {
             const char* v = value();
-            if (!v) return usage("--wire-baud needs a rate");
-            options.wire_baud = static_cast<std::uint32_t>(std::strtoul(v, nullptr, 10));
+            if (!v) return usage("--wire-baud needs a rate, 'line' or 0");
+            options.wire_baud_from_line = std::string(v) == "line";
+            options.wire_baud = options.wire_baud_from_line ? 0 : static_cast<std::uint32_t>(std::strtoul(v, nullptr, 10));
         } else if (a == "--status-every") {
             const char* v = value();
             if (!v) return usage("--status-every needs seconds");
@@ -76,8 +126,22 @@ int main(int argc, char** argv) {
             return usage(("unknown argument '" + a + "'").c_str());
         }
     }
-    if (!any)
-        for (const auto& s : etroll_servos()) bus.add_servo(s);
+    if (!any) {
+        servos = etroll_servos();
+        if (!baud_index) baud_index = index_from_baud(1'000'000);
+    }
+    for (auto& s : servos) {
+        if (baud_index) s.baud_index = *baud_index;
+        bus.add_servo(s);
+    }
+    if (object_wanted.value_or(!any)) {
+        for (auto id : {geometry.sensing_id, geometry.pushing_id, geometry.palm_id})
+            if (!bus.servo(id))
+                return usage(("--object needs servos 1 (sensing), 2 (pushing) and 3 (palm); servo " +
+                              std::to_string(id) + " is not on the bus")
+                                 .c_str());
+        bus.set_clamped_object(geometry);
+    }
 
     auto emu = PtyBusEmulator::start(std::move(bus), options);
     if (!emu.ok()) {

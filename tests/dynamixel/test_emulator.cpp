@@ -4,6 +4,8 @@
 #include "rollsense/hal/dynamixel/bus_emulator.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 
+#include <cmath>
+
 using namespace rollsense::hal::dxl;
 
 namespace {
@@ -189,4 +191,45 @@ TEST_CASE("servo specs parse and explain what is wrong") {
     CHECK(parse_servo_spec("1:AX-12").error().message.find("unknown model") != std::string::npos);
     CHECK(parse_servo_spec("300:XM430-W350").error().message.find("bad id") != std::string::npos);
     CHECK(parse_servo_spec("1:XM430-W350:0:spin").error().message.find("operating mode") != std::string::npos);
+}
+
+TEST_CASE("the clamped object's contact angle is parallel at w = d / cos(theta), more open with a narrower palm") {
+    ClampedObject o;  // d = 65 mm, lever 60 mm, palm 0.349 mm/deg about 65 mm
+    const double deg = 180.0 / M_PI;
+    const auto palm_degrees_for = [&](double width) { return (width - o.palm_centre_mm) / o.palm_mm_per_degree; };
+    for (double theta : {-44.0, -20.0, 0.0, 30.0, 44.0}) {
+        const double parallel = o.effective_width_mm / std::cos(theta / deg);
+        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel)) == Approx(theta).margin(1e-9));
+        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel - 5.0)) < theta - 3.0);
+        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel + 5.0)) > theta + 3.0);
+    }
+}
+
+TEST_CASE("on a bus with a clamped object, the palm width sets where the clamping finger stops") {
+    BusEmulator bus;
+    bus.add_servo(setup(1, find_model("XM430-W350"), -44.0));
+    bus.add_servo(setup(2, find_model("XM430-W350"), -66.0, OperatingMode::current));
+    bus.add_servo(setup(3, find_model("XM430-W350"), 0.0));  // palm at its centre: 65 mm
+    ClampedObject o;
+    bus.set_clamped_object(o);
+    for (std::uint8_t id : {1, 2, 3}) REQUIRE(write(*bus.servo(id), addr::torque_enable, 1, 1) == 0);
+    auto& pushing = *bus.servo(2);
+    REQUIRE(write(pushing, addr::goal_current, 45, 2) == 0);  // 121 mA, the Table I clamp
+    bus.advance(1.0);
+    // Palm too narrow for parallel fingers at -44 deg: held open at about -61 deg.
+    const double narrow = ticks_to_degrees(pushing.position_ticks());
+    const double sensing = ticks_to_degrees(bus.servo(1)->position_ticks());  // -44 to the tick
+    CHECK(narrow == Approx(pushing_contact_degrees(o, sensing, 0.0)).margin(0.01));
+    CHECK(narrow < -60.0);
+    CHECK(pushing.item(addr::present_current, 2) == 45);  // pressing on the object
+    // Open the palm to the parallel width (90.4 mm): the finger follows the object to -44 deg.
+    const double parallel_palm_degrees = (o.effective_width_mm / std::cos(44.0 * M_PI / 180.0) - 65.0) /
+                                         o.palm_mm_per_degree;
+    REQUIRE(write(*bus.servo(3), addr::goal_position, degrees_to_ticks(parallel_palm_degrees), 4) == 0);
+    bus.advance(2.0);
+    CHECK(ticks_to_degrees(pushing.position_ticks()) == Approx(-44.0).margin(0.1));
+    // Closing the palm again pushes the finger back open through the object.
+    REQUIRE(write(*bus.servo(3), addr::goal_position, degrees_to_ticks(0.0), 4) == 0);
+    bus.advance(2.0);
+    CHECK(ticks_to_degrees(pushing.position_ticks()) == Approx(narrow).margin(0.05));
 }

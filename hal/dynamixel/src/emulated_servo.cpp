@@ -12,6 +12,7 @@ constexpr double kTicksPerSecondPerVelocityUnit = kVelocityUnitRpm / 60.0 * kTic
 // Acceleration unit (214.577 rev/min^2) in ticks per second^2.
 constexpr double kTicksPerSecond2PerAccelUnit = kAccelerationUnitRpm2 / 3600.0 * kTicksPerRevolution;
 constexpr double kSubstep = 0.001;  // seconds: the model integrates at 1 kHz
+constexpr double kFreeRunCurrentFraction = 0.1;  // of Current Limit: unloaded current mode at full speed
 
 constexpr auto E_RANGE = static_cast<std::uint8_t>(StatusError::data_range);
 constexpr auto E_LIMIT = static_cast<std::uint8_t>(StatusError::data_limit);
@@ -80,11 +81,23 @@ std::int32_t EmulatedServo::item(std::uint16_t address, std::uint16_t size) cons
 
 void EmulatedServo::set_contact(std::optional<double> contact_degrees) {
     if (contact_degrees) {
-        contact_ticks_ = kCentreTick + *contact_degrees * kTicksPerRevolution / 360.0;
+        const double ticks = kCentreTick + *contact_degrees * kTicksPerRevolution / 360.0;
         // The obstacle is on the side the servo would have to move toward to reach it.
-        contact_side_ = *contact_ticks_ >= position_ ? 1.0 : -1.0;
+        set_obstacle(*contact_degrees, ticks >= position_ ? 1.0 : -1.0);
     } else {
         contact_ticks_.reset();
+    }
+}
+
+void EmulatedServo::set_obstacle(double contact_degrees, double side) {
+    const double ticks = kCentreTick + contact_degrees * kTicksPerRevolution / 360.0;
+    contact_ticks_ = ticks;
+    contact_side_ = side >= 0 ? 1.0 : -1.0;
+    // An obstacle that moved into the horn pushes it back (the object is
+    // driven by the other fingers, which are stiffer than this one's torque).
+    if ((contact_side_ > 0 && position_ > ticks) || (contact_side_ < 0 && position_ < ticks)) {
+        position_ = ticks;
+        if (velocity_ * contact_side_ > 0) velocity_ = 0.0;
     }
 }
 
@@ -225,8 +238,13 @@ void EmulatedServo::substep(double dt) {
             velocity_ = 0.0;
             current_ma_ = goal_ma;  // pushing on the contact with the commanded torque
         } else {
-            // Unloaded, speed grows with the commanded current up to the velocity limit.
-            const double frac = limit_ma > 0 ? std::min(1.0, std::abs(goal_ma) / limit_ma) : 0.0;
+            // Unloaded, speed grows with the commanded current and reaches the
+            // velocity limit at a small fraction of the current limit (a
+            // coreless motor with no load needs little torque to run at speed;
+            // the fraction is a round emulation figure, not a datasheet value).
+            // A clamping finger must keep up with an object that rolls away.
+            const double free_run_ma = kFreeRunCurrentFraction * limit_ma;
+            const double frac = free_run_ma > 0 ? std::min(1.0, std::abs(goal_ma) / free_run_ma) : 0.0;
             move_by(dir * vlimit * frac);
             current_ma_ = blocked_toward(dir) ? goal_ma : 0.1 * goal_ma;
         }

@@ -60,11 +60,15 @@ void PtyBusEmulator::serve() {
             if (r > 0 && (p.revents & POLLIN)) {
                 const ssize_t n = ::read(pty_.master_fd(), buf.data(), buf.size());
                 if (n > 0) {
-                    if (auto line = query_baud(pty_.slave_fd()); line.ok()) bus_.set_line_baud(*line);
+                    std::uint32_t wire_baud = options_.wire_baud;
+                    if (auto line = query_baud(pty_.slave_fd()); line.ok()) {
+                        bus_.set_line_baud(*line);
+                        if (options_.wire_baud_from_line) wire_baud = *line;
+                    }
                     replies = bus_.receive(std::span<const std::uint8_t>(buf.data(), static_cast<std::size_t>(n)));
-                    if (options_.wire_baud > 0) {
+                    if (wire_baud > 0) {
                         // Instruction on the wire, then each servo's return delay and reply.
-                        const auto byte_ns = 10'000'000'000LL / options_.wire_baud;
+                        const auto byte_ns = 10'000'000'000LL / wire_baud;
                         std::chrono::nanoseconds at(static_cast<long long>(n) * byte_ns);
                         for (const auto& rep : replies) {
                             const auto* s = rep.size() > 4 ? bus_.servo(rep[4]) : nullptr;

@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "rollsense/hal/dynamixel/clamped_object.hpp"
 #include "rollsense/hal/dynamixel/emulated_servo.hpp"
 #include "rollsense/hal/dynamixel/protocol.hpp"
 
@@ -41,7 +43,12 @@ public:
     // as on a real bus.
     void set_line_baud(std::uint32_t baud) { line_baud_ = baud; }
 
-    // Advance every servo's motion model.
+    // An object between the fingers of a hand on this bus (nullopt: none).
+    // Its servos must be on the bus.
+    void set_clamped_object(std::optional<ClampedObject> object) { object_ = object; }
+    const std::optional<ClampedObject>& clamped_object() const { return object_; }
+
+    // Advance every servo's motion model (and the object's coupling between them).
     void advance(double seconds);
 
     // ---- fault injection
@@ -63,7 +70,10 @@ private:
     bool hears(const EmulatedServo& s) const;
     bool reply(EmulatedServo& s, std::uint8_t error, std::span<const std::uint8_t> params, std::vector<Bytes>& out);
 
+    void place_object();
+
     std::vector<EmulatedServo> servos_;
+    std::optional<ClampedObject> object_;
     std::map<std::uint8_t, FaultPlan> faults_;
     Bytes garbage_;
     std::uint32_t line_baud_ = 0;

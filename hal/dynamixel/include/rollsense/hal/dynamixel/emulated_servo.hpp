@@ -56,6 +56,10 @@ public:
     void raise_hardware_error(std::uint8_t bits);
 
     void set_contact(std::optional<double> contact_degrees);
+    // An obstacle at `contact_degrees` blocking motion toward higher angles
+    // (side +1) or lower ones (side -1); one that moves into the servo's
+    // position pushes the horn back with it.
+    void set_obstacle(double contact_degrees, double side);
     // Direct inspection (tests, the emulator's status line).
     std::int32_t item(std::uint16_t address, std::uint16_t size) const;
     double position_ticks() const { return position_; }

@@ -24,6 +24,9 @@ struct PtyEmulatorOptions {
     // take on a real wire at this rate plus the servo's Return Delay Time, so
     // the client sees realistic bus timing on a pty (which is otherwise instant).
     std::uint32_t wire_baud = 0;
+    // true: time the wire at whatever rate the client set on the pty (its
+    // termios speed), instead of a fixed wire_baud.
+    bool wire_baud_from_line = false;
 };
 
 class PtyBusEmulator {
