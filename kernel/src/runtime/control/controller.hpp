@@ -11,6 +11,7 @@
 
 #include "rollsense/params.hpp"
 #include "rollsense/types.hpp"
+#include "runtime/profile/profile.hpp"
 
 namespace rollsense::runtime {
 
@@ -22,6 +23,8 @@ public:
     virtual const JointState* state(const std::string& joint) const = 0;
     virtual const JointInfo* info(const std::string& joint) const = 0;
     virtual const JointCommand* command(const std::string& joint) const = 0;
+    // The limits the kernel enforces on the joint (a controller clamps its goals into them).
+    virtual const JointLimit* limit(const std::string& joint) const = 0;
     virtual Status set_command(const std::string& joint, const JointCommand& command) = 0;
 };
 

@@ -328,6 +328,12 @@ const JointCommand* Robot::command(const std::string& joint) const {
         if (j.name == joint) return &j.command;
     return nullptr;
 }
+const JointLimit* Robot::limit(const std::string& joint) const {
+    for (const auto& j : joints_)
+        if (j.name == joint) return &j.limit;
+    return nullptr;
+}
+
 Status Robot::set_command(const std::string& joint, const JointCommand& c) {
     auto* j = find_joint(joint);
     if (!j) return {ErrorCode::not_found, "no joint '" + joint + "' (joints: " + joint_names() + ")"};

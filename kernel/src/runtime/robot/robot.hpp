@@ -86,6 +86,7 @@ public:
     const JointState* state(const std::string& joint) const override;
     const JointInfo* info(const std::string& joint) const override;
     const JointCommand* command(const std::string& joint) const override;
+    const JointLimit* limit(const std::string& joint) const override;
     Status set_command(const std::string& joint, const JointCommand& command) override;
 
 private:
