@@ -113,6 +113,8 @@ int run(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "%s: %zu trials saved, %zu already on disk; %.1f s robot time in %.2f s wall\n",
                  summary.status.ok() ? "done" : (summary.cancelled ? "cancelled" : "failed"), summary.trials_saved,
                  summary.trials_skipped, summary.run_time_s, summary.wall_time_s);
+    if (summary.control_timing && summary.control_timing->periods > 0)
+        std::fprintf(stderr, "control loop: %s\n", summary.control_timing->describe().c_str());
     if (summary.trials_saved + summary.trials_skipped > 0 || std::filesystem::exists(o.out_dir))
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
     if (!summary.status.ok()) {

@@ -89,6 +89,7 @@ Status Session::prepare() {
     robot_ = std::move(*robot);
 
     clock_ = make_clock(profile_.virtual_clock);
+    if (!clock_->is_virtual()) loop_timing_ = std::make_unique<LoopTiming>(1.0 / profile_.control_rate_hz);
     control_period_ = quantize(1.0 / profile_.control_rate_hz);
     sample_period_ = 1.0 / profile_.sample_rate_hz;
 
@@ -201,7 +202,8 @@ RunSummary Session::run() {
                                         {"trials_saved", std::to_string(trials_saved_)},
                                         {"trials_skipped", std::to_string(trials_skipped_)},
                                         {"run_time_s", std::to_string(clock_ ? clock_->now() : 0.0)},
-                                        {"wall_time_s", std::to_string(wall_seconds() - wall_start)}});
+                                        {"wall_time_s", std::to_string(wall_seconds() - wall_start)},
+                                        {"control_loop", loop_timing_ ? loop_timing_->summary().describe() : "virtual clock"}});
     }
     for (const auto& key : options_.settings.unused())
         log_warning("kernel", "--set " + key + " was not used by the profile or the script (a typo?)");
@@ -215,6 +217,7 @@ RunSummary Session::run() {
     summary.run_time_s = clock_ ? clock_->now() : 0.0;
     summary.wall_time_s = wall_seconds() - wall_start;
     summary.cancelled = s.code() == ErrorCode::cancelled;
+    if (loop_timing_) summary.control_timing = loop_timing_->summary();
     return summary;
 }
 
@@ -340,6 +343,8 @@ Status Session::control_tick() {
     check_estop();
     const double t = now();
     auto s = robot_->control_tick(t, t - last_control_);
+    // Real clocks only (the virtual grid is exact and re-phased per recording).
+    if (loop_timing_ && control_k_ > 0) loop_timing_->add(t - last_control_, now() - t);
     last_control_ = t;
     ++control_k_;
     next_control_ = control_epoch_ + quantize(static_cast<double>(control_k_) * control_period_);

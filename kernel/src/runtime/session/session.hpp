@@ -11,6 +11,7 @@
 #include <atomic>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "runtime/plugin/plugin_registry.hpp"
 #include "runtime/profile/profile.hpp"
 #include "runtime/robot/robot.hpp"
+#include "runtime/session/loop_timing.hpp"
 #include "runtime/session/progress.hpp"
 #include "runtime/time/clock.hpp"
 
@@ -50,6 +52,7 @@ struct RunSummary {
     double run_time_s = 0;           // on the run clock (robot time)
     double wall_time_s = 0;
     bool cancelled = false;
+    std::optional<LoopTimingSummary> control_timing;  // monotonic clock only
 };
 
 enum class WaitOutcome { ready, timed_out, cancelled };
@@ -172,6 +175,7 @@ private:
     std::uint64_t control_k_ = 0;
     double next_control_ = 0;
     double last_control_ = 0;
+    std::unique_ptr<LoopTiming> loop_timing_;  // monotonic clock only
     bool recording_ = false;
     double sample_epoch_ = 0;
     std::uint64_t sample_m_ = 0;
