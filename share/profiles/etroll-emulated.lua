@@ -1,16 +1,17 @@
 -- The E-TRoll servo bus emulated on a pseudo-terminal, with the simulated
 -- tactile sensor driven by the emulated sensing-finger angle: the real driver
--- stack end to end without a hand. Start the emulator first, then run:
+-- stack (serial port, Protocol 2.0, sync read/write, the palm-parallel
+-- controller) end to end without a hand. Start the emulator first; by default
+-- it holds an object between the fingers (docs/dynamixel.md, "Emulated hand"):
 --   build/bin/rollsense-dxl-emu --link /tmp/etroll-bus &
---   build/bin/rollsense run scripts/demo_roll.lua --profile etroll-emulated
--- (--set dxl_device=PATH if the emulator's link is elsewhere).
--- KNOWN GAP: the joints connect and move, but the Table I "open" step
--- (share/lua/etroll.lua) still times out waiting for all four joints to arrive
--- on the emulator; the palm-parallel controller is not written yet either.
-local hand = include("etroll").devices.hand
+--   build/bin/rollsense run scripts/paper_experiment.lua --profile etroll-emulated --set runs=2
+-- (--set dxl_device=PATH if the emulator's link is elsewhere). Time is real:
+-- a trial takes about 11 s, as on the hand.
+local etroll = include("etroll")
+local hand = etroll.devices.hand
 hand.params.device = setting("dxl_device", "/tmp/etroll-bus")
--- The emulated servos keep the factory Baud Rate item (57600); over a pty replies are instant.
-hand.params.baud = setting("dxl_baud", 57600)
+-- The emulated E-TRoll bus runs at the hand's 1 Mbps (inherited from the etroll
+-- profile) and, by default, answers with the timing of a real wire at that rate.
 return {
   description = "E-TRoll servos on the Dynamixel emulator, simulated tactile sensor (monotonic clock)",
   clock = "monotonic",
@@ -21,5 +22,6 @@ return {
     tactile = { plugin = "sim", params = {} },
   },
   joints = include("etroll-joints"),
+  controllers = etroll.controllers,
   record_joints = { "sensing_finger" },
 }

@@ -41,5 +41,11 @@ return {
     },
   },
   joints = include("etroll-joints"),
+  -- Keeps the fingers parallel while the object rolls (Table I steps 2-4);
+  -- share/lua/etroll.lua turns it on at the clamp and off at the release.
+  -- Gain and limits: docs/dynamixel.md, "The palm-parallel controller".
+  controllers = {
+    palm_parallel = { gain = 4.0, max_speed = 30, lead = 5 },
+  },
   record_joints = { "sensing_finger" },
 }
