@@ -45,7 +45,7 @@ return {
   -- share/lua/etroll.lua turns it on at the clamp and off at the release.
   -- Gain and limits: docs/dynamixel.md, "The palm-parallel controller".
   controllers = {
-    palm_parallel = { gain = 4.0, max_speed = 30, lead = 5 },
+    palm_parallel = { gain = 4.0, max_speed = 40, lead = 5 },
   },
   record_joints = { "sensing_finger" },
 }

@@ -31,7 +31,7 @@ struct PalmParallelSettings {
     std::string sensing, pushing, palm;
     double gain = 4.0;         // mm/s of palm width per degree of lag
     bool feedforward = true;
-    double max_speed = 30.0;   // mm/s
+    double max_speed = 40.0;   // mm/s
     double lead = 5.0;         // mm the goal may run ahead of the measured width
 };
 
@@ -106,7 +106,7 @@ ParamSchema palm_parallel_schema() {
         param_number("gain", 4.0, "palm speed per degree the pushing finger lags the sensing finger", 0, {},
                      "mm/s/deg"),
         param_bool("feedforward", true, "add the parallel-finger width rate w*tan(theta)*dtheta/dt"),
-        param_number("max_speed", 30.0, "palm speed limit (the palm joint's max_velocity applies too)", 0.1, {},
+        param_number("max_speed", 40.0, "palm speed limit (the palm joint's max_velocity applies too)", 0.1, {},
                      "mm/s"),
         param_number("lead", 5.0, "how far the palm goal may run ahead of the measured width", 0.1, {}, "mm"),
     };
