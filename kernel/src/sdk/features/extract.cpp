@@ -188,33 +188,48 @@ Result<TrialFeatures> FeatureExtractor::extract(std::span<const std::span<const 
 
     TrialFeatures tf;
     tf.values.fill(std::numeric_limits<double>::quiet_NaN());
+    // One pass per channel for the structural checks and the raw maximum.
+    std::array<double, kChannels> raw_max{};
     bool finite_all = true;
     for (std::size_t c = 0; c < kChannels; ++c) {
         auto& ch = tf.channels[c];
-        if (n < 3) ch.rejection = Rejection::too_short;
-        else if (!std::all_of(channels[c].begin(), channels[c].end(), [](double v) { return std::isfinite(v); }))
-            ch.rejection = Rejection::not_finite;
+        if (n < 3) {
+            ch.rejection = Rejection::too_short;
+        } else {
+            bool finite = true;
+            double m = -std::numeric_limits<double>::infinity();
+            for (const double v : channels[c]) {
+                finite &= std::isfinite(v);
+                m = std::max(m, v);
+            }
+            raw_max[c] = m;
+            if (!finite) ch.rejection = Rejection::not_finite;
+        }
         if (ch.rejection != Rejection::none) finite_all = false;
     }
 
-    int shared_window = 0;
-    if (cfg.smoothing_window > 0) shared_window = cfg.smoothing_window;
-    else if (cfg.window_scope == WindowScope::shared && finite_all)
-        shared_window = smoothing_window_shared(channels, cfg.smoothing_factor);
+    // A fixed window, or one shared by the three channels; 0: each channel its own.
+    int fixed_window = cfg.smoothing_window > 0 ? cfg.smoothing_window : 0;
+    if (fixed_window == 0 && cfg.window_scope == WindowScope::shared && finite_all)
+        fixed_window = smoothing_window_shared(channels, cfg.smoothing_factor);
 
     for (std::size_t c = 0; c < kChannels; ++c) {
         auto& ch = tf.channels[c];
         auto& sm = smoothed_[c];
         const auto raw = channels[c];
-        sm.assign(raw.begin(), raw.end());
-        if (ch.rejection != Rejection::none) continue;
-        int window = shared_window;
+        if (ch.rejection != Rejection::none) {
+            sm.assign(raw.begin(), raw.end());
+            continue;
+        }
+        int window = fixed_window;
         if (window == 0) {
-            // Smoothing is a normalised positive average, so it never raises the
-            // maximum: a channel whose raw maximum is already below the validity
-            // threshold is rejected without paying for its window.
-            const double raw_max = *std::max_element(raw.begin(), raw.end());
-            if (!(raw_max > cfg.min_amplitude)) {
+            // Each channel's own window (also the fallback of the shared scope
+            // when another channel is already rejected). Smoothing is a
+            // normalised positive average, so it never raises the maximum: a
+            // channel whose raw maximum is already below the validity threshold
+            // is rejected without paying for its window.
+            if (!(raw_max[c] > cfg.min_amplitude)) {
+                sm.assign(raw.begin(), raw.end());
                 ch.window = 0;
                 ch.peak = find_peak(sm, cfg.peak_fraction);
                 ch.amplitude = ch.peak.max;
@@ -224,6 +239,7 @@ Result<TrialFeatures> FeatureExtractor::extract(std::span<const std::span<const 
             window = smoothing_window(raw, cfg.smoothing_factor);
         }
         ch.window = window;
+        sm.resize(n);
         gaussian_smooth(raw, window, sm);
         ch.peak = find_peak(sm, cfg.peak_fraction);
         measure(sm, cfg, clock, ch);
