@@ -160,6 +160,7 @@ TEST_CASE("Goertzel power is the 2N-point DFT's |F[k]|²", "[kernels]") {
 
 TEST_CASE("generic Goertzel kernel equals the one-bin recurrence bit for bit", "[kernels]") {
     CHECK(goertzel::bins_per_pass() == (simd::has_avx2() ? 16u : 8u));
+    CHECK(vector_kernels() == (simd::has_avx2() ? "avx2" : "generic"));
     check_kernel(&goertzel::power_generic, 8, "generic");
 }
 

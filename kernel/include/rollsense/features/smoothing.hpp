@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace rollsense::features {
@@ -29,5 +30,10 @@ int smoothing_window_shared(std::span<const std::span<const double>> columns, do
 // x.size() elements and must not alias `x`.
 void gaussian_smooth(std::span<const double> x, int window, std::span<double> out);
 std::vector<double> gaussian_smooth(std::span<const double> x, int window);
+
+// The vector kernels the heuristic and the filter run on this CPU: "avx2" or
+// "generic" (SSE2 or NEON lanes; ROLLSENSE_SIMD=generic forces it). Results are
+// the same bit for bit; only the speed differs. For benchmarks and diagnostics.
+std::string_view vector_kernels() noexcept;
 
 }  // namespace rollsense::features

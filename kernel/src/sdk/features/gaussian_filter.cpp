@@ -136,6 +136,8 @@ void gaussian_smooth(std::span<const double> x, int window, std::span<double> ou
     for (; i < len; ++i) edge(i);
 }
 
+std::string_view vector_kernels() noexcept { return simd::has_avx2() ? "avx2" : "generic"; }
+
 std::vector<double> gaussian_smooth(std::span<const double> x, int window) {
     std::vector<double> out(x.size());
     gaussian_smooth(x, window, out);
