@@ -11,6 +11,8 @@
 // trial for an external classifier check (bench/sim/check_classifier.py).
 // --dataset judges a dataset recorded by `rollsense run` (manifest.csv + trial
 // CSVs with ch1..ch3 columns) by the same rule: the cross-check through the kernel.
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -20,15 +22,16 @@
 #include <fstream>
 #include <map>
 #include <numeric>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "rng.hpp"
 #include "roll_driver.hpp"
 #include "rollsense/csv.hpp"
+#include "rollsense/features.hpp"
 #include "sim_schema.hpp"
 #include "sim_sensor.hpp"
-#include "validity_rule.hpp"
 
 using namespace rollsense;
 using namespace rollsense::sim;
@@ -78,6 +81,21 @@ bool parse(int argc, char** argv, Options& o) {
     return true;
 }
 
+// The paper's validity rule and 13 features: the SDK's pipeline with its
+// defaults (smoothing factor 0.05 per channel, 5 % walk, max > 0.01, complete
+// peaks), the same code `rollsense features` and the classifier use.
+Result<features::TrialFeatures> judge_trial(features::FeatureExtractor& fx,
+                                            const std::array<std::vector<double>, 3>& raw) {
+    const std::array<std::span<const double>, 3> spans{raw[0], raw[1], raw[2]};
+    return fx.extract(std::span<const std::span<const double>>(spans));
+}
+
+// Every channel's maximum above the validity threshold (the object touched all three).
+bool all_above_threshold(const features::TrialFeatures& tf, const features::FeatureSettings& settings) {
+    return std::all_of(tf.channels.begin(), tf.channels.end(),
+                       [&](const features::ChannelPeak& c) { return c.amplitude > settings.min_amplitude; });
+}
+
 struct Stats {
     std::vector<double> v;
     void add(double x) { v.push_back(x); }
@@ -115,6 +133,7 @@ int judge_dataset(const Options& opt) {
     std::string features_csv =
         "trial_id,object,speed,repetition,clean,reason,F1,F2,F3,F4,F5,F6,F7,F8,F9,F10,F11,F12,F13\n";
     std::vector<std::string> row, fields;
+    features::FeatureExtractor fx;
     while (true) {
         auto more = manifest->next(row);
         if (!more) {
@@ -146,20 +165,25 @@ int judge_dataset(const Options& opt) {
             }
         }
         const std::string& object = row[*c_object];
-        const auto verdict = bench::judge_trial(ch);
+        const auto verdict = judge_trial(fx, ch);
+        if (!verdict) {
+            std::fprintf(stderr, "%s: %s\n", row[*c_id].c_str(), verdict.error().describe().c_str());
+            return 1;
+        }
         ++trials;
         samples[row[*c_speed]].add(static_cast<double>(ch[0].size()));
         auto& po = per_object[object];
         ++po.second;
-        if (verdict.all_above_threshold) ++all_above;
+        if (all_above_threshold(*verdict, fx.settings())) ++all_above;
         if (object[0] == 'C') ++cyl;
-        if (verdict.clean) {
+        if (verdict->clean) {
             ++clean;
             ++po.first;
             if (object[0] == 'C') ++cyl_clean;
         }
-        std::vector<std::string> out{row[*c_id], object, row[*c_speed], "0", verdict.clean ? "1" : "0", verdict.reason};
-        for (double f : verdict.features) out.push_back(std::isfinite(f) ? csv::format_number(f) : "");
+        std::vector<std::string> out{row[*c_id], object, row[*c_speed], "0", verdict->clean ? "1" : "0",
+                                     verdict->reason};
+        for (double f : verdict->values) out.push_back(std::isfinite(f) ? csv::format_number(f) : "");
         csv::append_row(features_csv, out);
     }
     std::printf("dataset %s: %d trials\n", dir.string().c_str(), trials);
@@ -213,6 +237,7 @@ int main(int argc, char** argv) {
     std::map<bool, double> kind_seconds;
     std::map<bool, long> kind_frames;
     bench::Recording rec;
+    features::FeatureExtractor fx;
 
     for (const auto& object : objects) {
         for (int speed : speeds) {
@@ -238,28 +263,35 @@ int main(int argc, char** argv) {
                 kind_frames[object[0] == 'C'] += static_cast<long>(rec.time.size());
                 samples_per_speed[speed].add(static_cast<double>(rec.time.size()));
 
-                const auto verdict = bench::judge_trial(rec.channels);
+                const auto verdict = judge_trial(fx, rec.channels);
+                if (!verdict) {
+                    std::fprintf(stderr, "%s: %s\n", id.c_str(), verdict.error().describe().c_str());
+                    return 1;
+                }
                 ++trials;
                 ++total_per_object[object];
                 const bool cylinder = object[0] == 'C';
                 (cylinder ? cyl_total : poly_total)++;
-                if (verdict.all_above_threshold) ++all_above;
-                if (verdict.clean) {
+                if (all_above_threshold(*verdict, fx.settings())) ++all_above;
+                if (verdict->clean) {
                     ++clean;
                     ++clean_per_object[object];
                     (cylinder ? cyl_clean : poly_clean)++;
                     if (cylinder)
-                        ch13_interval[object][speed].add((verdict.peaks[2].imax - verdict.peaks[0].imax) / 31.1);
-                    amplitude[object].add(verdict.peaks[1].amplitude);
+                        ch13_interval[object][speed].add(
+                            (static_cast<double>(verdict->channels[2].peak.max_index) -
+                             static_cast<double>(verdict->channels[0].peak.max_index)) /
+                            31.1);
+                    amplitude[object].add(verdict->channels[1].amplitude);
                 } else {
-                    if (verdict.reason.find("low_amplitude") != std::string::npos) ++rejected_low_amplitude;
+                    if (verdict->reason.find("low_amplitude") != std::string::npos) ++rejected_low_amplitude;
                     // Count the first channel's reason kind.
                     for (const char* kind : {"incomplete_start", "incomplete_end", "low_amplitude", "zero_width"})
-                        if (verdict.reason.find(kind) != std::string::npos) ++reasons[kind];
+                        if (verdict->reason.find(kind) != std::string::npos) ++reasons[kind];
                 }
                 std::vector<std::string> row{id, object, std::to_string(speed), std::to_string(rep),
-                                             verdict.clean ? "1" : "0", verdict.reason};
-                for (double f : verdict.features) row.push_back(std::isfinite(f) ? csv::format_number(f) : "");
+                                             verdict->clean ? "1" : "0", verdict->reason};
+                for (double f : verdict->values) row.push_back(std::isfinite(f) ? csv::format_number(f) : "");
                 csv::append_row(features_csv, row);
             }
         }
@@ -308,13 +340,16 @@ int main(int argc, char** argv) {
                 TrialInfo contact{"window", "C2", std::to_string(speed), rep, mix64(opt.seed + 991 + rep), {}};
                 if (auto st = bench::record_roll(sensor, contact, plan, rec); !st) return 1;
                 std::array<int, 3> windows{};
-                for (std::size_t c = 0; c < 3; ++c) windows[c] = bench::smoothing_window(rec.channels[c]);
+                const double factor = fx.settings().smoothing_factor;
+                for (std::size_t c = 0; c < 3; ++c) windows[c] = features::smoothing_window(rec.channels[c], factor);
                 TrialInfo t{"noise", "", std::to_string(speed), rep, mix64(opt.seed + 77 + rep), {}};
                 if (auto st = bench::record_roll(sensor, t, plan, rec); !st) return 1;
                 for (std::size_t c = 0; c < 3; ++c) {
-                    for (double v : bench::smoothdata_gaussian(rec.channels[c])) worst_own = std::max(worst_own, std::abs(v));
+                    const int own = features::smoothing_window(rec.channels[c], factor);
+                    for (double v : features::gaussian_smooth(rec.channels[c], own))
+                        worst_own = std::max(worst_own, std::abs(v));
                     Stats s;
-                    for (double v : bench::gaussian_smooth(rec.channels[c], windows[c])) {
+                    for (double v : features::gaussian_smooth(rec.channels[c], windows[c])) {
                         worst_trial = std::max(worst_trial, std::abs(v));
                         s.add(v);
                     }
