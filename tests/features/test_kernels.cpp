@@ -62,7 +62,8 @@ int window_reference(const std::vector<double>& x, double factor) {
     if (n < 2 || tau >= 1.0) return 1;
     if (tau <= 0.0) return static_cast<int>(n);
     auto window = [n](std::size_t rho) {
-        const double a = 0.44294 * 2.0 * static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(rho - 1, 1));
+        const double a =
+            0.44294 * 2.0 * static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(rho - 1, 1));
         return static_cast<int>(std::min(std::ceil(std::sqrt(a * a + 1.0)), 2.0 * static_cast<double>(n)));
     };
     double mean = 0.0;
