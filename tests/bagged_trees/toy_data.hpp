@@ -1,6 +1,7 @@
 // Small synthetic feature tables with known structure for the classifier tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -54,6 +55,25 @@ inline rollsense::FeatureTable overlapping(std::size_t rows, std::uint64_t seed)
         t.x.push_back(g.normal() + (y ? 1.0 : -1.0));
         t.x.push_back(g.normal());
         t.y.push_back(y);
+        ++t.rows;
+    }
+    return t;
+}
+
+// Four classes from four features with many tied values, the way measured
+// features are: x0 continuous, x1 on a 0.25 grid, x2 a whole number 0–3, x3
+// constant except in one row in ten; the class is x2 blurred by x0 and noise.
+inline rollsense::FeatureTable ties(std::size_t rows, std::uint64_t seed) {
+    auto t = empty_table(4, 4);
+    Lcg g{seed};
+    for (std::size_t r = 0; r < rows; ++r) {
+        const double x0 = g.next();
+        const double x1 = std::round(4.0 * g.next()) / 4.0;
+        const double x2 = std::floor(4.0 * g.next());
+        const double x3 = r % 10 == 0 ? 1.0 : 0.0;
+        t.x.insert(t.x.end(), {x0, x1, x2, x3});
+        const double score = x2 + 1.5 * (x0 - 0.5) + 0.6 * g.normal();
+        t.y.push_back(static_cast<int>(std::clamp(std::round(score), 0.0, 3.0)));
         ++t.rows;
     }
     return t;

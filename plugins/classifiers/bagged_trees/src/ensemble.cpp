@@ -48,7 +48,7 @@ Status Ensemble::train(const FeatureTable& data, const EnsembleOptions& options)
                 const std::size_t b = next.fetch_add(1);
                 if (b >= trees.size()) return;
                 // Tree b's generator depends only on (seed, b): same model for any thread count.
-                Rng rng = Rng::stream(options.seed, b);
+                auto rng = random::Xoshiro256ss::numbered_stream(options.seed, b);
                 std::fill(weights.begin(), weights.end(), 0u);
                 for (std::size_t i = 0; i < n; ++i) ++weights[rng.below(n)];
                 trees[b] = builder.build(weights, options.tree, rng);

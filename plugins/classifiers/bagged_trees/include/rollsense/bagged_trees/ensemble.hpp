@@ -1,12 +1,13 @@
 // The bagged ensemble: B trees, each grown on a bootstrap sample, whose class
 // posteriors are averaged (fitcensemble(..., 'Method', 'Bag')).
 //
-// Speed comes from the layout classifier.md §5 describes: features are stored
-// column-major and sorted once per training set; a bootstrap sample is a vector
-// of integer weights; each node's best split is one sweep over presorted
-// indices with running class counts; the index arrays are partitioned stably
-// instead of re-sorted. Each tree has its own seeded generator, so the model
-// is identical for any thread count.
+// Speed comes from the layout classifier.md §5 describes: features are sorted
+// (and ranked) once per training set; a bootstrap sample is a vector of integer
+// weights; each node's best split is one sweep over presorted entries with
+// running class counts; the entry arrays are partitioned stably instead of
+// re-sorted (tree_builder.hpp, split_search.cpp). Each tree has its own seeded
+// generator (rollsense/random.hpp), so the model is identical for any thread
+// count.
 #pragma once
 
 #include <cstdint>
