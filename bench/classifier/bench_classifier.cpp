@@ -3,6 +3,7 @@
 // latency of a single prediction. Prints figures; asserts nothing.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
@@ -151,6 +152,59 @@ learn::ClassifierFactory factory() {
     };
 }
 
+// One pass of timed C++ cross-validations: every model seed, on 1 thread and
+// on every core. Best (minimum) times; accuracies per seed (1 thread).
+struct CppPass {
+    double wall_1 = 1e30, cpu_1 = 1e30, wall_n = 1e30;
+    std::vector<double> accuracy;    // 1 thread, per seed
+    std::vector<double> accuracy_n;  // every core, per seed: must be the same models
+};
+
+CppPass time_cpp(const FeatureTable& table, const std::vector<int>& folds, int k, int model_seeds, unsigned cores,
+                 const char* label) {
+    CppPass pass;
+    for (int s = 1; s <= model_seeds; ++s) {
+        for (unsigned threads : {1u, cores}) {
+            ParamSet p;
+            p.set("seed", std::int64_t{s});
+            p.set("threads", std::int64_t{threads});
+            const auto t0 = Clock::now();
+            const double c0 = cpu_seconds();
+            auto cv = learn::cross_validate(table, folds, k, factory(), p);
+            const double t = seconds_since(t0), cpu = cpu_seconds() - c0;
+            if (!cv) throw StatusError(cv.status());
+            if (threads == 1) {
+                pass.wall_1 = std::min(pass.wall_1, t);
+                pass.cpu_1 = std::min(pass.cpu_1, cpu);
+                pass.accuracy.push_back(cv->accuracy());
+                std::printf("c++     seed=%d seconds=%.6f cpu=%.6f accuracy=%.6f (1 thread, %s)\n", s, t, cpu,
+                            cv->accuracy(), label);
+            } else {
+                pass.wall_n = std::min(pass.wall_n, t);
+                pass.accuracy_n.push_back(cv->accuracy());
+            }
+            if (cores == 1) break;
+        }
+    }
+    return pass;
+}
+
+double mean(const std::vector<double>& v) {
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
+// Standard error of a mean over model seeds (the seed-to-seed spread is what
+// makes a 5-seed accuracy comparison noisy).
+double standard_error(const std::vector<double>& v) {
+    if (v.size() < 2) return 0.0;
+    const double m = mean(v);
+    double ss = 0.0;
+    for (double x : v) ss += (x - m) * (x - m);
+    return std::sqrt(ss / static_cast<double>(v.size() - 1) / static_cast<double>(v.size()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -226,33 +280,11 @@ int main(int argc, char** argv) {
                     table.class_names.size(), o.folds, static_cast<unsigned long long>(o.seed),
                     folds_csv.c_str());
 
-        // C++ bagged trees, single-threaded and on every core, several model seeds.
+        // C++ bagged trees, single-threaded and on every core, several model
+        // seeds; timed before and after scikit-learn, so that both sides are
+        // sampled over a similar stretch of a shared machine's load.
         const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-        double cpp_time_1 = 1e30, cpp_cpu_1 = 1e30, cpp_time_n = 1e30, cpp_acc = 0.0;
-        for (int s = 1; s <= o.model_seeds; ++s) {
-            for (unsigned threads : {1u, cores}) {
-                ParamSet p;
-                p.set("seed", std::int64_t{s});
-                p.set("threads", std::int64_t{threads});
-                const auto t0 = Clock::now();
-                const double c0 = cpu_seconds();
-                auto cv = learn::cross_validate(table, *folds, o.folds, factory(), p);
-                const double t = seconds_since(t0), cpu = cpu_seconds() - c0;
-                if (!cv) throw StatusError(cv.status());
-                if (threads == 1) {
-                    cpp_time_1 = std::min(cpp_time_1, t);
-                    cpp_cpu_1 = std::min(cpp_cpu_1, cpu);
-                    cpp_acc += cv->accuracy();
-                    std::printf("c++     seed=%d seconds=%.6f cpu=%.6f accuracy=%.6f (1 thread)\n", s, t, cpu,
-                                cv->accuracy());
-                } else {
-                    cpp_time_n = std::min(cpp_time_n, t);
-                }
-                if (cores == 1) break;
-            }
-        }
-        cpp_acc /= o.model_seeds;
-
+        const CppPass before = time_cpp(table, *folds, o.folds, o.model_seeds, cores, "before sklearn");
         // scikit-learn on the same files.
         std::string cmd = "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 '" + o.python + "' '" +
                           std::string(ROLLSENSE_BENCH_DIR) + "/sklearn_reference.py' '" + features_csv.string() +
@@ -260,8 +292,8 @@ int main(int argc, char** argv) {
         for (int s = 1; s <= o.model_seeds; ++s) cmd += " " + std::to_string(s);
         std::fflush(stdout);
         FILE* py = ::popen(cmd.c_str(), "r");
-        double sk_time = 1e30, sk_cpu = 1e30, sk_acc = 0.0;
-        int sk_runs = 0;
+        double sk_time = 1e30, sk_cpu = 1e30;
+        std::vector<double> sk_acc;
         if (py) {
             char line[512];
             while (std::fgets(line, sizeof line, py)) {
@@ -272,12 +304,20 @@ int main(int argc, char** argv) {
                     4) {
                     sk_time = std::min(sk_time, secs);
                     sk_cpu = std::min(sk_cpu, cpu);
-                    sk_acc += acc;
-                    ++sk_runs;
+                    sk_acc.push_back(acc);
                 }
             }
             ::pclose(py);
         }
+        const CppPass after = time_cpp(table, *folds, o.folds, o.model_seeds, cores, "after sklearn");
+        // Same seeds, same models, whatever the pass or the thread count: any
+        // difference is a reproducibility bug.
+        if (after.accuracy != before.accuracy || (cores > 1 && before.accuracy_n != before.accuracy))
+            std::printf("WARNING: C++ accuracies differ between passes or thread counts with the same seeds\n");
+        const double cpp_wall_1 = std::min(before.wall_1, after.wall_1);
+        const double cpp_cpu_1 = std::min(before.cpu_1, after.cpu_1);
+        const double cpp_wall_n = std::min(before.wall_n, after.wall_n);
+        const double cpp_acc = mean(before.accuracy);
 
         // A single prediction, model trained on every clean trial.
         bagged_trees::BaggedTrees model;
@@ -297,15 +337,19 @@ int main(int argc, char** argv) {
         std::printf("\n=== summary (%d-fold CV, same features and folds, 30 learners) ===\n", o.folds);
         std::printf("c++ bagged trees   : %.4f s wall / %.4f s CPU (1 thread), %.4f s wall (%u threads), accuracy "
                     "%.2f %% (mean of %d seeds)\n",
-                    cpp_time_1, cpp_cpu_1, cpp_time_n, cores, 100.0 * cpp_acc, o.model_seeds);
-        if (sk_runs > 0) {
-            sk_acc /= sk_runs;
-            std::printf("scikit-learn       : %.4f s wall / %.4f s CPU (1 thread), accuracy %.2f %% (mean of %d seeds)\n",
-                        sk_time, sk_cpu, 100.0 * sk_acc, sk_runs);
+                    cpp_wall_1, cpp_cpu_1, cpp_wall_n, cores, 100.0 * cpp_acc, o.model_seeds);
+        if (!sk_acc.empty()) {
+            std::printf("scikit-learn       : %.4f s wall / %.4f s CPU (1 thread), accuracy %.2f %% (mean of %zu seeds)\n",
+                        sk_time, sk_cpu, 100.0 * mean(sk_acc), sk_acc.size());
             std::printf("speed-up, 1 thread vs 1 thread: %.1fx wall, %.1fx CPU   (target >= 10x; best of each side)\n",
-                        sk_time / cpp_time_1, sk_cpu / cpp_cpu_1);
-            std::printf("accuracy difference c++ - sklearn: %+.2f points   (target within 1 point)\n",
-                        100.0 * (cpp_acc - sk_acc));
+                        sk_time / cpp_wall_1, sk_cpu / cpp_cpu_1);
+            if (cores > 1)
+                std::printf("speed-up, c++ on %u threads vs scikit-learn on 1: %.1fx wall\n", cores,
+                            sk_time / cpp_wall_n);
+            const double se = std::hypot(standard_error(before.accuracy), standard_error(sk_acc));
+            std::printf("accuracy difference c++ - sklearn: %+.2f +- %.2f points (standard error over seeds)   "
+                        "(target within 1 point)\n",
+                        100.0 * (cpp_acc - mean(sk_acc)), 100.0 * se);
         } else {
             std::printf("scikit-learn       : not run (is %s with python3-sklearn installed?)\n", o.python.c_str());
         }
