@@ -148,3 +148,12 @@ end
     REQUIRE(s.run().status.ok());
     CHECK(kt::read_file(o.out_dir / "trials/X-v20-r001.csv") != kt::read_file(ra.out / "trials/X-v20-r001.csv"));
 }
+
+TEST_CASE("trial seeds are pinned: a recorded dataset's seeds never change with the code") {
+    // Values from datasets recorded before (seed column of manifest.csv): the
+    // simulated trials, and so every recorded sim dataset, depend on them.
+    using rollsense::runtime::Session;
+    CHECK(Session::trial_seed(1, "C1-v10-r001") == 8709745723531309885ULL);
+    CHECK(Session::trial_seed(1, "C1-v10-r002") == 2584686174751327471ULL);
+    CHECK(Session::trial_seed(0, "C1-v10-r001") == 12764483367218769105ULL);
+}

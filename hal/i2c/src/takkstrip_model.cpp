@@ -6,20 +6,18 @@
 #include <string>
 
 #include "rollsense/hal/takkstrip.hpp"
+#include "rollsense/random.hpp"
 
 namespace rollsense::hal {
 namespace {
 
-// splitmix64: a tiny, portable generator, so a seed gives the same chip on
-// every platform and standard library.
-std::uint64_t splitmix64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
+// A splitmix64 counter (the SDK's portable mixer), so a seed gives the same
+// chip on every platform and standard library.
+double uniform01(std::uint64_t& state) {
+    const std::uint64_t z = random::splitmix64(state);
+    state += random::kGoldenGamma;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
 }
-
-double uniform01(std::uint64_t& state) { return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53; }
 
 std::int16_t to_word(double v) {
     return static_cast<std::int16_t>(std::clamp(std::lround(v), -32768L, 32767L));

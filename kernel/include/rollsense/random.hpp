@@ -27,10 +27,14 @@
 
 namespace rollsense::random {
 
+// splitmix64's increment (2^64 / golden ratio): a splitmix64 generator's
+// state advances by it, and its n-th output is splitmix64(seed + n·gamma).
+inline constexpr std::uint64_t kGoldenGamma = 0x9E3779B97F4A7C15ull;
+
 // splitmix64's output for counter value x: add the golden gamma, then the
 // finaliser. A bijective mixer, used to derive independent seeds.
 constexpr std::uint64_t splitmix64(std::uint64_t x) noexcept {
-    x += 0x9E3779B97F4A7C15ull;
+    x += kGoldenGamma;
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
     return x ^ (x >> 31);
@@ -63,7 +67,7 @@ public:
     // State = the first four outputs of a splitmix64 generator started at `seed`.
     static constexpr Xoshiro256ss splitmix64_sequence(std::uint64_t seed) noexcept {
         Xoshiro256ss g;
-        for (std::uint64_t i = 0; i < 4; ++i) g.s_[i] = splitmix64(seed + i * 0x9E3779B97F4A7C15ull);
+        for (std::uint64_t i = 0; i < 4; ++i) g.s_[i] = splitmix64(seed + i * kGoldenGamma);
         return g;
     }
     // State word i = splitmix64(word i − 1), word 0 = splitmix64(seed).

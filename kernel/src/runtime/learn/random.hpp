@@ -6,16 +6,17 @@
 #include <utility>
 #include <vector>
 
+#include "rollsense/random.hpp"
+
 namespace rollsense::learn {
 
 class SplitMix {
 public:
     explicit SplitMix(std::uint64_t seed) : state_(seed) {}
     std::uint64_t next() {
-        std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
+        const std::uint64_t z = random::splitmix64(state_);
+        state_ += random::kGoldenGamma;
+        return z;
     }
     std::uint64_t below(std::uint64_t n) {
         __extension__ using u128 = unsigned __int128;

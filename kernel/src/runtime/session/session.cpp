@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "rollsense/log.hpp"
+#include "rollsense/random.hpp"
 #include "runtime/lua/api.hpp"
 
 namespace rollsense::runtime {
@@ -63,16 +64,15 @@ double Session::quantize(double t) const {
 }
 
 std::uint64_t Session::trial_seed(std::uint64_t run_seed, const std::string& trial_id) {
-    std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
+    // FNV-1a of the id, with the offset basis this project has always used
+    // (1469598103934665603, not FNV's 14695981039346656037): every recorded
+    // dataset's trial seeds depend on it, so it stays.
+    std::uint64_t h = 1469598103934665603ULL;
     for (unsigned char c : trial_id) {
         h ^= c;
         h *= 1099511628211ULL;
     }
-    std::uint64_t z = run_seed ^ h;  // splitmix64 finaliser
-    z += 0x9e3779b97f4a7c15ULL;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
+    return random::splitmix64(run_seed ^ h);
 }
 
 Status Session::prepare() {
