@@ -138,11 +138,42 @@ TEST_CASE("palm_parallel keeps the fingers parallel through a roll at the paper'
     const double worst = run(*c, plant, 3.5, 0.3, 3.0);
     CHECK(worst < 2.0);
     CHECK(std::abs(plant.error_deg()) < 0.5);
-    // Without the controller the same roll leaves the fingers far from parallel.
+    // Feedback alone (no feedforward) lags further behind the same roll, and
+    // without the controller the palm stays where the clamp left it and the
+    // roll takes the fingers far from parallel.
+    FingerPlant feedback_only;
+    auto fb = make_controller({{"feedforward", false}});
+    REQUIRE(fb->enable(0.0, feedback_only).ok());
+    run(*fb, feedback_only, 3.0);
+    feedback_only.sensing_angle = plant.sensing_angle;
+    CHECK(run(*fb, feedback_only, 3.5, 0.3, 3.0) > worst);
+
     FingerPlant open_loop;
     auto off = make_controller({{"gain", 0.0}, {"feedforward", false}});
     REQUIRE(off->enable(0.0, open_loop).ok());
-    CHECK(run(*off, open_loop, 3.0, 2.5) > 10.0);
+    open_loop.sensing_angle = plant.sensing_angle;
+    CHECK(run(*off, open_loop, 3.5, 0.3, 3.0) > 10.0);
+}
+
+TEST_CASE("palm_parallel stops the palm where it is when the clamp ends or it is switched off") {
+    FingerPlant plant;
+    plant.palm_max_speed = 10.0;  // a palm servo slower than the controller asks
+    auto c = make_controller();
+    REQUIRE(c->enable(0.0, plant).ok());
+    run(*c, plant, 0.2);  // mid-clamp: the palm is opening, its goal runs ahead of it
+    REQUIRE(plant.command("palm")->position > plant.palm_width() + 1.0);
+    plant.set_clamped(false);  // the pushing finger leaves current mode (release)
+    run(*c, plant, 0.01);
+    CHECK(plant.command("palm")->position == Approx(plant.palm_width()).margin(0.5));
+
+    FingerPlant other;
+    other.palm_max_speed = 10.0;
+    auto d = make_controller();
+    REQUIRE(d->enable(0.0, other).ok());
+    run(*d, other, 0.2);
+    REQUIRE(other.command("palm")->position > other.palm_width() + 1.0);
+    d->disable(0.2, other);
+    CHECK(other.command("palm")->position == Approx(other.palm_width()));
 }
 
 TEST_CASE("palm_parallel holds the palm while nothing is clamped and respects the palm's limits") {

@@ -14,7 +14,8 @@
 // The palm goal is integrated from ẇ, rate-limited, kept within `lead` mm of
 // the measured width (no wind-up while the servo is blocked) and inside the
 // palm joint's limits. Without a clamp (pushing finger not in current mode)
-// there is nothing to track: the controller holds the palm where it is.
+// there is nothing to track: the controller stops the palm where it is, and
+// does the same when it is switched off.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -50,12 +51,16 @@ public:
         const JointInfo* palm = joints.info(s_.palm);
         if (palm->unit != "mm")
             return {ErrorCode::invalid_argument, "joint '" + s_.palm + "' is in " + palm->unit +
-                                                     "; the palm must be a width in mm"};
+                                                     "; the palm must be a width in mm (set "
+                                                     "controllers.palm_parallel.palm to the palm-width joint)"};
         goal_ = joints.state(s_.palm)->position;
         error_deg_ = 0.0;
         rate_ = 0.0;
+        commanding_ = false;
         return {};
     }
+
+    void disable(double, JointAccess& joints) override { stop_palm(joints); }
 
     Status update(double, double dt, JointAccess& joints) override {
         const JointState& sensing = *joints.state(s_.sensing);
@@ -67,22 +72,19 @@ public:
         if (!tracking_ || dt <= 0.0) {
             rate_ = 0.0;
             goal_ = palm.position;
-            return {};  // the palm keeps whatever command it has
+            stop_palm(joints);  // once, when the clamp ends; then scripts own the palm again
+            return {};
         }
         const double feedforward =
             s_.feedforward ? palm.position * std::tan(sensing.position * kRadPerDeg) * sensing.velocity * kRadPerDeg
                            : 0.0;
-        double max_speed = s_.max_speed;
-        if (limit && limit->max_velocity > 0) max_speed = std::min(max_speed, limit->max_velocity);
+        const double max_speed = speed_limit(limit);
         rate_ = std::clamp(feedforward + s_.gain * error_deg_, -max_speed, max_speed);
         goal_ = std::clamp(goal_ + rate_ * dt, palm.position - s_.lead, palm.position + s_.lead);
         if (limit) goal_ = std::clamp(goal_, limit->min, limit->max);
 
-        JointCommand c;
-        c.mode = position_mode_of(*joints.info(s_.palm));
-        c.position = goal_;
-        c.profile_velocity = max_speed;
-        return joints.set_command(s_.palm, c);
+        commanding_ = true;
+        return joints.set_command(s_.palm, palm_command(joints, goal_, max_speed));
     }
 
     std::map<std::string, double> telemetry() const override {
@@ -91,11 +93,38 @@ public:
     }
 
 private:
+    double speed_limit(const JointLimit* limit) const {
+        return limit && limit->max_velocity > 0 ? std::min(s_.max_speed, limit->max_velocity) : s_.max_speed;
+    }
+
+    JointCommand palm_command(JointAccess& joints, double position, double speed) const {
+        JointCommand c;
+        c.mode = position_mode_of(*joints.info(s_.palm));
+        c.position = position;
+        c.profile_velocity = speed;
+        return c;
+    }
+
+    // Replace the last goal (up to `lead` mm ahead) by the measured width.
+    // Best effort: refused while commands are locked (emergency stop), when
+    // the kernel's safe state holds every joint anyway.
+    void stop_palm(JointAccess& joints) {
+        if (!commanding_) return;
+        commanding_ = false;
+        const JointState* palm = joints.state(s_.palm);
+        const JointLimit* limit = joints.limit(s_.palm);
+        if (!palm) return;
+        double here = palm->position;
+        if (limit) here = std::clamp(here, limit->min, limit->max);
+        (void)joints.set_command(s_.palm, palm_command(joints, here, speed_limit(limit)));
+    }
+
     PalmParallelSettings s_;
     double goal_ = 0.0;
     double error_deg_ = 0.0;
     double rate_ = 0.0;
     bool tracking_ = false;
+    bool commanding_ = false;  // the palm's command is ours
 };
 
 ParamSchema palm_parallel_schema() {
