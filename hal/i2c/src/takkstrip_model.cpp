@@ -11,13 +11,6 @@
 namespace rollsense::hal {
 namespace {
 
-// A splitmix64 counter (the SDK's portable mixer), so a seed gives the same
-// chip on every platform and standard library.
-double uniform01(std::uint64_t& state) {
-    const std::uint64_t z = random::splitmix64(state);
-    state += random::kGoldenGamma;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-}
 
 std::int16_t to_word(double v) {
     return static_cast<std::int16_t>(std::clamp(std::lround(v), -32768L, 32767L));
@@ -26,8 +19,9 @@ std::int16_t to_word(double v) {
 }  // namespace
 
 mpl115a::CoefficientWords plausible_coefficients(std::uint64_t seed) {
-    std::uint64_t s = seed;
-    auto u = [&] { return 2.0 * uniform01(s) - 1.0; };
+    // The SDK's splitmix64, so a seed gives the same chip on every platform.
+    random::SplitMix64 rng(seed);
+    auto u = [&] { return 2.0 * rng.uniform() - 1.0; };
     mpl115a::CoefficientWords w;
     w.a0 = to_word((2009.75 + 60.0 * u()) * 8.0);
     w.b1 = to_word((-2.37585 + 0.08 * u()) * 8192.0);
@@ -106,8 +100,8 @@ mpl115a::AdcReading Mpl115aChip::last_result() const {
 
 double Mpl115aChip::gaussian() {
     // Box–Muller on the chip's own generator: reproducible for a given seed.
-    const double u1 = std::max(uniform01(rng_), 1e-300);
-    const double u2 = uniform01(rng_);
+    const double u1 = std::max(rng_.uniform(), 1e-300);
+    const double u2 = rng_.uniform();
     return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
 }
 

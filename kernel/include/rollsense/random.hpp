@@ -51,6 +51,34 @@ constexpr std::uint64_t fnv1a64(std::string_view label) noexcept {
     return h;
 }
 
+// Integer in [0, n), n > 0, from one 64-bit draw: the high word of draw · n
+// (Lemire). Not debiased: the bias is below n / 2^64, and it stays one draw per call.
+constexpr std::uint64_t scale_below(std::uint64_t draw, std::uint64_t n) noexcept {
+    __extension__ using u128 = unsigned __int128;
+    return static_cast<std::uint64_t>((static_cast<u128>(draw) * n) >> 64);
+}
+
+// Uniform in [0, 1) from the top 53 bits of one 64-bit draw.
+constexpr double unit_interval(std::uint64_t draw) noexcept { return static_cast<double>(draw >> 11) * 0x1.0p-53; }
+
+// A splitmix64 generator: output n is splitmix64(seed + n·gamma). One word of
+// state; for fold shuffles and device models' draws, where xoshiro's longer
+// period is not needed.
+class SplitMix64 {
+public:
+    explicit constexpr SplitMix64(std::uint64_t seed) noexcept : state_(seed) {}
+    constexpr std::uint64_t next() noexcept {
+        const std::uint64_t z = splitmix64(state_);
+        state_ += kGoldenGamma;
+        return z;
+    }
+    constexpr std::uint64_t below(std::uint64_t n) noexcept { return scale_below(next(), n); }
+    constexpr double uniform() noexcept { return unit_interval(next()); }
+
+private:
+    std::uint64_t state_;
+};
+
 class Xoshiro256ss {
 public:
     // The raw state (not all zero), e.g. to check against the reference
@@ -99,15 +127,9 @@ public:
         return result;
     }
 
-    // Integer in [0, n), n > 0: the high word of next() · n (Lemire). Not
-    // debiased: the bias is below n / 2^64, and the draws stay one per call.
-    constexpr std::uint64_t below(std::uint64_t n) noexcept {
-        __extension__ using u128 = unsigned __int128;
-        return static_cast<std::uint64_t>((static_cast<u128>(next()) * n) >> 64);
-    }
-
-    // Uniform in [0, 1) with 53 random bits.
-    constexpr double uniform() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+    // Integer in [0, n), n > 0 (scale_below), and uniform in [0, 1) with 53 random bits.
+    constexpr std::uint64_t below(std::uint64_t n) noexcept { return scale_below(next(), n); }
+    constexpr double uniform() noexcept { return unit_interval(next()); }
     constexpr double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
 
     // Standard normal (Box–Muller; the second value of each pair is kept for

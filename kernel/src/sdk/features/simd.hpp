@@ -3,9 +3,10 @@
 // GCC/Clang vector extensions: element-wise IEEE operations, so a lane computes
 // bit for bit what the same scalar expression computes. That is what lets the
 // vectorised Goertzel sweep and Gaussian filter keep every window and every
-// feature identical to the scalar definition. No target used here enables FMA,
-// so the compiler cannot fuse a multiply and an add (which would round once
-// instead of twice and change results).
+// feature identical to the scalar definition. The SDK is compiled with
+// -ffp-contract=off (kernel/CMakeLists.txt), so the compiler never fuses a
+// multiply and an add (which would round once instead of twice and change
+// results), also on targets with FMA such as AArch64.
 //
 // `Vec2` (SSE2 on x86-64, NEON on AArch64) is always available. `Vec4` is used
 // only inside functions compiled for AVX2 and called after has_avx2() said yes.

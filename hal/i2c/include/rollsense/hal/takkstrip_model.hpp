@@ -28,6 +28,7 @@
 
 #include "rollsense/hal/fake_i2c_bus.hpp"
 #include "rollsense/hal/mpl115a.hpp"
+#include "rollsense/random.hpp"
 
 namespace rollsense::hal {
 
@@ -84,7 +85,7 @@ private:
     double noise_ = 0.0;
     double conversion_time_ = 1.6e-3;
     Mpl115aFault fault_ = Mpl115aFault::none;
-    std::uint64_t rng_;
+    random::SplitMix64 rng_;  // measurement noise
 
     // register pointer state of the current write message
     bool expect_pointer_ = false;
