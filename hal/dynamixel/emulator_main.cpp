@@ -34,7 +34,7 @@ int usage(const char* why) {
     std::fprintf(stderr,
                  "usage: rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]\n"
                  "                         [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]\n"
-                 "                         [--wire-baud N] [--status-every SECONDS]\n"
+                 "                         [--baud N] [--wire-baud N|line|0] [--status-every SECONDS]\n"
                  "  --servo         one emulated servo (repeatable); default: the E-TRoll bus,\n"
                  "                  1-3 XM430-W350 (position), 4 XL330-M288 (extended_position)\n"
                  "                  MODE: position|extended_position|current|current_based_position|velocity\n"

@@ -16,13 +16,14 @@ namespace rollsense::features::goertzel {
 // The widest pass any kernel makes.
 inline constexpr std::size_t kMaxBinsPerPass = 16;
 
-// Bins per pass of the kernel this CPU runs: 16 with AVX2, 8 otherwise. One pass
-// costs about as much as one bin did with one recurrence at a time: the
-// recurrences are independent, so a pass is bound by one chain's latency.
+// Bins per pass of the kernel this CPU runs: 16 with AVX2, 8 otherwise. The
+// recurrences of a pass are independent, so they fill the FP units instead of
+// waiting on one chain's latency: a pass costs little more than one bin did.
 std::size_t bins_per_pass() noexcept;
 
-// q[k] = 2·cos(πk/n) for k = 0 … count−1, cached per thread for the last n (a
-// dataset has a handful of trial lengths). Valid until the next call on this thread.
+// q[k] = 2·cos(πk/n) for k = 0 … count−1, cached per thread for the last few
+// lengths n (a dataset has a handful of trial lengths). The pointer is valid
+// until the next call on this thread.
 const double* coefficients(std::size_t n, std::size_t count);
 
 // |F[k]|² (≥ 0: rounding below zero is clamped) for the bins_per_pass() bins

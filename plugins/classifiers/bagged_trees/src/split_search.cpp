@@ -16,8 +16,10 @@ inline double xlogx(double v) { return v > 0.0 ? v * std::log(v) : 0.0; }
 // Gini (the default, and the hot loop of training). Bootstrap weights are
 // whole numbers, so the counts and the sums of squared counts per side are
 // kept in integers: exact, and a shorter dependency chain than doubles. A
-// candidate is scored in double exactly as sql/wl + sqr/wr (maximised, which
-// minimises the weighted Gini index), from the same exact integers.
+// candidate's score is sql/wl + sqr/wr (maximised, which minimises the
+// weighted Gini index), computed in double as (sql·wr + sqr·wl) / (wl·wr) from
+// the exact integers: one division per accepted candidate, the same rounding
+// as the builder before it, so the trees are unchanged.
 void TreeBuilder::sweep_gini(std::size_t f, const Entry* e, std::size_t count, const std::int64_t* counts,
                              std::int64_t total, std::int64_t sq_parent, std::int64_t min_leaf, Split& best) {
     std::int64_t* left = left_.data();

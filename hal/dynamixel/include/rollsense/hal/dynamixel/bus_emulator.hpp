@@ -46,7 +46,6 @@ public:
     // An object between the fingers of a hand on this bus (nullopt: none).
     // Its servos must be on the bus.
     void set_clamped_object(std::optional<ClampedObject> object) { object_ = object; }
-    const std::optional<ClampedObject>& clamped_object() const { return object_; }
 
     // Advance every servo's motion model (and the object's coupling between them).
     void advance(double seconds);
