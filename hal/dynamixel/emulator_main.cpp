@@ -2,7 +2,8 @@
 //
 //   rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]
 //                     [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]
-//                     [--baud N] [--wire-baud N|line|0] [--status-every SECONDS]
+//                     [--baud N] [--return-delay-us N] [--wire-baud N|line|0]
+//                     [--status-every SECONDS]
 //
 // Without --servo it emulates the E-TRoll bus (ids 1-4) holding an object
 // between the fingers (clamped_object.hpp). It prints the pty
@@ -34,7 +35,8 @@ int usage(const char* why) {
     std::fprintf(stderr,
                  "usage: rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]\n"
                  "                         [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]\n"
-                 "                         [--baud N] [--wire-baud N|line|0] [--status-every SECONDS]\n"
+                 "                         [--baud N] [--return-delay-us N] [--wire-baud N|line|0]\n"
+                 "                         [--status-every SECONDS]\n"
                  "  --servo         one emulated servo (repeatable); default: the E-TRoll bus,\n"
                  "                  1-3 XM430-W350 (position), 4 XL330-M288 (extended_position)\n"
                  "                  MODE: position|extended_position|current|current_based_position|velocity\n"
@@ -47,6 +49,8 @@ int usage(const char* why) {
                  "                  (default 0.349:65, the etroll profile's radius 10, ratio 2, offset 65)\n"
                  "  --baud N        every servo's Baud Rate item (default: 1000000 on the E-TRoll bus,\n"
                  "                  as configured at bring-up; 57600, the factory value, with --servo)\n"
+                 "  --return-delay-us N  every servo's Return Delay Time (default: 0 on the E-TRoll bus,\n"
+                 "                  as configured at bring-up; 500, the factory value, with --servo)\n"
                  "  --wire-baud N   delay replies as a real bus at N baud would; 'line' (default): at the\n"
                  "                  rate the client set on the port; 0: answer instantly\n"
                  "  --status-every  print every servo's state each SECONDS (default: off)\n");
@@ -63,6 +67,7 @@ int main(int argc, char** argv) {
     PtyEmulatorOptions options;
     options.wire_baud_from_line = true;
     std::optional<std::uint8_t> baud_index;
+    std::optional<std::uint8_t> return_delay;  // 2 µs units
     double status_every = 0;
     std::optional<bool> object_wanted;  // default: an object on the E-TRoll bus only
     ClampedObject geometry;
@@ -113,6 +118,13 @@ int main(int argc, char** argv) {
                                  : std::nullopt;
             if (!index) return usage("--baud needs a Dynamixel rate (9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000)");
             baud_index = *index;
+        } else if (a == "--return-delay-us") {
+            const char* v = value();
+            char* end = nullptr;
+            const long us = v ? std::strtol(v, &end, 10) : -1;
+            if (!v || *end != '\0' || us < 0 || us > 508)
+                return usage("--return-delay-us needs 0-508 (microseconds, in steps of 2)");
+            return_delay = static_cast<std::uint8_t>(us / 2);
         } else if (a == "--wire-baud") {
             const char* v = value();
             if (!v) return usage("--wire-baud needs a rate, 'line' or 0");
@@ -129,9 +141,11 @@ int main(int argc, char** argv) {
     if (!any) {
         servos = etroll_servos();
         if (!baud_index) baud_index = index_from_baud(1'000'000);
+        if (!return_delay) return_delay = 0;
     }
     for (auto& s : servos) {
         if (baud_index) s.baud_index = *baud_index;
+        if (return_delay) s.return_delay = *return_delay;
         bus.add_servo(s);
     }
     if (object_wanted.value_or(!any)) {

@@ -22,7 +22,8 @@ namespace {
 std::unique_ptr<PtyBusEmulator> start_etroll_bus() {
     BusEmulator bus;
     for (auto s : etroll_servos()) {
-        s.baud_index = *index_from_baud(1'000'000);
+        s.baud_index = *index_from_baud(1'000'000);  // as rollsense-dxl-emu's default bus
+        s.return_delay = 0;
         bus.add_servo(s);
     }
     bus.set_clamped_object(ClampedObject{});

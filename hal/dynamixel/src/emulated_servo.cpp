@@ -33,6 +33,7 @@ EmulatedServo::EmulatedServo(const ServoSetup& setup)
     table_[addr::id] = setup.id;
     table_[addr::operating_mode] = static_cast<std::uint8_t>(setup.mode);
     table_[addr::baud_rate] = setup.baud_index;
+    table_[addr::return_delay_time] = setup.return_delay;
     position_ = start;
     set_contact(setup.contact_degrees);
     publish();

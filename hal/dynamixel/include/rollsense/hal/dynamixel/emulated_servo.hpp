@@ -32,6 +32,7 @@ struct ServoSetup {
     // servo cannot move through it and pushes against it with its current.
     std::optional<double> contact_degrees;
     std::uint8_t baud_index = 1;  // 57600, the factory default
+    std::uint8_t return_delay = 250;  // Return Delay Time, 2 µs units: 500 µs, the factory default
 };
 
 class EmulatedServo {
