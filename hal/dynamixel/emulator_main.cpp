@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <thread>
@@ -201,6 +202,10 @@ int main(int argc, char** argv) {
         }
     }
     e.stop();
-    if (!link.empty()) ::unlink(link.c_str());
+    // Only our own link: another emulator started meanwhile may have taken the name.
+    if (!link.empty()) {
+        std::error_code ec;
+        if (std::filesystem::read_symlink(link, ec) == e.device()) ::unlink(link.c_str());
+    }
     return 0;
 }
