@@ -75,3 +75,18 @@ TEST_CASE("streams are independent of each other and distributions stay in range
     CHECK(std::abs(sum / n) < 5.0 / std::sqrt(n));
     CHECK(std::abs(sum_sq / n - 1.0) < 5.0 * std::sqrt(2.0 / n));
 }
+
+TEST_CASE("SplitMix64 is the splitmix64 counter: output n is splitmix64(seed + n * gamma)", "[random]") {
+    using namespace rollsense::random;
+    SplitMix64 g(0);
+    CHECK(g.next() == 0xE220A8397B1DCDAFull);  // Vigna's splitmix64.c, seed 0
+    SplitMix64 h(12345);
+    for (std::uint64_t n = 0; n < 5; ++n) CHECK(h.next() == splitmix64(12345 + n * kGoldenGamma));
+    SplitMix64 u(7);
+    for (int i = 0; i < 1000; ++i) {
+        const double x = u.uniform();
+        REQUIRE(x >= 0.0);
+        REQUIRE(x < 1.0);
+        REQUIRE(u.below(9) < 9);
+    }
+}
