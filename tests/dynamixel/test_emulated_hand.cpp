@@ -94,3 +94,33 @@ etroll.release()
     CHECK(sync.second >= summary.control_timing->periods);
     fs::remove_all(dir);
 }
+
+TEST_CASE("etroll-virtual: the paper script on in-process emulated servos is fast and deterministic") {
+    const fs::path dir = fs::temp_directory_path() / ("rollsense-etroll-virtual-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    auto run = [&](const std::string& name) {
+        runtime::SessionOptions o;
+        o.script = fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua";
+        o.profile = "etroll-virtual";
+        for (const char* kv : {"runs=2", "objects=C1,P2", "speeds=20", "analyse=false"}) REQUIRE(o.settings.add(kv).ok());
+        o.share_dir = ROLLSENSE_SHARE_DIR;
+        o.out_dir = dir / name;
+        o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
+        o.progress = false;
+        runtime::Session session(o);
+        const auto summary = session.run();
+        INFO(summary.status.message());
+        REQUIRE(summary.status.ok());
+        CHECK(summary.trials_saved == 4);
+        CHECK_FALSE(summary.control_timing.has_value());  // virtual clock
+        return o.out_dir;
+    };
+    const auto a = run("a"), b = run("b");
+    for (const auto& id : {"C1-v20-r001", "C1-v20-r002", "P2-v20-r001", "P2-v20-r002"}) {
+        const auto file = std::string("trials/") + id + ".csv";
+        const auto text = slurp(a / file);
+        CHECK(text.size() > 1000);  // about 106 samples
+        CHECK(text == slurp(b / file));
+    }
+    fs::remove_all(dir);
+}

@@ -66,6 +66,7 @@ void PtyBusEmulator::serve() {
                         if (options_.wire_baud_from_line) wire_baud = *line;
                     }
                     replies = bus_.receive(std::span<const std::uint8_t>(buf.data(), static_cast<std::size_t>(n)));
+                    bytes_handled_ += static_cast<std::uint64_t>(n);
                     if (wire_baud > 0) {
                         // Instruction on the wire, then each servo's return delay and reply.
                         const auto byte_ns = 10'000'000'000LL / wire_baud;

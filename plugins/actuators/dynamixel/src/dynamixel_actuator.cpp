@@ -62,7 +62,16 @@ Status DynamixelActuator::on_configure(const ParamSet& params, const PluginConte
         rt_[i].mode = j.default_mode;
     }
 
-    auto port = hal::SerialPort::open(config_.device, config_.baud);
+    std::string device = config_.device;
+    bus_.reset();
+    emulator_.reset();
+    if (config_.device == "emulator") {
+        auto emulator = InProcessEmulator::start(config_);
+        if (!emulator.ok()) return emulator.status();
+        emulator_ = std::move(emulator).value();
+        device = emulator_->device();
+    }
+    auto port = hal::SerialPort::open(device, config_.baud);
     if (!port.ok()) return port.status();
     bus_ = std::make_unique<Bus>(std::move(port).value(), BusOptions{config_.timeout, config_.retries});
     return check_servos();
@@ -197,6 +206,7 @@ Status DynamixelActuator::on_deactivate() {
 
 Status DynamixelActuator::on_cleanup() {
     bus_.reset();
+    emulator_.reset();
     return {};
 }
 
@@ -207,8 +217,9 @@ Status DynamixelActuator::on_recover() {
 }
 
 Status DynamixelActuator::read(double time, std::span<JointState> states) {
-    (void)time;
     if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
+    if (emulator_)
+        if (auto st = emulator_->advance_to(time, bus_->statistics().bytes_sent); !st.ok()) return st;
     if (states.size() != ids_.size())
         return {ErrorCode::invalid_argument, "read() got " + std::to_string(states.size()) + " states for " +
                                                  std::to_string(ids_.size()) + " joints"};

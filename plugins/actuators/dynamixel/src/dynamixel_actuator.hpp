@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "dynamixel_config.hpp"
+#include "in_process_emulator.hpp"
 #include "rollsense/actuator.hpp"
 #include "rollsense/hal/dynamixel/bus.hpp"
 
@@ -60,6 +61,7 @@ private:
     std::vector<JointInfo> infos_;
     std::vector<std::uint8_t> ids_;
     std::vector<Runtime> rt_;
+    std::unique_ptr<InProcessEmulator> emulator_;  // device "emulator" only; outlives bus_
     std::unique_ptr<hal::dxl::Bus> bus_;
 };
 

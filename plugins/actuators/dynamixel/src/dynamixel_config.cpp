@@ -20,7 +20,13 @@ Result<ControlMode> parse_mode(const std::string& s) {
 
 ParamSchema dynamixel_schema() {
     return {
-        param_string("device", std::string("/dev/ttyUSB0"), "serial port of the bus (a pty path for the emulator)"),
+        param_string("device", std::string("/dev/ttyUSB0"),
+                     "serial port of the bus (a pty path for rollsense-dxl-emu), or 'emulator': servos emulated "
+                     "in-process behind a pty, moving on the run clock"),
+        param_number("emulated_object", 65.0,
+                     "device 'emulator' only: effective width of an object clamped between sensing_finger, "
+                     "pushing_finger and palm (0: none)",
+                     0, {}, "mm"),
         param_int("baud", 57600, "bus baud rate; must match every servo's Baud Rate item", 9600, 4500000, "bit/s"),
         param_int_list("ids", std::nullopt, "servo id of each joint", 0, 252),
         param_string_list("names", std::nullopt, "joint name of each servo, e.g. sensing_finger"),
@@ -58,6 +64,7 @@ Result<BusConfig> parse_config(const ParamSet& params) {
     c.timeout = std::chrono::milliseconds(params.get_int("timeout_ms"));
     c.write_position_limits = params.get_bool("write_position_limits");
     c.torque_off_on_deactivate = params.get_bool("torque_off_on_deactivate");
+    c.emulated_object_mm = params.get_number("emulated_object");
 
     const auto ids = params.get_int_list("ids");
     const auto names = params.get_string_list("names");

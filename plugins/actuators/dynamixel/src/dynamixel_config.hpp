@@ -19,6 +19,7 @@ struct BusConfig {
     std::chrono::microseconds timeout{std::chrono::milliseconds(30)};
     bool write_position_limits = true;
     bool torque_off_on_deactivate = true;
+    double emulated_object_mm = 65.0;  // device "emulator" only
     std::vector<JointMap> joints;
 };
 

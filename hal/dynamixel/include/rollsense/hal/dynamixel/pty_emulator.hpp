@@ -38,6 +38,10 @@ public:
 
     const std::string& device() const { return pty_.slave_path(); }
     void stop();
+    // Bytes read from the client and fully handled (replies queued). A client
+    // that drives the emulator's time itself waits for this to reach its own
+    // bytes-sent count before advancing, so its last write is in effect.
+    std::uint64_t bytes_handled() const { return bytes_handled_.load(); }
 
     // Run `f` on the bus with the serving thread held off.
     template <class F>
@@ -57,6 +61,7 @@ private:
     PtyEmulatorOptions options_;
     std::mutex mutex_;
     std::atomic<bool> running_{false};
+    std::atomic<std::uint64_t> bytes_handled_{0};
     std::thread thread_;
 };
 

@@ -1,0 +1,78 @@
+#include "in_process_emulator.hpp"
+
+#include <chrono>
+#include <thread>
+
+namespace rollsense::dynamixel {
+namespace {
+
+const JointMap* find(const BusConfig& c, const std::string& name) {
+    for (const auto& j : c.joints)
+        if (j.name == name) return &j;
+    return nullptr;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<InProcessEmulator>> InProcessEmulator::start(const BusConfig& config) {
+    const auto baud_index = hal::dxl::index_from_baud(config.baud);
+    if (!baud_index)
+        return Error{ErrorCode::invalid_argument, "device 'emulator': " + std::to_string(config.baud) +
+                                                      " is not a Dynamixel baud rate (e.g. 57600, 1000000)"};
+    hal::dxl::BusEmulator bus;
+    for (const auto& j : config.joints) {
+        hal::dxl::ServoSetup s;
+        s.id = j.id;
+        s.model = j.model;
+        s.mode = to_operating_mode(j.default_mode);
+        s.baud_index = *baud_index;
+        s.return_delay = 0;
+        bus.add_servo(s);
+    }
+    if (config.emulated_object_mm > 0) {
+        const auto* sensing = find(config, "sensing_finger");
+        const auto* pushing = find(config, "pushing_finger");
+        const auto* palm = find(config, "palm");
+        if (!sensing || !pushing || !palm)
+            return Error{ErrorCode::invalid_argument,
+                         "device 'emulator': an emulated object needs joints named sensing_finger, pushing_finger "
+                         "and palm (set emulated_object = 0 for a bus without one)"};
+        hal::dxl::ClampedObject object;
+        object.sensing_id = sensing->id;
+        object.pushing_id = pushing->id;
+        object.palm_id = palm->id;
+        object.palm_mm_per_degree = palm->scale();
+        object.palm_centre_mm = palm->offset;
+        object.effective_width_mm = config.emulated_object_mm;
+        bus.set_clamped_object(object);
+    }
+    hal::dxl::PtyEmulatorOptions options;
+    options.real_time = false;  // time moves only through advance_to()
+    auto emulator = hal::dxl::PtyBusEmulator::start(std::move(bus), options);
+    if (!emulator.ok()) return emulator.error();
+    return std::unique_ptr<InProcessEmulator>(new InProcessEmulator(std::move(emulator).value()));
+}
+
+Status InProcessEmulator::advance_to(double time, std::uint64_t bytes_sent) {
+    // The serving thread may not have taken the client's last packet (a
+    // SYNC_WRITE gets no reply, so nothing waited for it): let it, so the
+    // servos move under the goals the client last wrote, as on a wire.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+    while (emulator_->bytes_handled() < bytes_sent) {
+        if (std::chrono::steady_clock::now() > deadline)
+            return {ErrorCode::timeout, "device 'emulator': the in-process servo emulator did not take the last "
+                                        "packet within 1 s (the machine is overloaded, or the emulator thread died)"};
+        std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+    if (time_ && time > *time_) {
+        const double dt = time - *time_;
+        emulator_->with_bus([dt](hal::dxl::BusEmulator& b) {
+            b.advance(dt);
+            return 0;
+        });
+    }
+    if (!time_ || time > *time_) time_ = time;
+    return {};
+}
+
+}  // namespace rollsense::dynamixel

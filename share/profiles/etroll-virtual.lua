@@ -1,0 +1,27 @@
+-- The E-TRoll driver stack on servos emulated in-process, on the virtual
+-- clock: the dynamixel plugin's serial port, Protocol 2.0 packets, one sync
+-- write and one sync read per control period, the palm-parallel controller and
+-- the Table I procedure all run for real, against emulated XM430/XL330 servos
+-- (with an object clamped between the fingers) that move on the run clock. The
+-- tactile data come from the simulated sensor, driven by the emulated
+-- sensing-finger angle. Deterministic, and as fast as the CPU allows:
+--   build/bin/rollsense run scripts/paper_experiment.lua --profile etroll-virtual
+-- For real-time behaviour (control-loop jitter, bus timing) use etroll-emulated
+-- with rollsense-dxl-emu instead.
+local etroll = include("etroll")
+local hand = etroll.devices.hand
+hand.params.device = "emulator"
+hand.params.emulated_object = setting("emulated_object", 65)
+return {
+  description = "E-TRoll driver stack on in-process emulated servos, simulated tactile sensor (virtual clock)",
+  clock = "virtual",
+  sample_rate_hz = 31.1,
+  control_rate_hz = 100,
+  devices = {
+    hand = hand,
+    tactile = { plugin = "sim", params = {} },
+  },
+  joints = include("etroll-joints"),
+  controllers = etroll.controllers,
+  record_joints = { "sensing_finger" },
+}
