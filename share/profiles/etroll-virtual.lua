@@ -7,21 +7,11 @@
 -- sensing-finger angle. Deterministic, and as fast as the CPU allows:
 --   build/bin/rollsense run scripts/paper_experiment.lua --profile etroll-virtual
 -- For real-time behaviour (control-loop jitter, bus timing) use etroll-emulated
--- with rollsense-dxl-emu instead.
-local etroll = include("etroll")
-local hand = etroll.devices.hand
-hand.params.device = "emulator"
-hand.params.emulated_object = setting("emulated_object", 65)
-return {
-  description = "E-TRoll driver stack on in-process emulated servos, simulated tactile sensor (virtual clock)",
-  clock = "virtual",
-  sample_rate_hz = 31.1,
-  control_rate_hz = 100,
-  devices = {
-    hand = hand,
-    tactile = { plugin = "sim", params = {} },
-  },
-  joints = include("etroll-joints"),
-  controllers = etroll.controllers,
-  record_joints = { "sensing_finger" },
-}
+-- with rollsense-dxl-emu instead; this profile is that one with the emulator
+-- moved in-process and the clock made virtual.
+local profile = include("etroll-emulated")
+profile.description = "E-TRoll driver stack on in-process emulated servos, simulated tactile sensor (virtual clock)"
+profile.clock = "virtual"
+profile.devices.hand.params.device = "emulator"
+profile.devices.hand.params.emulated_object = setting("emulated_object", 65)
+return profile

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <unistd.h>
 
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
@@ -32,6 +33,19 @@ std::unique_ptr<PtyBusEmulator> start_etroll_bus() {
     auto emu = PtyBusEmulator::start(std::move(bus), options);
     REQUIRE(emu.ok());
     return std::move(emu).value();
+}
+
+runtime::SessionOptions options_for(const fs::path& script, const std::string& profile, const fs::path& out,
+                                    std::initializer_list<const char*> settings) {
+    runtime::SessionOptions o;
+    o.script = script;
+    o.profile = profile;
+    for (const char* kv : settings) REQUIRE(o.settings.add(kv).ok());
+    o.share_dir = ROLLSENSE_SHARE_DIR;
+    o.out_dir = out;
+    o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
+    o.progress = false;
+    return o;
 }
 
 std::string slurp(const fs::path& p) {
@@ -70,14 +84,8 @@ rs.save_trial()
 rs.end_trial()
 etroll.release()
 )";
-    runtime::SessionOptions o;
-    o.script = dir / "script.lua";
-    o.profile = "etroll-emulated";
-    REQUIRE(o.settings.add("dxl_device=" + emu->device()).ok());
-    o.share_dir = ROLLSENSE_SHARE_DIR;
-    o.out_dir = dir / "out";
-    o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
+    const std::string device = "dxl_device=" + emu->device();
+    const auto o = options_for(dir / "script.lua", "etroll-emulated", dir / "out", {device.c_str()});
     runtime::Session session(o);
     const auto summary = session.run();
     INFO(summary.status.message());
@@ -99,14 +107,8 @@ TEST_CASE("etroll-virtual: the paper script on in-process emulated servos is fas
     const fs::path dir = fs::temp_directory_path() / ("rollsense-etroll-virtual-" + std::to_string(::getpid()));
     fs::remove_all(dir);
     auto run = [&](const std::string& name) {
-        runtime::SessionOptions o;
-        o.script = fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua";
-        o.profile = "etroll-virtual";
-        for (const char* kv : {"runs=2", "objects=C1,P2", "speeds=20", "analyse=false"}) REQUIRE(o.settings.add(kv).ok());
-        o.share_dir = ROLLSENSE_SHARE_DIR;
-        o.out_dir = dir / name;
-        o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-        o.progress = false;
+        const auto o = options_for(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua", "etroll-virtual",
+                                   dir / name, {"runs=2", "objects=C1,P2", "speeds=20", "analyse=false"});
         runtime::Session session(o);
         const auto summary = session.run();
         INFO(summary.status.message());
