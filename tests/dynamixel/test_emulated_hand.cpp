@@ -13,9 +13,11 @@
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
 #include "runtime/session/session.hpp"
+#include "temp_dir.hpp"
 
 using namespace rollsense;
 using namespace rollsense::hal::dxl;
+using rollsense::testing::read_file;
 namespace fs = std::filesystem;
 
 namespace {
@@ -48,18 +50,13 @@ runtime::SessionOptions options_for(const fs::path& script, const std::string& p
     return o;
 }
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 }  // namespace
 
 TEST_CASE("Table I on the emulated E-TRoll: clamp with the palm-parallel controller, roll, record") {
     auto emu = start_etroll_bus();
-    const fs::path dir = fs::temp_directory_path() / ("rollsense-emulated-hand-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const testing::TempDir tmp("rollsense-emulated-hand");
+    const fs::path& dir = tmp.path();
     std::ofstream(dir / "script.lua") << R"(
 local rs = require "rollsense"
 local etroll = require "etroll"
@@ -92,7 +89,7 @@ etroll.release()
     REQUIRE(summary.status.ok());
     CHECK(summary.trials_saved == 1);
     // 20 velocity units: a -44 -> +44 deg sweep in 3.2 s at 31.1 Hz, plus the record margins.
-    const auto manifest = slurp(o.out_dir / "manifest.csv");
+    const auto manifest = read_file(o.out_dir / "manifest.csv");
     CHECK_THAT(manifest, Catch::Contains("C2"));
     REQUIRE(summary.control_timing.has_value());
     CHECK(summary.control_timing->periods > 0);
@@ -100,12 +97,11 @@ etroll.release()
     const auto sync = emu->with_bus([](BusEmulator& b) { return std::pair{b.sync_reads(), b.sync_writes()}; });
     CHECK(sync.first >= summary.control_timing->periods);
     CHECK(sync.second >= summary.control_timing->periods);
-    fs::remove_all(dir);
 }
 
 TEST_CASE("etroll-virtual: the paper script on in-process emulated servos is fast and deterministic") {
-    const fs::path dir = fs::temp_directory_path() / ("rollsense-etroll-virtual-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
+    const testing::TempDir tmp("rollsense-etroll-virtual");
+    const fs::path& dir = tmp.path();
     auto run = [&](const std::string& name) {
         const auto o = options_for(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua", "etroll-virtual",
                                    dir / name, {"runs=2", "objects=C1,P2", "speeds=20", "analyse=false"});
@@ -120,9 +116,8 @@ TEST_CASE("etroll-virtual: the paper script on in-process emulated servos is fas
     const auto a = run("a"), b = run("b");
     for (const auto& id : {"C1-v20-r001", "C1-v20-r002", "P2-v20-r001", "P2-v20-r002"}) {
         const auto file = std::string("trials/") + id + ".csv";
-        const auto text = slurp(a / file);
+        const auto text = read_file(a / file);
         CHECK(text.size() > 1000);  // about 106 samples
-        CHECK(text == slurp(b / file));
+        CHECK(text == read_file(b / file));
     }
-    fs::remove_all(dir);
 }

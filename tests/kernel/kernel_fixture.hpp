@@ -9,39 +9,15 @@
 #include <unistd.h>
 
 #include "runtime/session/session.hpp"
+#include "temp_dir.hpp"
 
 namespace kt {
 
 namespace fs = std::filesystem;
 
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<int> n{0};
-        path_ = fs::temp_directory_path() / ("rollsense-test-" + std::to_string(::getpid()) + "-" + std::to_string(n++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-private:
-    fs::path path_;
-};
-
-inline void write_file(const fs::path& p, const std::string& text) {
-    fs::create_directories(p.parent_path());
-    std::ofstream(p) << text;
-}
-
-inline std::string read_file(const fs::path& p) {
-    std::ifstream in(p);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using rollsense::testing::read_file;
+using rollsense::testing::TempDir;
+using rollsense::testing::write_file;
 
 // Two servo joints and a three-cell bump sensor on the virtual clock.
 inline const char* kTestProfile = R"(

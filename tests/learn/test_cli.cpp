@@ -6,33 +6,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "rollsense/dataset.hpp"
 #include "rollsense/features.hpp"
+#include "run_command.hpp"
 
 namespace fs = std::filesystem;
 using namespace rollsense;
 
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-Run rollsense_cli(const std::string& args) {
-    const std::string cmd = std::string(ROLLSENSE_BIN_DIR) + "/rollsense " + args + " 2>&1";
-    Run r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    REQUIRE(p != nullptr);
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using Run = rollsense::testing::CommandRun;
+Run rollsense_cli(const std::string& args) { return rollsense::testing::run_rollsense(args); }
 
 std::vector<double> bump(std::size_t n, double amp, double centre, double width) {
     std::vector<double> x(n);

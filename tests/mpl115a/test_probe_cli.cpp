@@ -1,29 +1,13 @@
 // `rollsense probe i2c` end to end: the program, its output and exit status.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <string>
+
+#include "run_command.hpp"
 
 namespace {
 
-struct Run {
-    std::string out;
-    int status = -1;
-};
-
-Run run(const std::string& args) {
-    const std::string cmd = std::string(ROLLSENSE_BIN_DIR) + "/rollsense " + args + " 2>&1";
-    Run r;
-    std::FILE* p = ::popen(cmd.c_str(), "r");
-    REQUIRE(p);
-    char buf[512];
-    while (std::fgets(buf, sizeof buf, p)) r.out += buf;
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+rollsense::testing::CommandRun run(const std::string& args) { return rollsense::testing::run_rollsense(args); }
 
 int count(const std::string& text, const std::string& what) {
     int n = 0;
@@ -35,27 +19,27 @@ int count(const std::string& text, const std::string& what) {
 
 TEST_CASE("probe lists every modelled sensor with coefficients and a reading", "[mpl115a][probe][cli]") {
     auto r = run("probe i2c fake:cli --simulate --strips 0,1");
-    INFO(r.out);
+    INFO(r.output);
     CHECK(r.status == 0);
-    CHECK_THAT(r.out, Catch::Contains("SMBus quick yes"));
-    CHECK_THAT(r.out, Catch::Contains("all-strips address 0x06: ACK"));
-    CHECK(count(r.out, "MPL115A ok") == 12);
-    CHECK(count(r.out, "a0=") == 12);
-    CHECK(count(r.out, " kPa (Padc ") == 12);
-    CHECK_THAT(r.out, Catch::Contains("strip 1 slot 5 (select 0x0d)"));
-    CHECK_THAT(r.out, Catch::Contains("12 sensor(s) working, 0 with problems"));
+    CHECK_THAT(r.output, Catch::Contains("SMBus quick yes"));
+    CHECK_THAT(r.output, Catch::Contains("all-strips address 0x06: ACK"));
+    CHECK(count(r.output, "MPL115A ok") == 12);
+    CHECK(count(r.output, "a0=") == 12);
+    CHECK(count(r.output, " kPa (Padc ") == 12);
+    CHECK_THAT(r.output, Catch::Contains("strip 1 slot 5 (select 0x0d)"));
+    CHECK_THAT(r.output, Catch::Contains("12 sensor(s) working, 0 with problems"));
 }
 
 TEST_CASE("probe on an empty bus or a missing node fails with exit status 4", "[mpl115a][probe][cli]") {
     auto empty = run("probe i2c fake:nothing-here");
-    INFO(empty.out);
+    INFO(empty.output);
     CHECK(empty.status == 4);
-    CHECK_THAT(empty.out, Catch::Contains("nothing answered"));
+    CHECK_THAT(empty.output, Catch::Contains("nothing answered"));
 
     auto missing = run("probe i2c /dev/i2c-247");
-    INFO(missing.out);
+    INFO(missing.output);
     CHECK(missing.status == 4);
-    CHECK_THAT(missing.out, Catch::Contains("/dev/i2c-247 not found"));
+    CHECK_THAT(missing.output, Catch::Contains("/dev/i2c-247 not found"));
 }
 
 TEST_CASE("probe refuses bad command lines with exit status 2", "[mpl115a][probe][cli]") {

@@ -17,42 +17,20 @@
 #include "replay_sensor.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/log.hpp"
+#include "temp_dir.hpp"
 
 namespace rt {
 
 namespace fs = std::filesystem;
 using namespace rollsense;
 
-class TempDir {
+// Replay tests' folders are named rollsense-replay-*.
+class TempDir : public rollsense::testing::TempDir {
 public:
-    TempDir() {
-        static std::atomic<int> n{0};
-        path_ = fs::temp_directory_path() / ("rollsense-replay-" + std::to_string(::getpid()) + "-" + std::to_string(n++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-    fs::path operator/(const std::string& name) const { return path_ / name; }
-
-private:
-    fs::path path_;
+    TempDir() : rollsense::testing::TempDir("rollsense-replay") {}
 };
-
-inline void write_file(const fs::path& p, const std::string& text) {
-    if (p.has_parent_path()) fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-}
-
-inline std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using rollsense::testing::read_file;
+using rollsense::testing::write_file;
 
 // One trial to write: its samples say where they come from, ch1 = index,
 // ch2 = 100 + index, ch3 = 200 + index, the finger sweeping 0.5 deg a sample.

@@ -6,31 +6,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "png_image.hpp"
+#include "run_command.hpp"
 #include "synthetic_dataset.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-    int status = -1;
-    std::string output;
-};
-
-Run shell(const std::string& cmd) {
-    Run r;
-    FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-    REQUIRE(p != nullptr);
-    char buf[4096];
-    while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using rollsense::testing::run_command;
 
 }  // namespace
 
@@ -45,7 +31,7 @@ TEST_CASE("rollsense report writes a page that headless Chromium renders", "[rep
     rollsense::test::write_synthetic_dataset(root / "dataset");
     const fs::path page = root / "out" / "page.html";
     fs::create_directories(page.parent_path());
-    Run r = shell(std::string(ROLLSENSE_BIN_DIR) + "/rollsense report " + (root / "dataset").string() + " -o " +
+    auto r = run_command(std::string(ROLLSENSE_BIN_DIR) + "/rollsense report " + (root / "dataset").string() + " -o " +
                   page.string() + " --folds 3 --repeats 1 --set learners=10");
     INFO(r.output);
     REQUIRE(r.status == 0);
@@ -53,7 +39,7 @@ TEST_CASE("rollsense report writes a page that headless Chromium renders", "[rep
     REQUIRE(fs::exists(page));
 
     const fs::path shot = root / "screenshot.png";
-    r = shell(chromium.string() +
+    r = run_command(chromium.string() +
               " --headless --no-sandbox --disable-gpu --disable-background-networking --disable-component-update"
               " --disable-sync --no-first-run --user-data-dir=" + (root / "chromium-profile").string() +
               " --screenshot=" + shot.string() + " --window-size=1200,2000 file://" + page.string());
