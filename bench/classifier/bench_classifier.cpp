@@ -17,8 +17,8 @@
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/features.hpp"
-#include "runtime/learn/cross_validation.hpp"
-#include "runtime/learn/folds.hpp"
+#include "analysis/learn/cross_validation.hpp"
+#include "analysis/learn/folds.hpp"
 #include "synthetic_trials.hpp"
 
 using namespace rollsense;

@@ -8,6 +8,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "rollsense/hal/gpio.hpp"
 #include "runtime/session/session.hpp"
 #include "temp_dir.hpp"
 
@@ -59,6 +60,7 @@ inline rollsense::runtime::SessionOptions options_for(const TempDir& dir, const 
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR, ROLLSENSE_TEST_PLUGIN_DIR};
     o.progress = false;
     o.sandbox.max_slice_ms = 1000;
+    o.digital_lines = rollsense::hal::gpio_digital_lines();  // e-stop and trigger on fake chips
     return o;
 }
 

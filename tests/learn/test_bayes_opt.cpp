@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "runtime/learn/bayes_opt.hpp"
+#include "analysis/learn/bayes_opt.hpp"
 
 using namespace rollsense;
 using namespace rollsense::learn;

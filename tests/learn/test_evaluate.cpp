@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "rollsense/bagged_trees/bagged_trees.hpp"
-#include "runtime/learn/evaluate.hpp"
-#include "runtime/learn/folds.hpp"
+#include "analysis/learn/evaluate.hpp"
+#include "analysis/learn/folds.hpp"
 
 using namespace rollsense;
 using namespace rollsense::learn;

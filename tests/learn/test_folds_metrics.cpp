@@ -3,9 +3,9 @@
 #include <map>
 #include <set>
 
-#include "runtime/learn/folds.hpp"
-#include "runtime/learn/metrics.hpp"
-#include "runtime/learn/paper_analysis.hpp"
+#include "analysis/learn/folds.hpp"
+#include "analysis/learn/metrics.hpp"
+#include "analysis/learn/paper_analysis.hpp"
 
 using namespace rollsense;
 using namespace rollsense::learn;

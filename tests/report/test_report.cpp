@@ -11,12 +11,12 @@
 #include <unistd.h>
 
 #include "rollsense/bagged_trees/bagged_trees.hpp"
-#include "runtime/learn/evaluate.hpp"
-#include "runtime/report/breakdown.hpp"
-#include "runtime/report/object_order.hpp"
-#include "runtime/report/plotted_trial.hpp"
-#include "runtime/report/report.hpp"
-#include "runtime/report/svg.hpp"
+#include "analysis/learn/evaluate.hpp"
+#include "analysis/report/breakdown.hpp"
+#include "analysis/report/object_order.hpp"
+#include "analysis/report/plotted_trial.hpp"
+#include "analysis/report/report.hpp"
+#include "analysis/report/svg.hpp"
 #include "synthetic_dataset.hpp"
 
 namespace fs = std::filesystem;

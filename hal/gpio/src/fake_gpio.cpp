@@ -79,6 +79,21 @@ Result<std::unique_ptr<GpioOutput>> open_gpio_output(const GpioLineConfig& cfg, 
     return std::unique_ptr<GpioOutput>(std::make_unique<FakeGpioOutput>(chip.value(), cfg));
 }
 
+DigitalLines gpio_digital_lines() {
+    DigitalLines lines;
+    lines.open_input = [](const DigitalLine& line) -> Result<std::unique_ptr<DigitalInput>> {
+        auto in = open_gpio_input(line);
+        if (!in) return in.error();
+        return std::unique_ptr<DigitalInput>(std::move(in).value());
+    };
+    lines.open_output = [](const DigitalLine& line, bool initially_active) -> Result<std::unique_ptr<DigitalOutput>> {
+        auto out = open_gpio_output(line, initially_active);
+        if (!out) return out.error();
+        return std::unique_ptr<DigitalOutput>(std::move(out).value());
+    };
+    return lines;
+}
+
 // ------------------------------------------------------------ FakeGpioChip --
 
 std::shared_ptr<FakeGpioChip> FakeGpioChip::get(const std::string& name) {

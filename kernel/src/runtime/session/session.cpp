@@ -113,8 +113,11 @@ Status Session::prepare() {
 Status Session::open_safety_lines() {
     const std::string file = profile_.path.string();
     if (profile_.estop) {
-        hal::GpioLineConfig c{profile_.estop->chip, profile_.estop->line, profile_.estop->active_low, "rollsense-estop"};
-        auto in = hal::open_gpio_input(c);
+        DigitalLine c{profile_.estop->chip, profile_.estop->line, profile_.estop->active_low, "rollsense-estop"};
+        if (!options_.digital_lines.open_input)
+            return {ErrorCode::invalid_argument, file + ": safety.estop: this program cannot open digital lines; "
+                                                        "run it with `rollsense run`, or remove safety.estop"};
+        auto in = options_.digital_lines.open_input(c);
         if (!in) return Status(in.error()).with_context(file + ": safety.estop");
         estop_ = std::move(*in);
         auto active = estop_->is_active();
@@ -124,9 +127,11 @@ Status Session::open_safety_lines() {
                                               ") is asserted; release it before starting a run"};
     }
     if (profile_.trigger) {
-        hal::GpioLineConfig c{profile_.trigger->chip, profile_.trigger->line, profile_.trigger->active_low,
-                              "rollsense-trigger"};
-        auto out = hal::open_gpio_output(c, false);
+        DigitalLine c{profile_.trigger->chip, profile_.trigger->line, profile_.trigger->active_low, "rollsense-trigger"};
+        if (!options_.digital_lines.open_output)
+            return {ErrorCode::invalid_argument, file + ": safety.trigger: this program cannot open digital lines; "
+                                                          "run it with `rollsense run`, or remove safety.trigger"};
+        auto out = options_.digital_lines.open_output(c, false);
         if (!out) return Status(out.error()).with_context(file + ": safety.trigger");
         trigger_ = std::move(*out);
     }

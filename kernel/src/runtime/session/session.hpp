@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "rollsense/dataset.hpp"
-#include "rollsense/hal/gpio.hpp"
+#include "rollsense/digital_io.hpp"
 #include "runtime/lua/sandbox.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
 #include "runtime/profile/profile.hpp"
@@ -43,6 +43,7 @@ struct SessionOptions {
     std::size_t commit_every = 0;             // 0: 1 on hardware, 64 in simulation
     bool progress = true;                     // a progress bar when stderr is a terminal
     std::string command_line;                 // for run-info.csv
+    DigitalLines digital_lines;               // opens the profile's e-stop and trigger lines
 };
 
 struct RunSummary {
@@ -190,8 +191,8 @@ private:
     std::atomic<bool> cancel_flag_{false};
     std::string cancel_reason_;
     bool prepared_ = false;
-    std::unique_ptr<hal::GpioInput> estop_;
-    std::unique_ptr<hal::GpioOutput> trigger_;
+    std::unique_ptr<DigitalInput> estop_;
+    std::unique_ptr<DigitalOutput> trigger_;
     double trigger_off_time_ = -1;  // run-clock time to end the current pulse, -1 = none
     bool estop_tripped_ = false;
     ErrorCode raised_code_ = ErrorCode::ok;

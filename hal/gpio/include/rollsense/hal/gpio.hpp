@@ -19,35 +19,28 @@
 #include <utility>
 #include <vector>
 
+#include "rollsense/digital_io.hpp"
 #include "rollsense/status.hpp"
 
 namespace rollsense::hal {
 
-struct GpioLineConfig {
-    std::string chip;  // "gpiochip0", "/dev/gpiochip0" or "fake:<name>"
-    unsigned line = 0;
-    bool active_low = false;
-    std::string consumer = "rollsense";  // shown by gpioinfo
-};
+// chip: "gpiochip0", "/dev/gpiochip0" or "fake:<name>"; consumer is shown by gpioinfo.
+using GpioLineConfig = DigitalLine;
 
-class GpioInput {
+class GpioInput : public DigitalInput {
 public:
-    virtual ~GpioInput() = default;
-    // The logical level now; does not block.
-    virtual Result<bool> is_active() = 0;
     // Wait up to `timeout` for an edge (either direction) and consume it.
     // true = an edge came, false = the timeout passed. A zero timeout polls.
     virtual Result<bool> wait_for_edge(std::chrono::milliseconds timeout) = 0;
 };
 
-class GpioOutput {
-public:
-    virtual ~GpioOutput() = default;
-    virtual Status set_active(bool active) = 0;
-};
+class GpioOutput : public DigitalOutput {};
 
 Result<std::unique_ptr<GpioInput>> open_gpio_input(const GpioLineConfig& config);
 Result<std::unique_ptr<GpioOutput>> open_gpio_output(const GpioLineConfig& config, bool initially_active);
+
+// The kernel's view of these lines (e-stop, trigger): open_gpio_input/output.
+DigitalLines gpio_digital_lines();
 
 // The libgpiod backend directly (open_gpio_* dispatch here for non-fake chips).
 Result<std::unique_ptr<GpioInput>> open_gpiod_input(const GpioLineConfig& config);

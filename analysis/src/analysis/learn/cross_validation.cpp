@@ -1,0 +1,87 @@
+#include "analysis/learn/cross_validation.hpp"
+
+#include <exception>
+
+#include "analysis/learn/folds.hpp"
+
+namespace rollsense::learn {
+
+FeatureTable subset(const FeatureTable& table, std::span<const std::size_t> rows) {
+    FeatureTable t;
+    t.feature_names = table.feature_names;
+    t.class_names = table.class_names;
+    t.rows = rows.size();
+    t.x.reserve(rows.size() * table.cols());
+    t.y.reserve(rows.size());
+    for (std::size_t r : rows) {
+        const auto row = table.row(r);
+        t.x.insert(t.x.end(), row.begin(), row.end());
+        t.y.push_back(table.y[r]);
+    }
+    return t;
+}
+
+Result<ClassifierPtr> train_classifier(const FeatureTable& table, const ClassifierFactory& factory,
+                                       const ParamSet& params) {
+    auto made = factory(params);
+    if (!made) return made.error();
+    ClassifierPtr c = std::move(made).value();
+    try {
+        if (auto s = c->train(table); !s) return s;
+    } catch (const StatusError& e) {
+        return e.status();
+    } catch (const std::exception& e) {
+        return Error{ErrorCode::plugin_error, std::string("classifier threw during training: ") + e.what()};
+    }
+    return c;
+}
+
+Result<std::vector<int>> predict_labels(const Classifier& c, const FeatureTable& table,
+                                        std::span<const std::size_t> rows) {
+    std::vector<int> out;
+    out.reserve(rows.size());
+    try {
+        for (std::size_t r : rows) {
+            auto p = c.predict(table.row(r));
+            if (!p) return p.error();
+            if (p->label < 0 || static_cast<std::size_t>(p->label) >= table.class_names.size())
+                return Error{ErrorCode::plugin_error, "classifier predicted label " + std::to_string(p->label) +
+                                                          " outside the table's " +
+                                                          std::to_string(table.class_names.size()) + " classes"};
+            out.push_back(p->label);
+        }
+    } catch (const StatusError& e) {
+        return e.status();
+    } catch (const std::exception& e) {
+        return Error{ErrorCode::plugin_error, std::string("classifier threw during prediction: ") + e.what()};
+    }
+    return out;
+}
+
+Result<CvResult> cross_validate(const FeatureTable& table, std::span<const int> folds, int k,
+                                const ClassifierFactory& factory, const ParamSet& params) {
+    if (folds.size() != table.rows)
+        return Error{ErrorCode::invalid_argument, "fold assignment has " + std::to_string(folds.size()) +
+                                                      " rows, the table " + std::to_string(table.rows)};
+    CvResult r;
+    r.predicted.assign(table.rows, -1);
+    for (int f = 0; f < k; ++f) {
+        const auto train_rows = fold_rows(folds, f, false);
+        const auto test_rows = fold_rows(folds, f, true);
+        if (test_rows.empty()) continue;
+        auto model = train_classifier(subset(table, train_rows), factory, params);
+        if (!model) return Status(model.error()).with_context("fold " + std::to_string(f + 1));
+        auto labels = predict_labels(**model, table, test_rows);
+        if (!labels) return Status(labels.error()).with_context("fold " + std::to_string(f + 1));
+        std::size_t ok = 0;
+        for (std::size_t i = 0; i < test_rows.size(); ++i) {
+            r.predicted[test_rows[i]] = (*labels)[i];
+            ok += (*labels)[i] == table.y[test_rows[i]];
+        }
+        r.correct += ok;
+        r.fold_accuracy.push_back(static_cast<double>(ok) / static_cast<double>(test_rows.size()));
+    }
+    return r;
+}
+
+}  // namespace rollsense::learn

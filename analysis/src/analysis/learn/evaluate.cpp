@@ -1,0 +1,264 @@
+#include "analysis/learn/evaluate.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/learn/folds.hpp"
+
+namespace rollsense::learn {
+namespace {
+
+void say(const EvaluationOptions& o, const std::string& line) {
+    if (o.progress) o.progress(line);
+}
+
+std::string pct(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * v);
+    return buf;
+}
+
+Result<std::vector<int>> make_folds(std::span<const int> labels, const std::vector<std::string>* groups, int k,
+                                    std::uint64_t seed) {
+    if (groups) return grouped_folds(*groups, k, seed);
+    return stratified_folds(labels, k, seed);
+}
+
+// Objective of the optimiser: k-fold misclassification rate on one partition.
+Objective cv_error(const FeatureTable& table, const std::vector<int>& folds, int k, const ClassifierFactory& factory) {
+    return [&table, &folds, k, &factory](const ParamSet& p) -> Result<double> {
+        auto cv = cross_validate(table, folds, k, factory, p);
+        if (!cv) return cv.error();
+        return 1.0 - cv->accuracy();
+    };
+}
+
+}  // namespace
+
+Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
+                               int folds, int repeats, std::uint64_t seed, const std::vector<std::string>* groups) {
+    RepeatedCv r;
+    r.folds = folds;
+    r.repeats = repeats;
+    r.confusion = ConfusionMatrix(table.class_names);
+    for (int rep = 0; rep < repeats; ++rep) {
+        auto f = make_folds(table.y, groups, folds, seed + static_cast<std::uint64_t>(rep));
+        if (!f) return f.error();
+        auto cv = cross_validate(table, *f, folds, factory, params);
+        if (!cv) return Status(cv.error()).with_context("repetition " + std::to_string(rep + 1));
+        r.repeat_accuracy.push_back(cv->accuracy());
+        r.fold_accuracy.insert(r.fold_accuracy.end(), cv->fold_accuracy.begin(), cv->fold_accuracy.end());
+        for (std::size_t i = 0; i < table.rows; ++i) r.confusion.add(table.y[i], cv->predicted[i]);
+        if (rep == 0) r.first_predicted = cv->predicted;
+    }
+    r.mean = mean(r.repeat_accuracy);
+    r.sd = standard_deviation(r.repeat_accuracy);
+    r.correct = r.confusion.correct();
+    r.total = r.confusion.total();
+    r.wilson = wilson_interval(r.correct, r.total);
+    return r;
+}
+
+Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
+                                  const EvaluationOptions& options) {
+    const auto started = std::chrono::steady_clock::now();
+    std::vector<std::size_t> row_of;
+    const FeatureTable table = features::to_feature_table(rows, &row_of);
+    if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to evaluate"};
+    if (table.class_names.size() < 2)
+        return Error{ErrorCode::invalid_argument, "evaluation needs at least two classes among the clean trials"};
+
+    EvaluationReport rep;
+    rep.trials = rows.size();
+    rep.clean = table.rows;
+    rep.classes = table.class_names;
+    rep.params = options.params;
+    rep.space = options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+
+    std::vector<std::string> groups;
+    const std::vector<std::string>* group_ptr = nullptr;
+    if (options.group_of) {
+        for (std::size_t r : row_of) groups.push_back(options.group_of(rows[r]));
+        group_ptr = &groups;
+    }
+
+    say(options, "cross-validating the preset: " + std::to_string(options.repeats) + " x " +
+                     std::to_string(options.folds) + "-fold on " + std::to_string(table.rows) + " clean trials");
+    auto base = repeated_cv(table, factory, options.params, options.folds, options.repeats, options.seed, group_ptr);
+    if (!base) return base.error();
+    rep.baseline = std::move(base).value();
+    rep.analysis = analyse_like_paper(rows, row_of, table.y, rep.baseline.first_predicted, table.class_names,
+                                      options.catalogue);
+
+    if (options.optimize) {
+        // The paper's protocol: one partition, reused for every evaluation and
+        // for the reported figure.
+        auto fixed = make_folds(table.y, group_ptr, options.folds, options.seed);
+        if (!fixed) return fixed.error();
+        BayesOptOptions bo = options.bayes;
+        bo.seed = options.seed;
+        if (!bo.progress && options.progress)
+            bo.progress = [&](int i, const ParamSet& p, double v) {
+                say(options, "  optimiser " + std::to_string(i) + ": error " + pct(v) + "  " +
+                                 describe_params(p, rep.space));
+            };
+        say(options, "Bayesian optimisation on one fixed partition (" + std::to_string(bo.evaluations) +
+                         " evaluations)");
+        auto search = bayes_optimize(rep.space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
+        if (!search) return search.error();
+        TunedCv tuned;
+        tuned.search = std::move(search).value();
+        auto cv = cross_validate(table, *fixed, options.folds, factory, tuned.search.best_params());
+        if (!cv) return cv.error();
+        tuned.same_folds_accuracy = cv->accuracy();
+        tuned.confusion = confusion(table.y, cv->predicted, table.class_names);
+        rep.tuned = std::move(tuned);
+
+        if (options.nested) {
+            auto outer = make_folds(table.y, group_ptr, options.folds, options.seed + 7919);
+            if (!outer) return outer.error();
+            NestedCv nested;
+            nested.confusion = ConfusionMatrix(table.class_names);
+            for (int f = 0; f < options.folds; ++f) {
+                const auto train_rows = fold_rows(*outer, f, false);
+                const auto test_rows = fold_rows(*outer, f, true);
+                if (test_rows.empty()) continue;
+                const FeatureTable inner_table = subset(table, train_rows);
+                std::vector<std::string> inner_groups;
+                for (std::size_t r : train_rows)
+                    if (group_ptr) inner_groups.push_back(groups[r]);
+                auto inner = make_folds(inner_table.y, group_ptr ? &inner_groups : nullptr, options.folds,
+                                        options.seed + 104729 + static_cast<std::uint64_t>(f));
+                if (!inner) return inner.error();
+                BayesOptOptions ibo = options.bayes;
+                ibo.seed = options.seed + 31 * static_cast<std::uint64_t>(f + 1);
+                ibo.progress = nullptr;
+                say(options, "nested CV: tuning inside outer fold " + std::to_string(f + 1) + " of " +
+                                 std::to_string(options.folds));
+                const SearchSpace inner_space = options.space.empty()
+                                                    ? bagged_trees_search_space(inner_table.rows, inner_table.cols())
+                                                    : options.space;
+                auto s = bayes_optimize(inner_space, cv_error(inner_table, *inner, options.folds, factory),
+                                        options.params, ibo);
+                if (!s) return Status(s.error()).with_context("nested CV outer fold " + std::to_string(f + 1));
+                auto model = train_classifier(inner_table, factory, s->best_params());
+                if (!model) return model.error();
+                auto labels = predict_labels(**model, table, test_rows);
+                if (!labels) return labels.error();
+                std::size_t ok = 0;
+                for (std::size_t i = 0; i < test_rows.size(); ++i) {
+                    nested.confusion.add(table.y[test_rows[i]], (*labels)[i]);
+                    ok += (*labels)[i] == table.y[test_rows[i]];
+                }
+                nested.outer_accuracy.push_back(static_cast<double>(ok) / static_cast<double>(test_rows.size()));
+                nested.chosen.push_back(s->best_params());
+            }
+            nested.mean = mean(nested.outer_accuracy);
+            nested.sd = standard_deviation(nested.outer_accuracy);
+            nested.correct = nested.confusion.correct();
+            nested.total = nested.confusion.total();
+            nested.wilson = wilson_interval(nested.correct, nested.total);
+            rep.nested = std::move(nested);
+        }
+    }
+    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return rep;
+}
+
+Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
+                             const EvaluationOptions& options) {
+    const FeatureTable table = features::to_feature_table(rows);
+    if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to train on"};
+    FinalModel out;
+    out.params = options.params;
+    if (options.optimize) {
+        auto fixed = stratified_folds(table.y, options.folds, options.seed);
+        if (!fixed) return fixed.error();
+        const SearchSpace space =
+            options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+        BayesOptOptions bo = options.bayes;
+        bo.seed = options.seed;
+        auto s = bayes_optimize(space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
+        if (!s) return s.error();
+        out.params = s->best_params();
+        out.search = std::move(s).value();
+    }
+    auto model = train_classifier(table, factory, out.params);
+    if (!model) return model.error();
+    out.classifier = std::move(model).value();
+    return out;
+}
+
+namespace {
+
+std::string format_confusion(const ConfusionMatrix& m) {
+    std::string out;
+    char buf[64];
+    out += "true \\ predicted";
+    for (const auto& c : m.classes) {
+        std::snprintf(buf, sizeof buf, " %6s", c.c_str());
+        out += buf;
+    }
+    out += "     TPR\n";
+    const auto tpr = m.true_positive_rates();
+    for (std::size_t i = 0; i < m.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "%-16s", m.classes[i].c_str());
+        out += buf;
+        for (std::size_t j = 0; j < m.size(); ++j) {
+            std::snprintf(buf, sizeof buf, " %6zu", m.at(i, j));
+            out += buf;
+        }
+        std::snprintf(buf, sizeof buf, "  %5.1f %%\n", 100.0 * tpr[i]);
+        out += buf;
+    }
+    return out;
+}
+
+std::string figure(double m, double sd, const Interval& w, std::size_t k, std::size_t n) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.1f %% ± %.1f (sd)   pooled %zu / %zu, 95 %% Wilson [%.1f, %.1f] %%", 100.0 * m,
+                  100.0 * sd, k, n, 100.0 * w.low, 100.0 * w.high);
+    return buf;
+}
+
+}  // namespace
+
+std::string format_report(const EvaluationReport& r) {
+    std::string out;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "trials %zu, clean %zu, classes %zu\n\n", r.trials, r.clean, r.classes.size());
+    out += buf;
+    const auto& b = r.baseline;
+    std::snprintf(buf, sizeof buf, "preset, %d x repeated stratified %d-fold CV:\n  accuracy ", b.repeats, b.folds);
+    out += buf;
+    out += figure(b.mean, b.sd, b.wilson, b.correct, b.total) + "\n";
+    if (!r.params.values().empty()) out += "  parameters: " + describe_params(r.params, r.space) + "\n";
+    out += "\nconfusion matrix (pooled over repetitions):\n" + format_confusion(b.confusion);
+    if (r.tuned) {
+        const auto& t = *r.tuned;
+        std::snprintf(buf, sizeof buf,
+                      "\nBayesian optimisation, %zu evaluations on ONE fixed %d-fold partition (the paper's protocol):\n"
+                      "  accuracy %.1f %%  -- tuned and scored on the same folds: optimistic\n",
+                      t.search.history.size(), b.folds, 100.0 * t.same_folds_accuracy);
+        out += buf;
+        out += "  chosen: " + describe_params(t.search.best_params(), r.space) + "\n";
+    }
+    if (r.nested) {
+        const auto& n = *r.nested;
+        out += "nested CV (tuning inside each outer training fold): the honest tuned figure\n  accuracy ";
+        out += figure(n.mean, n.sd, n.wilson, n.correct, n.total) + "\n";
+        for (std::size_t i = 0; i < n.chosen.size(); ++i) {
+            std::snprintf(buf, sizeof buf, "  outer fold %zu: %.1f %%  ", i + 1, 100.0 * n.outer_accuracy[i]);
+            out += buf + describe_params(n.chosen[i], r.space) + "\n";
+        }
+    }
+    out += "\nthe paper's analyses (preset, first repetition = one " + std::to_string(b.folds) +
+           "-fold CV) beside the paper:\n";
+    out += format_paper_comparison(r.analysis);
+    std::snprintf(buf, sizeof buf, "\nevaluation took %.1f s\n", r.seconds);
+    out += buf;
+    return out;
+}
+
+}  // namespace rollsense::learn

@@ -1,0 +1,58 @@
+#include "analysis/learn/folds.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "analysis/learn/random.hpp"
+
+namespace rollsense::learn {
+
+Result<std::vector<int>> stratified_folds(std::span<const int> labels, int k, std::uint64_t seed) {
+    if (k < 2) return Error{ErrorCode::invalid_argument, "cross-validation needs at least 2 folds, got " + std::to_string(k)};
+    if (static_cast<std::size_t>(k) > labels.size())
+        return Error{ErrorCode::invalid_argument, std::to_string(k) + " folds need at least " + std::to_string(k) +
+                                                      " rows; the table has " + std::to_string(labels.size())};
+    std::map<int, std::vector<std::size_t>> by_class;
+    for (std::size_t i = 0; i < labels.size(); ++i) by_class[labels[i]].push_back(i);
+    SplitMix rng(seed);
+    std::vector<int> fold(labels.size(), 0);
+    std::size_t dealt = 0;
+    for (auto& [label, rows] : by_class) {
+        rng.shuffle(rows);
+        for (std::size_t r : rows) fold[r] = static_cast<int>(dealt++ % static_cast<std::size_t>(k));
+    }
+    return fold;
+}
+
+Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int k, std::uint64_t seed) {
+    if (k < 2) return Error{ErrorCode::invalid_argument, "cross-validation needs at least 2 folds"};
+    std::map<std::string, std::vector<std::size_t>> by_group;
+    for (std::size_t i = 0; i < groups.size(); ++i) by_group[groups[i]].push_back(i);
+    if (by_group.size() < static_cast<std::size_t>(k))
+        return Error{ErrorCode::invalid_argument, std::to_string(k) + " grouped folds need at least " +
+                                                      std::to_string(k) + " groups; there are " +
+                                                      std::to_string(by_group.size())};
+    std::vector<const std::vector<std::size_t>*> order;
+    for (const auto& [name, rows] : by_group) order.push_back(&rows);
+    SplitMix rng(seed);
+    rng.shuffle(order);
+    // Largest groups first keeps the folds balanced (stable for equal sizes).
+    std::stable_sort(order.begin(), order.end(), [](auto* a, auto* b) { return a->size() > b->size(); });
+    std::vector<std::size_t> size(static_cast<std::size_t>(k), 0);
+    std::vector<int> fold(groups.size(), 0);
+    for (const auto* rows : order) {
+        const auto f = static_cast<std::size_t>(std::min_element(size.begin(), size.end()) - size.begin());
+        for (std::size_t r : *rows) fold[r] = static_cast<int>(f);
+        size[f] += rows->size();
+    }
+    return fold;
+}
+
+std::vector<std::size_t> fold_rows(std::span<const int> folds, int test_fold, bool test) {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < folds.size(); ++i)
+        if ((folds[i] == test_fold) == test) out.push_back(i);
+    return out;
+}
+
+}  // namespace rollsense::learn

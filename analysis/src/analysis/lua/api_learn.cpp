@@ -1,0 +1,237 @@
+// Identification from Lua: rs.analyse{...} turns the run's dataset into
+// features, an evaluation and a trained model (the end of the stock
+// experiment); rs.classifier{...} loads a model and :identify() names the
+// object just rolled (live identification).
+#include <cmath>
+#include <cstdio>
+
+#include "rollsense/features.hpp"
+#include "rollsense/log.hpp"
+#include "analysis/learn/evaluate.hpp"
+#include "analysis/learn/inputs.hpp"
+#include "analysis/learn/plugin_factory.hpp"
+#include "runtime/lua/api_internal.hpp"
+#include "runtime/lua/lua_values.hpp"
+#include "analysis/report/report.hpp"
+
+namespace rollsense::runtime::lua_api {
+namespace {
+
+constexpr const char* kClassifierMeta = "rollsense.classifier";
+
+void check(lua_State* L, const Status& s) {
+    if (!s.ok()) raise_status(L, s);
+}
+
+ParamSet params_from(lua_State* L, int table) {
+    ParamSet out;
+    if (lua_isnoneornil(L, table)) return out;
+    lua_getfield(L, table, "params");
+    auto raw = lua_to_param_map(L, -1, "params");
+    lua_pop(L, 1);
+    if (!raw) raise_status(L, raw.status());
+    for (auto& [k, v] : *raw) out.set(k, v);
+    return out;
+}
+
+// Long C++ work does not count against the script's no-wait watchdog.
+struct SliceGuard {
+    Sandbox& sandbox;
+    ~SliceGuard() { sandbox.start_slice(); }
+};
+
+// rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier="bagged_trees",
+//             params={...}, model="model.rsm" } → summary table
+int l_analyse(lua_State* L) {
+    Session& s = Session::of(L);
+    SliceGuard guard{s.sandbox()};
+    const int opts = 1;
+    if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
+    check(L, s.flush_dataset());
+    auto dataset = DatasetReader::open(s.output_dir());
+    check(L, dataset.status());
+    auto rows = features::extract_dataset(*dataset, features::FeatureSettings{});
+    check(L, rows.status());
+    check(L, features::write_features_csv(s.output_dir() / "features.csv", *rows));
+    log_info("analysis", learn::summarize_rejections(*rows));
+
+    const std::string plugin = opt_field_string(L, opts, "classifier", "bagged_trees");
+    auto factory = learn::plugin_classifier_factory(s.registry(), plugin);
+    check(L, factory.status());
+    learn::EvaluationOptions eo;
+    eo.folds = static_cast<int>(opt_field_number(L, opts, "folds", 5));
+    eo.repeats = static_cast<int>(opt_field_number(L, opts, "repeats", 10));
+    eo.seed = s.options().seed;
+    eo.params = params_from(L, opts);
+    eo.optimize = opt_field_bool(L, opts, "optimize", false);
+    eo.nested = opt_field_bool(L, opts, "nested", eo.optimize);
+    eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
+    eo.progress = [](const std::string& line) { log_info("analysis", line); };
+    auto report = learn::evaluate(*rows, *factory, eo);
+    check(L, report.status());
+    const std::string text = learn::format_report(*report);
+    check(L, s.write_output_text("evaluation.txt", text));
+
+    // report.html: the paper's figures and tables for this dataset, and the terminal summary.
+    report::ReportInputs ri;
+    ri.dataset_dir = s.output_dir();
+    ri.rows = *rows;
+    ri.evaluation = *report;
+    ri.classifier = plugin;
+    ri.command_line = s.options().command_line;
+    auto page = report::write_report(ri);
+    check(L, page.status());
+    std::fprintf(stderr, "\n%s", report::text_summary(ri).c_str());
+    log_info("analysis", "report written to " + page->string() + "; the full evaluation is in evaluation.txt");
+
+    auto final_model = learn::fit_final(*rows, *factory, eo);
+    check(L, final_model.status());
+    const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
+    if (model_name.find('/') != std::string::npos)
+        return luaL_error(L, "rs.analyse: model '%s' must be a plain file name (it goes into the output folder)",
+                          model_name.c_str());
+    const auto model_path = s.output_dir() / model_name;
+    check(L, final_model->classifier->save(model_path));
+    log_info("analysis", "model saved to " + model_path.string());
+
+    lua_newtable(L);
+    lua_pushinteger(L, static_cast<lua_Integer>(report->trials));
+    lua_setfield(L, -2, "trials");
+    lua_pushinteger(L, static_cast<lua_Integer>(report->clean));
+    lua_setfield(L, -2, "clean");
+    lua_pushnumber(L, report->baseline.mean);
+    lua_setfield(L, -2, "accuracy");
+    lua_pushnumber(L, report->baseline.sd);
+    lua_setfield(L, -2, "accuracy_sd");
+    lua_pushnumber(L, report->baseline.wilson.low);
+    lua_setfield(L, -2, "interval_low");
+    lua_pushnumber(L, report->baseline.wilson.high);
+    lua_setfield(L, -2, "interval_high");
+    if (report->nested) {
+        lua_pushnumber(L, report->nested->mean);
+        lua_setfield(L, -2, "nested_accuracy");
+    }
+    lua_pushstring(L, model_path.c_str());
+    lua_setfield(L, -2, "model");
+    lua_pushstring(L, (s.output_dir() / "features.csv").c_str());
+    lua_setfield(L, -2, "features");
+    lua_pushstring(L, page->c_str());
+    lua_setfield(L, -2, "report");
+    return 1;
+}
+
+learn::ClassifierPtr& check_classifier(lua_State* L, int index) {
+    return *static_cast<learn::ClassifierPtr*>(luaL_checkudata(L, index, kClassifierMeta));
+}
+
+int l_classifier_gc(lua_State* L) {
+    auto* p = static_cast<learn::ClassifierPtr*>(luaL_checkudata(L, 1, kClassifierMeta));
+    using Ptr = learn::ClassifierPtr;
+    p->~Ptr();
+    return 0;
+}
+
+// rs.classifier{ model = PATH, classifier = "bagged_trees" } → a loaded model
+int l_classifier(lua_State* L) {
+    Session& s = Session::of(L);
+    SliceGuard guard{s.sandbox()};
+    luaL_checktype(L, 1, LUA_TTABLE);
+    const std::string model = opt_field_string(L, 1, "model", "");
+    if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
+    auto factory = learn::plugin_classifier_factory(s.registry(), opt_field_string(L, 1, "classifier", "bagged_trees"));
+    check(L, factory.status());
+    auto clf = (*factory)(ParamSet{});
+    check(L, clf.status());
+    check(L, (*clf)->load(model));
+    new (lua_newuserdatauv(L, sizeof(learn::ClassifierPtr), 0)) learn::ClassifierPtr(std::move(*clf));
+    luaL_setmetatable(L, kClassifierMeta);
+    return 1;
+}
+
+void push_prediction(lua_State* L, const Classifier& clf, const Prediction& p) {
+    lua_newtable(L);
+    lua_pushstring(L, p.class_name.c_str());
+    lua_setfield(L, -2, "object");
+    lua_newtable(L);
+    const auto names = clf.class_names();
+    for (std::size_t i = 0; i < names.size() && i < p.scores.size(); ++i) {
+        lua_pushnumber(L, p.scores[i]);
+        lua_setfield(L, -2, names[i].c_str());
+    }
+    lua_setfield(L, -2, "scores");
+}
+
+// clf:identify() → prediction table, or nil and the rejection reason when the
+// recording has no clean peaks (e.g. the object did not cross all three sensors).
+int l_identify(lua_State* L) {
+    auto& clf = check_classifier(L, 1);
+    Session& s = Session::of(L);
+    const auto& data = s.recorded();
+    if (data.samples() == 0) return luaL_error(L, "identify: nothing recorded (rs.record_start/stop first)");
+    if (data.channels.size() < features::kChannels)
+        return luaL_error(L, "identify: the recording has %d channels, the features need 3", static_cast<int>(data.channels.size()));
+    std::vector<std::vector<double>> channels(data.channels.begin(), data.channels.begin() + features::kChannels);
+    features::FeatureExtractor extractor;
+    auto f = extractor.extract(channels, data.time);
+    check(L, f.status());
+    if (!f->clean) {
+        lua_pushnil(L);
+        lua_pushstring(L, f->reason.c_str());
+        return 2;
+    }
+    auto p = clf->predict(f->values);
+    check(L, p.status());
+    push_prediction(L, *clf, *p);
+    lua_newtable(L);
+    for (std::size_t i = 0; i < features::kFeatureCount; ++i) {
+        lua_pushnumber(L, f->values[i]);
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_setfield(L, -2, "features");
+    return 1;
+}
+
+// clf:predict({f1, ..., f13}) → prediction table
+int l_predict(lua_State* L) {
+    auto& clf = check_classifier(L, 1);
+    luaL_checktype(L, 2, LUA_TTABLE);
+    std::vector<double> x;
+    for (lua_Integer i = 1; i <= static_cast<lua_Integer>(lua_rawlen(L, 2)); ++i) {
+        lua_rawgeti(L, 2, i);
+        x.push_back(luaL_checknumber(L, -1));
+        lua_pop(L, 1);
+    }
+    auto p = clf->predict(x);
+    check(L, p.status());
+    push_prediction(L, *clf, *p);
+    return 1;
+}
+
+int l_classes(lua_State* L) {
+    auto names = check_classifier(L, 1)->class_names();
+    lua_createtable(L, static_cast<int>(names.size()), 0);
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        lua_pushstring(L, names[i].c_str());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    return 1;
+}
+
+void register_learn(lua_State* L) {
+    static const luaL_Reg methods[] = {{"identify", l_identify}, {"predict", l_predict}, {"classes", l_classes},
+                                       {nullptr, nullptr}};
+    luaL_newmetatable(L, kClassifierMeta);
+    lua_newtable(L);
+    luaL_setfuncs(L, methods, 0);
+    lua_setfield(L, -2, "__index");
+    lua_pushcfunction(L, l_classifier_gc);
+    lua_setfield(L, -2, "__gc");
+    lua_pop(L, 1);
+    static const luaL_Reg fns[] = {{"analyse", l_analyse}, {"classifier", l_classifier}, {nullptr, nullptr}};
+    luaL_setfuncs(L, fns, 0);
+}
+
+const ExtraRegistration registration{&register_learn};
+
+}  // namespace
+}  // namespace rollsense::runtime::lua_api

@@ -1,0 +1,175 @@
+// Assembles the report page from the figures and tables, and writes it.
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "rollsense/atomic_file.hpp"
+#include "analysis/learn/inputs.hpp"
+#include "analysis/report/breakdown.hpp"
+#include "analysis/report/confusion_figure.hpp"
+#include "analysis/report/feature_figure.hpp"
+#include "analysis/report/page_style.hpp"
+#include "analysis/report/peak_grid.hpp"
+#include "analysis/report/provenance.hpp"
+#include "analysis/report/report.hpp"
+#include "analysis/report/svg.hpp"
+#include "analysis/report/tables.hpp"
+
+#ifndef ROLLSENSE_VERSION
+#define ROLLSENSE_VERSION "unknown"
+#endif
+
+namespace rollsense::report {
+
+namespace {
+
+std::string section(const std::string& id, const std::string& title, const std::string& body) {
+    return "<section id=\"" + escape_xml(id) + "\">\n<h2>" + escape_xml(title) + "</h2>\n" + body + "</section>\n";
+}
+
+std::string figure(const std::string& svg, const std::string& caption) {
+    return "<figure>\n" + svg + "<figcaption>" + caption + "</figcaption>\n</figure>\n";
+}
+
+// The paper's "time per identification": how long a roll at the fastest speed
+// records for. The fastest speed is the one with the shortest mean recording.
+ExtraRow identification_time(const DatasetReader& dataset) {
+    ExtraRow row{"time per identification (longest recording at the fastest speed)", "\u2013", "under 3.4 s"};
+    const double rate = dataset.info().sample_rate_hz;
+    std::map<std::string, std::pair<double, double>> by_speed;  // sum of samples, count
+    for (const auto& t : dataset.trials()) {
+        auto& s = by_speed[t.info.speed];
+        s.first += static_cast<double>(t.samples);
+        s.second += 1.0;
+    }
+    if (by_speed.empty() || !(rate > 0.0)) return row;
+    const auto fastest = std::min_element(by_speed.begin(), by_speed.end(), [](const auto& a, const auto& b) {
+        return a.second.first / a.second.second < b.second.first / b.second.second;
+    });
+    std::size_t longest = 0;
+    for (const auto& t : dataset.trials())
+        if (t.info.speed == fastest->first) longest = std::max(longest, t.samples);
+    row.label = "time per identification (longest recording at the fastest speed, " + fastest->first + ")";
+    row.ours = fixed(static_cast<double>(longest) / rate, 2) + " s";
+    return row;
+}
+
+}  // namespace
+
+std::filesystem::path report_path(const ReportInputs& in) {
+    return in.output.empty() ? in.dataset_dir / "report.html" : in.output;
+}
+
+Result<std::string> render_report(const ReportInputs& in) {
+    auto dataset = DatasetReader::open(in.dataset_dir);
+    if (!dataset) return dataset.error();
+    auto run_info = read_run_info(in.dataset_dir);
+    if (!run_info) return run_info.error();
+    const learn::EvaluationReport& ev = in.evaluation;
+    const auto& b = ev.baseline;
+
+    std::string body;
+    const std::string name = in.dataset_dir.filename().empty() ? in.dataset_dir.parent_path().filename().string()
+                                                               : in.dataset_dir.filename().string();
+    body += "<header>\n<h1>Object identification report: " + escape_xml(name) + "</h1>\n";
+    body += "<p class=\"lead\">Dataset <code>" + escape_xml(in.dataset_dir.string()) + "</code>, " +
+            std::to_string(ev.trials) + " trials, " + std::to_string(ev.clean) + " clean. Figures and analyses of " +
+            "the E-TRoll paper computed for this data.</p>\n";
+    body += "<p class=\"headline\" id=\"headline\">Accuracy " + fixed(100.0 * b.mean, 1) + " \u00b1 " +
+            fixed(100.0 * b.sd, 1) + "\u00a0% (" + escape_xml(in.classifier) + ", " + std::to_string(b.repeats) +
+            " \u00d7 " + std::to_string(b.folds) + "-fold CV), 95\u00a0% interval " + fixed(100.0 * b.wilson.low, 1) +
+            "\u2013" + fixed(100.0 * b.wilson.high, 1) + "\u00a0%; the paper: 90.5\u00a0%.</p>\n</header>\n";
+    body += "<nav><ol><li><a href=\"#sec-accuracy\">Accuracy</a></li><li><a href=\"#sec-confusion\">Confusion "
+            "matrix</a></li><li><a href=\"#sec-breakdown\">By speed and object</a></li><li><a "
+            "href=\"#sec-paper\">The paper's analyses</a></li><li><a href=\"#sec-peaks\">Peak plots</a></li><li><a "
+            "href=\"#sec-features\">Features</a></li><li><a href=\"#sec-tuning\">Tuning</a></li><li><a "
+            "href=\"#sec-provenance\">Provenance</a></li></ol></nav>\n";
+
+    body += section("sec-accuracy", "Accuracy", accuracy_table(ev, in.classifier) +
+                                                    "<p class=\"note\">" + escape_xml(learn::summarize_rejections(in.rows)) +
+                                                    "</p>\n");
+
+    body += section("sec-confusion", "Confusion matrix (cf. the paper's Fig. 9)",
+                    figure(confusion_figure(b.confusion, in.catalogue, "fig-confusion", "Confusion matrix"),
+                           "Out-of-fold predictions pooled over all " + std::to_string(b.repeats) +
+                               " repetitions of the " + std::to_string(b.folds) +
+                               "-fold CV (each clean trial counted once per repetition). Rows: true object; "
+                               "columns: predicted; shading: share of the row. TPR: true-positive rate per object. "
+                               "Thick lines separate cylinders, large and small polygonal prisms."));
+
+    const Breakdown split = breakdown(in.rows, ev, in.catalogue);
+    body += section("sec-breakdown", "Clean rate and accuracy by speed and by object",
+                    breakdown_table(split.by_speed, "speed", nullptr) +
+                        breakdown_table(split.by_object, "object", &b.confusion) +
+                        "<p class=\"note\">\u201cfirst CV\u201d: the out-of-fold predictions of the first "
+                        "repetition (one k-fold CV, as the paper ran). TPR: pooled over all repetitions, as in the "
+                        "confusion matrix.</p>\n");
+
+    body += section("sec-paper", "The paper's analyses, side by side", paper_comparison_table(ev.analysis, {identification_time(*dataset)}) +
+                        "<p class=\"note\">This data: the first repetition's out-of-fold predictions. Paper: Table "
+                        "and text of the E-TRoll paper (method.md \u00a76); a bare number is one the paper gives "
+                        "without its denominator.</p>\n");
+
+    const TrialSelection sel = select_trials(*dataset, in.rows, in.catalogue);
+    auto grid = peak_grid_figure(*dataset, sel, in.settings, "fig-peaks");
+    if (!grid) return grid.error();
+    body += section("sec-peaks", "Peak plots (cf. the paper's Fig. 7)",
+                    figure(*grid, "Smoothed readings of ch1\u2013ch3 for one trial per object and speed: the clean "
+                                  "trial with the lowest repetition, or a rejected one (red dashed frame) when none "
+                                  "is clean."));
+
+    std::string features_body;
+    if (auto pick = pick_feature_trial(*dataset, in.rows, in.catalogue)) {
+        auto t = load_plotted_trial(*dataset, dataset->trials()[*pick], in.settings);
+        if (!t) return t.error();
+        features_body = figure(feature_figure(*t, "fig-features"),
+                               "The features of trial " + escape_xml(t->info.id) +
+                                   " on its smoothed peaks: amplitude at the maximum, peak width between the 5\u00a0% "
+                                   "crossings (tick: its mid-point, which the skewness compares with the maximum), "
+                                   "half-width at 50\u00a0%, and the time between maxima.") +
+                        feature_values_table(*t);
+    } else {
+        features_body = "<p class=\"note\">No clean trial to draw the features on.</p>\n";
+    }
+    body += section("sec-features", "Features on one trial (cf. the paper's Fig. 8)", features_body);
+
+    std::string tuning = protocol_table(ev) + hyperparameter_table(ev);
+    if (ev.tuned)
+        tuning += "<p class=\"note\">The optimiser evaluated " + std::to_string(ev.tuned->search.history.size()) +
+                  " points; the paper's 90.5\u00a0% was obtained this optimistic way.</p>\n";
+    body += section("sec-tuning", "Hyperparameters and tuning", tuning);
+
+    KeyValues made = {{"report generated (UTC)", utc_timestamp()},
+                      {"report software version", ROLLSENSE_VERSION},
+                      {"report command line", in.command_line.empty() ? std::string("(not given)") : in.command_line},
+                      {"evaluation seconds", fixed(ev.seconds, 1)}};
+    const DatasetInfo& di = dataset->info();
+    KeyValues recorded = {{"profile", di.profile},
+                          {"seed", std::to_string(di.seed)},
+                          {"recording software version", di.software_version},
+                          {"sample rate (Hz)", fixed(di.sample_rate_hz, 2)}};
+    std::string prov = "<h3>Recording (run-info.csv)</h3>\n";
+    prov += run_info->empty() ? "<p class=\"note\">No run-info.csv: the dataset was not recorded by rollsense "
+                                "run.</p>\n"
+                              : key_value_table(*run_info);
+    prov += "<h3>Dataset (dataset-info.csv)</h3>\n" + key_value_table(recorded);
+    prov += "<h3>This report</h3>\n" + key_value_table(made);
+    body += section("sec-provenance", "Provenance", prov);
+
+    return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" "
+           "content=\"width=device-width, initial-scale=1\">\n<meta name=\"generator\" content=\"rollsense " ROLLSENSE_VERSION
+           "\">\n<title>rollsense report: " +
+           escape_xml(name) + "</title>\n<style>" + kPageStyle + "</style>\n</head>\n<body>\n" + body +
+           "</body>\n</html>\n";
+}
+
+Result<std::filesystem::path> write_report(const ReportInputs& in) {
+    auto html = render_report(in);
+    if (!html) return html.error();
+    const auto path = report_path(in);
+    if (auto st = write_file_atomic(path, *html); !st)
+        return Error{st.code(), "cannot write the report '" + path.string() + "': " + st.message()};
+    return path;
+}
+
+}  // namespace rollsense::report

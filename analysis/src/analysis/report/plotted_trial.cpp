@@ -1,0 +1,49 @@
+#include "analysis/report/plotted_trial.hpp"
+
+#include <algorithm>
+
+namespace rollsense::report {
+
+Result<PlottedTrial> load_plotted_trial(const DatasetReader& dataset, const TrialRecord& record,
+                                        const features::FeatureSettings& settings) {
+    auto data = dataset.load(record);
+    if (!data) return data.error();
+    if (data->channels.size() < features::kChannels)
+        return Error{ErrorCode::parse_error, "trial '" + record.info.id + "' has " +
+                                                 std::to_string(data->channels.size()) +
+                                                 " sensor channels; the report needs 3 (ch1..ch3)"};
+    features::FeatureExtractor extractor(settings);
+    std::vector<std::vector<double>> channels(data->channels.begin(),
+                                              data->channels.begin() + static_cast<std::ptrdiff_t>(features::kChannels));
+    auto f = extractor.extract(channels, data->time);
+    if (!f) return Error{f.error().code, "trial '" + record.info.id + "': " + f.error().message};
+    PlottedTrial t;
+    t.info = record.info;
+    t.features = std::move(f).value();
+    t.smoothed = extractor.smoothed();
+    t.x.resize(data->samples());
+    for (std::size_t i = 0; i < t.x.size(); ++i)
+        t.x[i] = settings.time_base == features::TimeBase::samples ? static_cast<double>(i) : data->time[i];
+    return t;
+}
+
+std::pair<std::size_t, std::size_t> half_maximum_span(const std::vector<double>& smoothed,
+                                                      const features::ChannelPeak& peak) {
+    if (smoothed.empty()) return {0, 0};
+    const std::size_t first = peak.peak.first, last = std::min(peak.peak.last, smoothed.size() - 1);
+    const double half = 0.5 * peak.peak.max;
+    std::size_t a = peak.peak.max_index, b = peak.peak.max_index;
+    for (std::size_t i = first; i <= last; ++i)
+        if (smoothed[i] >= half) {
+            a = i;
+            break;
+        }
+    for (std::size_t i = last + 1; i-- > first;)
+        if (smoothed[i] >= half) {
+            b = i;
+            break;
+        }
+    return {a, b};
+}
+
+}  // namespace rollsense::report

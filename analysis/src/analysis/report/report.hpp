@@ -1,0 +1,43 @@
+// The experiment report: a self-contained HTML page (inline SVG figures, no
+// scripts, no network) with the paper's figures and tables for one dataset,
+// and a plain-text summary for the terminal. Called at the end of the stock
+// experiment and by `rollsense report DATASET`.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rollsense/features.hpp"
+#include "rollsense/status.hpp"
+#include "analysis/learn/evaluate.hpp"
+#include "analysis/learn/paper_analysis.hpp"
+
+namespace rollsense::report {
+
+struct ReportInputs {
+    std::filesystem::path dataset_dir;            // the recorded dataset (trials are re-read for the plots)
+    std::filesystem::path output;                 // empty: <dataset_dir>/report.html
+    std::vector<features::FeatureRow> rows;       // every trial, clean and rejected, as evaluated
+    learn::EvaluationReport evaluation;           // learn::evaluate() on `rows`
+    features::FeatureSettings settings;           // the settings `rows` were extracted with
+    std::string classifier = "bagged_trees";
+    std::string command_line;                     // what made this report (shown under provenance)
+    std::vector<learn::ObjectShape> catalogue = learn::paper_objects();
+};
+
+// The page as a string (reads the dataset's manifest, run-info.csv and the
+// selected trial files). Errors name the file that could not be read.
+Result<std::string> render_report(const ReportInputs& inputs);
+
+// render_report() written atomically to inputs.output; returns the path.
+Result<std::filesystem::path> write_report(const ReportInputs& inputs);
+
+// A few lines for the terminal: trials, clean rate, accuracy with interval
+// beside the paper's, tuned figures, weakest objects.
+std::string text_summary(const ReportInputs& inputs);
+
+std::filesystem::path report_path(const ReportInputs& inputs);
+
+}  // namespace rollsense::report

@@ -1,0 +1,76 @@
+// The plain-text summary printed on the terminal at the end of a run.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "analysis/learn/inputs.hpp"
+#include "analysis/report/breakdown.hpp"
+#include "analysis/report/report.hpp"
+#include "analysis/report/svg.hpp"
+
+namespace rollsense::report {
+
+namespace {
+
+// Plain ASCII-friendly percent for terminals ("91.2 %").
+std::string pct(double fraction) {
+    if (!std::isfinite(fraction)) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * fraction);
+    return buf;
+}
+
+}  // namespace
+
+std::string text_summary(const ReportInputs& in) {
+    const auto& ev = in.evaluation;
+    const auto& b = ev.baseline;
+    std::string out;
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "Identification of %s\n", in.dataset_dir.string().c_str());
+    out += buf;
+    out += "  " + learn::summarize_rejections(in.rows) + "\n";
+    std::snprintf(buf, sizeof buf,
+                  "  accuracy %s +- %.1f (%s, %d x %d-fold CV), 95 %% interval %.1f-%.1f %%; paper 90.5 %%\n",
+                  pct(b.mean).c_str(), 100.0 * b.sd, in.classifier.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
+                  100.0 * b.wilson.high);
+    out += buf;
+    if (ev.tuned) {
+        std::snprintf(buf, sizeof buf, "  tuned, scored on the same folds (optimistic, the paper's protocol): %s\n",
+                      pct(ev.tuned->same_folds_accuracy).c_str());
+        out += buf;
+    }
+    if (ev.nested) {
+        std::snprintf(buf, sizeof buf, "  tuned, nested CV (honest): %s +- %.1f\n", pct(ev.nested->mean).c_str(),
+                      100.0 * ev.nested->sd);
+        out += buf;
+    }
+    // The objects most often confused: the ones a reader looks for first.
+    const Breakdown split = breakdown(in.rows, ev, in.catalogue);
+    const std::vector<double> tpr = b.confusion.true_positive_rates();
+    std::vector<std::size_t> idx(tpr.size());
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+    std::stable_sort(idx.begin(), idx.end(), [&](std::size_t x, std::size_t y) {
+        const double a = std::isfinite(tpr[x]) ? tpr[x] : 2.0, c = std::isfinite(tpr[y]) ? tpr[y] : 2.0;
+        return a < c;
+    });
+    if (!idx.empty()) {
+        out += "  weakest objects (TPR):";
+        for (std::size_t k = 0; k < std::min<std::size_t>(3, idx.size()); ++k)
+            out += " " + b.confusion.classes[idx[k]] + " " + pct(tpr[idx[k]]) + (k + 1 < std::min<std::size_t>(3, idx.size()) ? "," : "");
+        out += "\n";
+    }
+    if (!split.by_speed.empty()) {
+        out += "  by speed (clean rate, accuracy):";
+        for (std::size_t k = 0; k < split.by_speed.size(); ++k) {
+            const auto& s = split.by_speed[k];
+            out += " " + s.label + ": " + pct(s.clean_rate()) + ", " + pct(s.accuracy()) +
+                   (k + 1 < split.by_speed.size() ? ";" : "");
+        }
+        out += "\n";
+    }
+    out += "  report: " + report_path(in).string() + "\n";
+    return out;
+}
+
+}  // namespace rollsense::report

@@ -1,0 +1,2 @@
+// Fixture for the layer check: a header of the analysis layer.
+#pragma once
