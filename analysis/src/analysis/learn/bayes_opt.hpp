@@ -15,19 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "rollsense/classifier.hpp"
 #include "rollsense/params.hpp"
 #include "rollsense/status.hpp"
 
 namespace rollsense::learn {
 
-struct SearchDimension {
-    enum class Scale { integer_log, integer_linear, real_log, real_linear, categorical };
-    std::string name;  // parameter name passed to the factory
-    Scale scale = Scale::integer_linear;
-    double low = 0.0, high = 1.0;      // inclusive range (numeric scales)
-    std::vector<std::string> choices;  // categorical
-};
-using SearchSpace = std::vector<SearchDimension>;
+// The space is declared by the classifier (rollsense/classifier.hpp).
+using rollsense::SearchDimension;
+using rollsense::SearchSpace;
 
 // classifier.md §3, the bagged-trees part (what the paper's optimiser searched):
 // learners 10…500 (log), min_leaf_size 1…max(2, floor(n/2)) (log),
