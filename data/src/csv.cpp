@@ -104,6 +104,47 @@ Result<double> Reader::number(const std::vector<std::string>& fields, std::size_
     return parse_number(fields.at(column_index), where(column_index));
 }
 
+Result<std::int64_t> Reader::integer(const std::vector<std::string>& fields, std::size_t column_index,
+                                     std::int64_t min, std::int64_t max) const {
+    return parse_integer(fields.at(column_index), min, max, where(column_index));
+}
+
+Result<std::uint64_t> Reader::unsigned_integer(const std::vector<std::string>& fields, std::size_t column_index,
+                                               std::uint64_t max) const {
+    return parse_unsigned(fields.at(column_index), max, where(column_index));
+}
+
+namespace {
+std::string_view trimmed(std::string_view text) {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    return text;
+}
+
+template <typename T>
+Result<T> parse_whole(std::string_view text, T min, T max, const std::string& where) {
+    text = trimmed(text);
+    const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+    if (text.empty()) return Error{ErrorCode::parse_error, where + ": empty field where a whole number is expected"};
+    T value{};
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == text.data() + text.size() &&
+                                                 (value < min || value > max)))
+        return Error{ErrorCode::parse_error, where + ": " + std::string(text) + " is out of range " + range};
+    if (ec != std::errc() || ptr != text.data() + text.size())
+        return Error{ErrorCode::parse_error, where + ": '" + std::string(text) + "' is not a whole number in " + range};
+    return value;
+}
+}  // namespace
+
+Result<std::int64_t> parse_integer(std::string_view text, std::int64_t min, std::int64_t max, const std::string& where) {
+    return parse_whole<std::int64_t>(text, min, max, where);
+}
+
+Result<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t max, const std::string& where) {
+    return parse_whole<std::uint64_t>(text, 0, max, where);
+}
+
 Result<double> parse_number(std::string_view text, const std::string& where) {
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);

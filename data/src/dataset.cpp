@@ -107,9 +107,9 @@ Result<DatasetInfo> read_info(const fs::path& file) {
         } else if (key == "profile") {
             info.profile = value;
         } else if (key == "seed") {
-            auto v = reader->number(f, *val_col);
+            auto v = reader->unsigned_integer(f, *val_col);
             if (!v) return v.error();
-            info.seed = std::stoull(value);
+            info.seed = *v;
         } else if (key == "software_version") {
             info.software_version = value;
         }
@@ -117,6 +117,9 @@ Result<DatasetInfo> read_info(const fs::path& file) {
     if (!format_seen) return Error{ErrorCode::parse_error, file.string() + ": no 'format' row; not a rollsense dataset"};
     return info;
 }
+
+// Counts of a trial's samples: far above any real recording, far below what overflows.
+constexpr std::uint64_t kMaxCount = 1'000'000'000;
 
 Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
     auto reader = csv::Reader::open(file);
@@ -135,13 +138,9 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
     std::vector<TrialRecord> out;
     std::set<std::string> ids;
     std::vector<std::string> f;
-    auto integer = [&](std::size_t c) -> Result<double> {
-        if (c == SIZE_MAX) return 0.0;
-        auto v = reader->number(f, c);
-        if (!v) return v.error();
-        if (*v < 0 || std::floor(*v) != *v)
-            return Error{ErrorCode::parse_error, reader->where(c) + ": '" + f[c] + "' is not a whole number >= 0"};
-        return *v;
+    auto integer = [&](std::size_t c, std::uint64_t max = kMaxCount) -> Result<std::uint64_t> {
+        if (c == SIZE_MAX) return std::uint64_t{0};
+        return reader->unsigned_integer(f, c, max);
     };
     for (;;) {
         auto more = reader->next(f);
@@ -152,13 +151,13 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
         r.file = f[col[1]];
         r.info.object = f[col[2]];
         r.info.speed = f[col[3]];
-        auto rep = integer(col[4]);
+        auto rep = integer(col[4], INT32_MAX);
         if (!rep) return rep.error();
         r.info.repetition = static_cast<int>(*rep);
         if (col[5] != SIZE_MAX) {
-            auto seed = integer(col[5]);
+            auto seed = integer(col[5], UINT64_MAX);
             if (!seed) return seed.error();
-            r.info.seed = std::stoull(f[col[5]]);
+            r.info.seed = *seed;
         }
         auto samples = integer(col[6]);
         if (!samples) return samples.error();
@@ -323,6 +322,11 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     w->dir_ = dir;
     w->info_ = info;
     std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) return Error{ErrorCode::io_error, dir.string() + ": cannot create: " + ec.message()};
+    auto lock = DirectoryLock::acquire(dir);
+    if (!lock) return lock.error();
+    w->lock_ = std::move(lock).value();
     const bool exists = fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec);
     if (mode == DatasetOpenMode::create && exists)
         return Error{ErrorCode::invalid_argument, dir.string() +

@@ -73,7 +73,7 @@ TEST_CASE("malformed datasets: bad manifests", "[replay][malformed]") {
     }
     SECTION("a repetition that is not a whole number") {
         rt::write_file(dir / "ds/manifest.csv", "trial_id,file,object,speed,repetition,samples\nt1,trials/t1.csv,C1,10,one,3\n");
-        CHECK(replay_error(dir).find(manifest + ":2: column 'repetition': 'one' is not a number") != std::string::npos);
+        CHECK(replay_error(dir).find(manifest + ":2: column 'repetition': 'one' is not a whole number") != std::string::npos);
     }
     SECTION("the same trial id twice") {
         rt::write_file(dir / "ds/manifest.csv", std::string(kManifest) + "t1,trials/t1.csv,C1,10,2,3\n");

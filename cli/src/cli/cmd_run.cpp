@@ -83,28 +83,15 @@ int run(const std::vector<std::string>& argv) {
     auto out = args.option("--out");
     if (out.empty() && o.resume) throw UsageError("--resume needs --out DIR (the dataset to continue)");
     o.out_dir = out.empty() ? default_out(o.script) : out;
-    auto number = [&](const char* name, double fallback) {
-        auto v = args.option(name);
-        if (v.empty()) return fallback;
-        try {
-            std::size_t used = 0;
-            double d = std::stod(v, &used);
-            if (used != v.size()) throw std::invalid_argument(v);
-            return d;
-        } catch (const std::exception&) {
-            throw UsageError(std::string(name) + " expects a number, got '" + v + "'");
-        }
-    };
-    const double seed = number("--seed", 1);
-    if (seed < 0) throw UsageError("--seed must be >= 0");
-    o.seed = static_cast<std::uint64_t>(seed);
+    o.seed = args.unsigned_option("--seed", 1, 0, UINT64_MAX);
     for (const auto& kv : args.options("--set"))
         if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());
     for (const auto& p : args.options("--plugin-path")) o.plugin_path.emplace_back(p);
-    o.time_limit_s = number("--time-limit", 0);
-    o.sandbox.max_slice_ms = number("--slice-limit-ms", 5000);
-    o.sandbox.memory_bytes = static_cast<std::size_t>(number("--memory-limit-mb", 256) * 1024 * 1024);
-    o.commit_every = static_cast<std::size_t>(number("--commit-every", 0));
+    // Ranges: a zero or negative budget would silently switch a protection off.
+    o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
+    o.sandbox.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));
+    o.sandbox.memory_bytes = args.unsigned_option("--memory-limit-mb", 256, 1, 1u << 20) * 1024 * 1024;
+    o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
     o.progress = !args.flag("--no-progress");
     o.digital_lines = hal::gpio_digital_lines();
     o.command_line = "rollsense run";

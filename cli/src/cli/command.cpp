@@ -1,6 +1,9 @@
 #include "cli/command.hpp"
 
+#include <cmath>
 #include <stdexcept>
+
+#include "rollsense/csv.hpp"
 
 namespace rollsense::cli {
 namespace {
@@ -53,6 +56,27 @@ bool Args::flag(std::string_view name) const {
     for (const auto& a : args_)
         if (a == name) return true;
     return false;
+}
+
+std::uint64_t Args::unsigned_option(std::string_view name, std::uint64_t fallback, std::uint64_t min,
+                                    std::uint64_t max) const {
+    const auto text = option(name);
+    if (text.empty()) return fallback;
+    auto v = csv::parse_unsigned(text, max, std::string(name));
+    if (!v || *v < min)
+        throw UsageError(std::string(name) + " expects a whole number from " + std::to_string(min) + " to " +
+                         std::to_string(max) + ", got '" + text + "'");
+    return *v;
+}
+
+double Args::number_option(std::string_view name, double fallback, double min, double max) const {
+    const auto text = option(name);
+    if (text.empty()) return fallback;
+    auto v = csv::parse_number(text, std::string(name));
+    if (!v || !std::isfinite(*v) || *v < min || *v > max)
+        throw UsageError(std::string(name) + " expects a number from " + csv::format_number(min) + " to " +
+                         csv::format_number(max) + ", got '" + text + "'");
+    return *v;
 }
 
 std::vector<std::string> Args::positionals(const std::vector<std::string>& valued) const {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <stdexcept>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +51,12 @@ public:
     std::string option(std::string_view name, std::string_view short_name = {}) const;
     std::vector<std::string> options(std::string_view name) const;  // every occurrence
     bool flag(std::string_view name) const;
+    // "--name N": a whole number in [min, max] (no sign, fraction or exponent),
+    // or `fallback` when absent. Throws UsageError naming the option and range.
+    std::uint64_t unsigned_option(std::string_view name, std::uint64_t fallback, std::uint64_t min,
+                                  std::uint64_t max) const;
+    // "--name X": a finite number in [min, max], or `fallback` when absent.
+    double number_option(std::string_view name, double fallback, double min, double max) const;
     // Arguments that are neither options nor option values. `valued` lists
     // options that take a value (so their value is not mistaken for a positional).
     std::vector<std::string> positionals(const std::vector<std::string>& valued) const;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -36,6 +37,13 @@ public:
     // Strict number parsing: the whole field must be a number ("NaN" and "nan"
     // are accepted as NaN; empty is an error).
     Result<double> number(const std::vector<std::string>& fields, std::size_t column_index) const;
+    // Strict whole-number parsing in [min, max]: digits only (no sign other than
+    // a leading '-' when min < 0, no exponent, no fraction), so "1e30", "inf" and
+    // out-of-range values are errors naming the file, line and column.
+    Result<std::int64_t> integer(const std::vector<std::string>& fields, std::size_t column_index, std::int64_t min,
+                                 std::int64_t max) const;
+    Result<std::uint64_t> unsigned_integer(const std::vector<std::string>& fields, std::size_t column_index,
+                                           std::uint64_t max = UINT64_MAX) const;
 
 private:
     Reader() = default;
@@ -50,6 +58,10 @@ private:
 
 // Parse a whole number field; `where` goes in the error.
 Result<double> parse_number(std::string_view text, const std::string& where);
+
+// Parse a whole number field in [min, max] / [0, max]; `where` goes in the error.
+Result<std::int64_t> parse_integer(std::string_view text, std::int64_t min, std::int64_t max, const std::string& where);
+Result<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t max, const std::string& where);
 
 // Quote a field if it needs quoting.
 std::string escape(std::string_view field);

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "rollsense/atomic_file.hpp"
+#include "rollsense/directory_lock.hpp"
 #include "rollsense/status.hpp"
 #include "rollsense/types.hpp"
 
@@ -79,7 +80,8 @@ enum class DatasetOpenMode {
     resume,  // continue a dataset with the same info; trials already on disk are kept
 };
 
-// Writes trials durably. Each trial file is written atomically; the manifest is
+// Writes trials durably, holding a lock on the folder (a second writer is
+// refused at once). Each trial file is written atomically; the manifest is
 // rewritten atomically after the trial files it lists, so after a crash every
 // trial in the manifest is complete, and a trial file not yet in the manifest
 // is simply written again on resume.
@@ -117,6 +119,7 @@ private:
     void writer_loop();
     Status take_error();
 
+    DirectoryLock lock_;  // first member: released after the writer thread has ended
     std::filesystem::path dir_;
     DatasetInfo info_;
     std::vector<TrialRecord> trials_;

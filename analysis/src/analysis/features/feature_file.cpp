@@ -144,7 +144,7 @@ Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& f
         if (speed_col != SIZE_MAX) row.speed = f[speed_col];
         if (reason_col != SIZE_MAX) row.reason = f[reason_col];
         if (rep_col != SIZE_MAX && !f[rep_col].empty()) {
-            auto v = r.number(f, rep_col);
+            auto v = r.integer(f, rep_col, 0, INT32_MAX);
             if (!v) return v.error();
             row.repetition = static_cast<int>(*v);
         }
@@ -163,7 +163,7 @@ Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& f
                                                      "' is marked clean but has a missing or non-finite feature"};
         for (std::size_t c = 0; c < kChannels; ++c) {
             if (wcol[c] == SIZE_MAX || f[wcol[c]].empty()) continue;
-            auto v = r.number(f, wcol[c]);
+            auto v = r.integer(f, wcol[c], 0, INT32_MAX);
             if (!v) return v.error();
             row.windows[c] = static_cast<int>(*v);
         }

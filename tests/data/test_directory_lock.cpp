@@ -1,0 +1,60 @@
+// One writer per output folder: a second DatasetWriter, or a second
+// `rollsense run` into the same --out, is refused at once with a message that
+// says what to do; the lock goes with the writer (or the process).
+#include <catch2/catch.hpp>
+
+#include "rollsense/dataset.hpp"
+#include "rollsense/directory_lock.hpp"
+#include "run_command.hpp"
+#include "temp_dir.hpp"
+
+using namespace rollsense;
+using rollsense::testing::TempDir;
+
+namespace {
+DatasetInfo info() {
+    DatasetInfo i;
+    i.channels = {"ch1"};
+    i.profile = "test";
+    i.seed = 3;
+    return i;
+}
+}  // namespace
+
+TEST_CASE("a second writer into the same folder is refused while the first lives", "[data][lock]") {
+    TempDir dir;
+    auto first = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::create);
+    REQUIRE(first.ok());
+    auto second = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::resume);
+    REQUIRE_FALSE(second.ok());
+    CHECK(second.error().code == ErrorCode::state_error);
+    CHECK_THAT(second.error().message, Catch::Contains("being written by another rollsense run") &&
+                                           Catch::Contains("--out"));
+    first->reset();
+    auto third = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::resume);
+    CHECK(third.ok());
+}
+
+TEST_CASE("`rollsense run` into a folder another run holds exits at once, naming it", "[data][lock][cli]") {
+    TempDir dir;
+    std::filesystem::create_directories(dir / "out");
+    auto held = DirectoryLock::acquire(dir / "out");
+    REQUIRE(held.ok());
+    auto r = rollsense::testing::run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) +
+                                               "/scripts/paper_experiment.lua --set runs=1 --no-progress --out " +
+                                               (dir / "out").string());
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains((dir / "out").string() + " is being written by another rollsense run"));
+    CHECK_FALSE(std::filesystem::exists(dir / "out" / "manifest.csv"));
+}
+
+TEST_CASE("out-of-range numbers on the command line are usage errors, not silent changes", "[data][cli]") {
+    const std::string script = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --out /nonexistent ";
+    for (const char* bad : {"--memory-limit-mb -1", "--memory-limit-mb 0", "--slice-limit-ms 0", "--seed 1e30",
+                            "--seed -1", "--seed 2.5", "--time-limit -1", "--commit-every x"}) {
+        auto r = rollsense::testing::run_rollsense(script + bad);
+        INFO(bad << "\n" << r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains(std::string(bad).substr(0, std::string(bad).find(' '))));
+    }
+}
