@@ -9,7 +9,9 @@ pkg_check_modules(GPIOD REQUIRED IMPORTED_TARGET libgpiod)
 pkg_check_modules(MODBUS REQUIRED IMPORTED_TARGET libmodbus)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 # Boost.DLL is header-only when it uses std::filesystem (BOOST_DLL_USE_STD_FS).
-find_package(Boost 1.74 REQUIRED)
+# The version is also what the installed package asks for (rollsenseConfig.cmake).
+set(ROLLSENSE_BOOST_MIN_VERSION 1.74)
+find_package(Boost ${ROLLSENSE_BOOST_MIN_VERSION} REQUIRED)
 add_library(rollsense_boost_dll INTERFACE)
 target_link_libraries(rollsense_boost_dll INTERFACE Boost::boost ${CMAKE_DL_LIBS})
 target_compile_definitions(rollsense_boost_dll INTERFACE BOOST_DLL_USE_STD_FS)

@@ -3,7 +3,7 @@
 
 #include <thread>
 
-#include "conformance.hpp"
+#include "rollsense/testing/conformance.hpp"
 #include "dynamixel_actuator.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"

@@ -1,7 +1,7 @@
 // The mock servo model: conformance, trapezoid timing, current mode against a contact.
 #include <catch2/catch.hpp>
 
-#include "conformance.hpp"
+#include "rollsense/testing/conformance.hpp"
 #include "kernel_fixture.hpp"
 #include "motion_profile.hpp"
 #include "runtime/plugin/plugin_registry.hpp"

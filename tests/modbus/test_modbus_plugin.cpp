@@ -4,7 +4,7 @@
 #include <cmath>
 #include <thread>
 
-#include "conformance.hpp"
+#include "rollsense/testing/conformance.hpp"
 #include "loopback_server.hpp"
 #include "modbus_actuator.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <boost/dll/shared_library.hpp>
 
-#include "conformance.hpp"
+#include "rollsense/testing/conformance.hpp"
 #include "mpl115a_test_rig.hpp"
 #include "rollsense/plugin.hpp"
 

@@ -3,7 +3,7 @@
 // are invalid with their reason, or hold the last sample).
 #include <catch2/catch.hpp>
 
-#include "conformance.hpp"
+#include "rollsense/testing/conformance.hpp"
 #include "replay_fixture.hpp"
 
 using namespace rollsense;

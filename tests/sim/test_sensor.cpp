@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "conformance.hpp"
+#include "rollsense/testing/conformance.hpp"
 #include "roll_driver.hpp"
 #include "sim_schema.hpp"
 #include "sim_sensor.hpp"
