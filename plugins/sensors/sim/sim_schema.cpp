@@ -6,7 +6,7 @@ ParamSchema sim_schema() {
     const SimParameters d;  // defaults live in one place: SimParameters
     const OutputChainSettings c;
     return {
-        param_string("catalogue", std::string("objects/paper_table2.csv"),
+        param_string("catalogue", std::string(kStockCatalogue),
                      "object catalogue CSV, relative to the share folder unless absolute"),
         param_string("sensing_joint", std::string("sensing_finger"),
                      "actuator joint whose angle (deg) rolls the object across the array"),
