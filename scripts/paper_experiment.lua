@@ -30,7 +30,7 @@ local done = 0
 for _, object in ipairs(objects) do
   for _, speed in ipairs(speeds) do
     for repetition = 1, runs do
-      local id = string.format("%s-v%s-r%03d", object, speed, repetition)
+      local id = rs.trial_id{ object = object, speed = tonumber(speed), repetition = repetition }
       if not rs.has_trial(id) then
         etroll.run_trial{ object = object, speed = tonumber(speed), repetition = repetition }
       end

@@ -2,7 +2,9 @@
 -- tactile sensor driven by the emulated sensing-finger angle: the real driver
 -- stack (serial port, Protocol 2.0, sync read/write, the palm-parallel
 -- controller) end to end without a hand. Start the emulator first; by default
--- it holds an object between the fingers (docs/dynamixel.md, "Emulated hand"):
+-- it holds an object between the fingers (docs/dynamixel.md, "Emulated hand"),
+-- in a hand of the geometry of etroll-hand.lua (its defaults; if you change
+-- that file, give the emulator the same --finger-offset-sum/--array-distance):
 --   build/bin/rollsense-dxl-emu --link /tmp/etroll-bus &
 --   build/bin/rollsense run scripts/paper_experiment.lua --profile etroll-emulated --set runs=2
 -- (--set dxl_device=PATH if the emulator's link is elsewhere). Time is real:
@@ -19,7 +21,7 @@ return {
   control_rate_hz = 100,
   devices = {
     hand = hand,
-    tactile = { plugin = "sim", params = {} },
+    tactile = { plugin = "sim", params = include("etroll-hand") },
   },
   joints = include("etroll-joints"),
   controllers = etroll.controllers,

@@ -13,5 +13,11 @@ local profile = include("etroll-emulated")
 profile.description = "E-TRoll driver stack on in-process emulated servos, simulated tactile sensor (virtual clock)"
 profile.clock = "virtual"
 profile.devices.hand.params.device = "emulator"
-profile.devices.hand.params.emulated_object = setting("emulated_object", 65)
+-- The emulated object (its width between the fingers, mm; 0 = none; default
+-- the mean flat width of the paper's objects) sits in the hand the simulation
+-- rolls in: the same geometry for both devices.
+profile.devices.hand.params.emulated_object = setting("emulated_object", nil)
+local geometry = include("etroll-hand")
+profile.devices.hand.params.finger_offset_sum = geometry.finger_offset_sum
+profile.devices.hand.params.array_distance = geometry.array_distance
 return profile

@@ -9,7 +9,7 @@ return {
   control_rate_hz = 100,
   devices = {
     hand = include("mock-hand"),
-    tactile = { plugin = "sim", params = {} },
+    tactile = { plugin = "sim", params = include("etroll-hand") },
   },
   joints = include("etroll-joints"),
   record_joints = { "sensing_finger" },

@@ -10,8 +10,10 @@
 #include <initializer_list>
 #include <unistd.h>
 
+#include "rollsense/etroll_hand/clamped_object.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
+#include "runtime/profile/profile.hpp"
 #include "runtime/session/session.hpp"
 #include "temp_dir.hpp"
 
@@ -29,7 +31,7 @@ std::unique_ptr<PtyBusEmulator> start_etroll_bus() {
         s.return_delay = 0;
         bus.add_servo(s);
     }
-    bus.set_clamped_object(ClampedObject{});
+    REQUIRE(etroll::clamp_object(bus, etroll::ClampedObject{}).ok());
     PtyEmulatorOptions options;
     options.wire_baud_from_line = true;
     auto emu = PtyBusEmulator::start(std::move(bus), options);
@@ -120,4 +122,37 @@ TEST_CASE("etroll-virtual: the paper script on in-process emulated servos is fas
         CHECK(text.size() > 1000);  // about 106 samples
         CHECK(text == read_file(b / file));
     }
+}
+
+TEST_CASE("the emulated and the simulated hand take their geometry from the same profile table") {
+    // etroll-virtual: the dynamixel plugin's in-process emulator and the sim
+    // sensor both read share/profiles/etroll-hand.lua.
+    runtime::Settings settings;
+    REQUIRE(settings.add("devices.tactile.params.array_distance=72").ok());  // one device changed on purpose
+    const runtime::Settings none;
+    auto p = runtime::load_profile("etroll-virtual", ROLLSENSE_SHARE_DIR, none);
+    REQUIRE(p.ok());
+    const auto number = [](const ParamValue& v) {  // Lua's 41 is an integer, 41.5 a number
+        return std::holds_alternative<double>(v) ? std::get<double>(v) : static_cast<double>(std::get<std::int64_t>(v));
+    };
+    const runtime::DeviceSpec* hand = nullptr;
+    const runtime::DeviceSpec* tactile = nullptr;
+    for (const auto& d : p->devices) (d.name == "hand" ? hand : tactile) = &d;
+    REQUIRE(hand);
+    REQUIRE(tactile);
+    for (const char* key : {"finger_offset_sum", "array_distance"}) {
+        INFO(key);
+        REQUIRE(hand->params.count(key) == 1);
+        REQUIRE(tactile->params.count(key) == 1);
+        CHECK(hand->params.at(key) == tactile->params.at(key));
+    }
+    // The table is the simulation's calibrated hand, the plugins' defaults.
+    const etroll::HandGeometry calibrated;
+    CHECK(number(hand->params.at("array_distance")) == calibrated.array_distance);
+    CHECK(number(hand->params.at("finger_offset_sum")) == calibrated.finger_offset_sum);
+    // A --set on one device changes that device only (so the two can be told apart).
+    auto changed = runtime::load_profile("etroll-virtual", ROLLSENSE_SHARE_DIR, settings);
+    REQUIRE(changed.ok());
+    for (const auto& d : changed->devices)
+        CHECK(number(d.params.at("array_distance")) == (d.name == "tactile" ? 72.0 : calibrated.array_distance));
 }

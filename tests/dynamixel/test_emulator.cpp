@@ -2,11 +2,15 @@
 #include <catch2/catch.hpp>
 
 #include "rollsense/hal/dynamixel/bus_emulator.hpp"
+#include "rollsense/etroll_hand/clamped_object.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 
 #include <cmath>
 
 using namespace rollsense::hal::dxl;
+using rollsense::etroll::ClampedObject;
+using rollsense::etroll::clamp_object;
+using rollsense::etroll::pushing_contact_degrees;
 
 namespace {
 
@@ -194,14 +198,15 @@ TEST_CASE("servo specs parse and explain what is wrong") {
 }
 
 TEST_CASE("the clamped object's contact angle is parallel at w = d / cos(theta), more open with a narrower palm") {
-    ClampedObject o;  // d = 65 mm, lever 60 mm, palm 0.349 mm/deg about 65 mm
+    ClampedObject o;  // W 24 + T 41 = d 65 mm, lever 70 mm, palm 0.349 mm/deg about 65 mm
     const double deg = 180.0 / M_PI;
     const auto palm_degrees_for = [&](double width) { return (width - o.palm_centre_mm) / o.palm_mm_per_degree; };
     for (double theta : {-44.0, -20.0, 0.0, 30.0, 44.0}) {
-        const double parallel = o.effective_width_mm / std::cos(theta / deg);
+        const double parallel = o.effective_width_mm() / std::cos(theta / deg);
         CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel)) == Approx(theta).margin(1e-9));
-        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel - 5.0)) < theta - 3.0);
-        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel + 5.0)) > theta + 3.0);
+        // 5 mm of misfit over a 70 mm lever: about 3 deg (less cos θ).
+        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel - 5.0)) < theta - 2.5);
+        CHECK(pushing_contact_degrees(o, theta, palm_degrees_for(parallel + 5.0)) > theta + 2.5);
     }
 }
 
@@ -211,19 +216,19 @@ TEST_CASE("on a bus with a clamped object, the palm width sets where the clampin
     bus.add_servo(setup(2, find_model("XM430-W350"), -66.0, OperatingMode::current));
     bus.add_servo(setup(3, find_model("XM430-W350"), 0.0));  // palm at its centre: 65 mm
     ClampedObject o;
-    bus.set_clamped_object(o);
+    REQUIRE(clamp_object(bus, o).ok());
     for (std::uint8_t id : {1, 2, 3}) REQUIRE(write(*bus.servo(id), addr::torque_enable, 1, 1) == 0);
     auto& pushing = *bus.servo(2);
     REQUIRE(write(pushing, addr::goal_current, 45, 2) == 0);  // 121 mA, the Table I clamp
     bus.advance(1.0);
-    // Palm too narrow for parallel fingers at -44 deg: held open at about -61 deg.
+    // Palm too narrow for parallel fingers at -44 deg: held open at about -59 deg.
     const double narrow = ticks_to_degrees(pushing.position_ticks());
     const double sensing = ticks_to_degrees(bus.servo(1)->position_ticks());  // -44 to the tick
     CHECK(narrow == Approx(pushing_contact_degrees(o, sensing, 0.0)).margin(0.01));
-    CHECK(narrow < -60.0);
+    CHECK(narrow < -58.0);
     CHECK(pushing.item(addr::present_current, 2) == 45);  // pressing on the object
     // Open the palm to the parallel width (90.4 mm): the finger follows the object to -44 deg.
-    const double parallel_palm_degrees = (o.effective_width_mm / std::cos(44.0 * M_PI / 180.0) - 65.0) /
+    const double parallel_palm_degrees = (o.effective_width_mm() / std::cos(44.0 * M_PI / 180.0) - 65.0) /
                                          o.palm_mm_per_degree;
     REQUIRE(write(*bus.servo(3), addr::goal_position, degrees_to_ticks(parallel_palm_degrees), 4) == 0);
     bus.advance(2.0);
@@ -232,4 +237,22 @@ TEST_CASE("on a bus with a clamped object, the palm width sets where the clampin
     REQUIRE(write(*bus.servo(3), addr::goal_position, degrees_to_ticks(0.0), 4) == 0);
     bus.advance(2.0);
     CHECK(ticks_to_degrees(pushing.position_ticks()) == Approx(narrow).margin(0.05));
+}
+
+TEST_CASE("the clamped object takes its geometry from the hand, and needs its three servos on the bus") {
+    ClampedObject o;
+    // The defaults are the simulation's calibrated hand (one home: HandGeometry).
+    CHECK(o.hand.finger_offset_sum == rollsense::etroll::HandGeometry{}.finger_offset_sum);
+    CHECK(o.effective_width_mm() == Approx(65.0));
+    // A wider object needs a wider palm for the same contact angle.
+    ClampedObject wide = o;
+    wide.object_width_mm += 10.0;
+    CHECK(pushing_contact_degrees(wide, 0.0, 0.0) == Approx(pushing_contact_degrees(o, 0.0, 0.0) -
+                                                              10.0 * 180.0 / M_PI / o.hand.array_distance));
+    BusEmulator bus;
+    bus.add_servo(setup(1, find_model("XM430-W350"), 0.0));
+    bus.add_servo(setup(3, find_model("XM430-W350"), 0.0));
+    const auto st = clamp_object(bus, o);
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.message().find("pushing finger (servo 2)") != std::string::npos);
 }

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <string>
 
-#include "object_catalogue.hpp"
+#include "rollsense/object_catalogue.hpp"
 
-using namespace rollsense::sim;
+using namespace rollsense;
 
 namespace {
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {

@@ -39,30 +39,19 @@ std::vector<std::uint8_t> BusEmulator::ids() const {
 }
 
 void BusEmulator::advance(double seconds) {
-    if (!object_) {
+    if (!coupling_) {
         for (auto& s : servos_) s.step(seconds);
         return;
     }
-    // The obstacle moves with the sensing finger and the palm: re-place it at
-    // the servos' own integration step so the coupling does not lag.
-    constexpr double kCouplingStep = 0.001;
+    // The coupled obstacles move with the servos: re-place them at the servos'
+    // own integration step so the coupling does not lag.
     while (seconds > 1e-12) {
         const double dt = std::min(seconds, kCouplingStep);
-        place_object();
+        coupling_(*this);
         for (auto& s : servos_) s.step(dt);
         seconds -= dt;
     }
-    place_object();
-}
-
-void BusEmulator::place_object() {
-    auto* sensing = servo(object_->sensing_id);
-    auto* pushing = servo(object_->pushing_id);
-    auto* palm = servo(object_->palm_id);
-    if (!sensing || !pushing || !palm) return;
-    const double contact = pushing_contact_degrees(*object_, ticks_to_degrees(sensing->position_ticks()),
-                                                   ticks_to_degrees(palm->position_ticks()));
-    pushing->set_obstacle(contact, +1.0);
+    coupling_(*this);
 }
 
 void BusEmulator::raise_hardware_error(std::uint8_t id, std::uint8_t bits) {

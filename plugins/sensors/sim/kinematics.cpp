@@ -4,14 +4,6 @@
 
 namespace rollsense::sim {
 
-double HandGeometry::palm_width(double object_width, double theta) const {
-    return effective_width(object_width) / std::cos(theta);
-}
-
-double HandGeometry::pushing_coordinate(double x, double object_width, double theta) const {
-    return x + array_distance - effective_width(object_width) * std::tan(theta);
-}
-
 CylinderRoll::CylinderRoll(const HandGeometry& hand, double diameter, double start_contact, double start_theta,
                            double slip_fraction)
     : hand_(hand),

@@ -8,25 +8,13 @@
 // normal, in radians inside the model (the plugin converts from degrees).
 #pragma once
 
+#include "rollsense/etroll_hand/hand_geometry.hpp"
+
 namespace rollsense::sim {
 
-struct HandGeometry {
-    // T: sum of the distances from each finger's joint axis to its contact
-    // surface (finger body, PCB, rubber), mm. Fitted (docs/simulation.md §6).
-    double finger_offset_sum = 41.0;
-    // Distance along a finger from its joint axis to barometer 2, mm: sets the
-    // lever arm of the pushing finger's constant torque.
-    double array_distance = 70.0;
-
-    // Effective width d = W + T for an object of width W between the fingers.
-    double effective_width(double object_width) const { return object_width + finger_offset_sum; }
-    // Palm width that keeps the fingers parallel: w = d / cos θ.
-    double palm_width(double object_width, double theta) const;
-    // Where a point at sensing-finger coordinate x lies along the pushing finger,
-    // measured from the pushing finger's joint (its lever arm), for a gap W:
-    // u = x + L − (W + T) tan θ.
-    double pushing_coordinate(double x, double object_width, double theta) const;
-};
+// The hand's geometry has one home, shared with the servo emulator's
+// clamped object (plugins/common/etroll_hand).
+using etroll::HandGeometry;
 
 // A cylinder rolling without slip on both fingers: its contact on the sensing
 // finger moves half the fingers' relative slide, s(θ) = s0 + (d/2)(tan θ − tan θ0),

@@ -15,12 +15,16 @@
 #include "contact_load.hpp"
 #include "kinematics.hpp"
 #include "layer_response.hpp"
-#include "object_catalogue.hpp"
+#include "rollsense/object_catalogue.hpp"
 #include "output_chain.hpp"
 #include "polygon_tumbling.hpp"
 #include "rng.hpp"
 
 namespace rollsense::sim {
+
+// The objects come from the data layer's catalogue (share/objects/*.csv).
+using rollsense::ObjectCatalogue;
+using rollsense::ObjectSpec;
 
 inline constexpr int kChannels = 3;
 

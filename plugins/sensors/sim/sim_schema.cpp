@@ -1,12 +1,14 @@
 #include "sim_schema.hpp"
 
+#include <algorithm>
+
 namespace rollsense::sim {
 
 ParamSchema sim_schema() {
     const SimParameters d;  // defaults live in one place: SimParameters
     const OutputChainSettings c;
-    return {
-        param_string("catalogue", std::string("objects/paper_table2.csv"),
+    ParamSchema schema{
+        param_string("catalogue", std::string(kStockCatalogue),
                      "object catalogue CSV, relative to the share folder unless absolute"),
         param_string("sensing_joint", std::string("sensing_finger"),
                      "actuator joint whose angle (deg) rolls the object across the array"),
@@ -15,11 +17,7 @@ ParamSchema sim_schema() {
         param_string("palm_joint", std::string("palm"),
                      "actuator joint giving the palm width (mm); reported by the 'state' operation"),
         param_int("device_seed", 1, "seed of the fixed per-device randomness (gains, positions, widths)", 0),
-        // Hand geometry
-        param_number("finger_offset_sum", d.hand.finger_offset_sum,
-                     "T: joint axis to contact surface, both fingers summed (fitted)", 0.0, 200.0, "mm"),
-        param_number("array_distance", d.hand.array_distance,
-                     "distance along a finger from its joint to barometer 2 (torque lever arm)", 10.0, 300.0, "mm"),
+        // (the hand geometry goes here: inserted below from its one home)
         param_number("sensor_pitch", d.sensor_pitch, "distance between barometer centres", 1.0, 50.0, "mm"),
         param_number("sensor_position_jitter", d.sensor_position_jitter,
                      "per-device error of each barometer's position (uniform +-)", 0.0, 5.0, "mm"),
@@ -82,6 +80,10 @@ ParamSchema sim_schema() {
         param_int("baseline_samples", c.baseline_samples,
                   "readings averaged for the no-contact baseline at the start of a recording", 1, 10000),
     };
+    const auto hand = etroll::hand_geometry_params();
+    const auto at = std::find_if(schema.begin(), schema.end(), [](const ParamSpec& p) { return p.name == "sensor_pitch"; });
+    schema.insert(at, hand.begin(), hand.end());
+    return schema;
 }
 
 SimSettings sim_settings_from(const ParamSet& ps) {
@@ -92,8 +94,7 @@ SimSettings sim_settings_from(const ParamSet& ps) {
     s.palm_joint = ps.get_string("palm_joint");
     SimParameters& p = s.physics;
     p.device_seed = static_cast<std::uint64_t>(ps.get_int("device_seed"));
-    p.hand.finger_offset_sum = ps.get_number("finger_offset_sum");
-    p.hand.array_distance = ps.get_number("array_distance");
+    p.hand = etroll::hand_geometry_from(ps);
     p.sensor_pitch = ps.get_number("sensor_pitch");
     p.sensor_position_jitter = ps.get_number("sensor_position_jitter");
     p.kernel_fwhm = ps.get_number("kernel_fwhm");

@@ -27,7 +27,9 @@ Status SimSensor::on_configure(const ParamSet& params, const PluginContext& cont
     std::filesystem::path file = settings_.catalogue;
     if (file.is_relative()) file = context.share_dir / file;
     auto loaded = ObjectCatalogue::load(file);
-    if (!loaded) return Status{loaded.error()}.with_context("sim sensor '" + context.instance + "'");
+    if (!loaded)
+        return Status{loaded.error()}.with_context("sim sensor '" + context.instance +
+                                                   "', 'catalogue' parameter");
     catalogue_ = std::move(loaded.value());
     device_ = make_device(settings_.physics);
     object_ = nullptr;

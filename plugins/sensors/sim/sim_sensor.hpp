@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "object_catalogue.hpp"
+#include "rollsense/object_catalogue.hpp"
 #include "rollsense/sensor.hpp"
 #include "sim_model.hpp"
 #include "sim_schema.hpp"

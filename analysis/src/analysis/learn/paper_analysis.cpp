@@ -5,14 +5,29 @@
 #include <map>
 #include <set>
 
+#include "rollsense/log.hpp"
+
 namespace rollsense::learn {
 
+std::vector<ObjectShape> object_shapes(const ObjectCatalogue& catalogue) {
+    std::vector<ObjectShape> out;
+    out.reserve(catalogue.objects().size());
+    for (const auto& o : catalogue.objects()) out.push_back({o.id, o.base, o.is_cylinder() ? 0.0 : o.side});
+    return out;
+}
+
 const std::vector<ObjectShape>& paper_objects() {
-    static const std::vector<ObjectShape> objects = {
-        {"C1", "circle", 0.0},    {"C2", "circle", 0.0},    {"C3", "circle", 0.0},
-        {"S1", "square", 13.0},   {"S2", "square", 18.0},   {"P1", "pentagon", 13.0},
-        {"P2", "pentagon", 18.0}, {"H1", "hexagon", 13.0},  {"H2", "hexagon", 18.0},
-    };
+    static const std::vector<ObjectShape> objects = [] {
+        const auto file = default_share_dir() / kStockCatalogue;
+        auto loaded = ObjectCatalogue::load(file);
+        if (!loaded) {
+            log_error("analysis", loaded.error().message +
+                                      " (the analyses read the object shapes from it; set ROLLSENSE_SHARE to the "
+                                      "share folder that holds objects/)");
+            return std::vector<ObjectShape>{};
+        }
+        return object_shapes(loaded.value());
+    }();
     return objects;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "rollsense/features.hpp"
+#include "rollsense/object_catalogue.hpp"
 #include "analysis/learn/metrics.hpp"
 
 namespace rollsense::learn {
@@ -21,7 +22,14 @@ struct ObjectShape {
     bool cylinder() const { return base == "circle"; }
 };
 
-// The paper's Table II (C1–C3, S1–S2, P1–P2, H1–H2).
+// The shapes of a catalogue's objects, in its order.
+std::vector<ObjectShape> object_shapes(const ObjectCatalogue& catalogue);
+
+// The stock catalogue (share/objects/paper_table2.csv in default_share_dir(),
+// the file the sim rolls from by default: the paper's Table II plus any row a
+// user adds), read once. If it cannot be read the error is logged and the list
+// is empty: the analyses then leave every object out of the shape rows, and
+// say so, rather than guess.
 const std::vector<ObjectShape>& paper_objects();
 
 struct PaperAnalysis {

@@ -1,7 +1,6 @@
-// Trials and recording from Lua: rs.trial{...}, rs.record_start/stop,
+// Trials and recording from Lua: rs.trial{...}, rs.trial_id{...}, rs.record_start/stop,
 // rs.save_trial, rs.end_trial, rs.has_trial (for --resume), rs.recorded().
-#include <cstdio>
-
+#include "rollsense/trial_id.hpp"
 #include "runtime/lua/api_internal.hpp"
 
 namespace rollsense::runtime::lua_api {
@@ -11,26 +10,34 @@ void check(lua_State* L, const Status& s) {
     if (!s.ok()) raise_status(L, s);
 }
 
-// "C1-v10-r007": the default id of a trial.
-std::string default_id(const std::string& object, const std::string& speed, int repetition) {
-    char rep[16];
-    std::snprintf(rep, sizeof rep, "%03d", repetition);
-    return object + "-v" + speed + "-r" + rep;
-}
-
-// rs.trial{object=, speed=, repetition=, id=, extra={k=v}} → id
-int l_trial(lua_State* L) {
+// object, speed (as Lua spells it: 10 → "10", "12.5" → "12.5") and
+// repetition of the table at index 1.
+void read_trial_key(lua_State* L, TrialInfo& info) {
     luaL_checktype(L, 1, LUA_TTABLE);
-    TrialInfo info;
     info.object = opt_field_string(L, 1, "object", "");
     lua_getfield(L, 1, "speed");
     if (!lua_isnil(L, -1)) info.speed = luaL_tolstring(L, -1, nullptr), lua_pop(L, 1);
     lua_pop(L, 1);
     info.repetition = static_cast<int>(opt_field_number(L, 1, "repetition", 0));
+}
+
+// rs.trial_id{object=, speed=, repetition=} → the id rs.trial{} gives such a trial
+int l_trial_id(lua_State* L) {
+    TrialInfo info;
+    read_trial_key(L, info);
+    if (info.object.empty()) return luaL_error(L, "rs.trial_id: give an object (and speed, repetition)");
+    lua_pushstring(L, trial_id(info.object, info.speed, info.repetition).c_str());
+    return 1;
+}
+
+// rs.trial{object=, speed=, repetition=, id=, extra={k=v}} → id
+int l_trial(lua_State* L) {
+    TrialInfo info;
+    read_trial_key(L, info);
     info.id = opt_field_string(L, 1, "id", "");
     if (info.id.empty()) {
         if (info.object.empty()) return luaL_error(L, "rs.trial: give an id, or an object (and speed, repetition)");
-        info.id = default_id(info.object, info.speed, info.repetition);
+        info.id = trial_id(info.object, info.speed, info.repetition);
     }
     lua_getfield(L, 1, "extra");
     if (lua_istable(L, -1)) {
@@ -110,7 +117,7 @@ int l_recorded(lua_State* L) {
 }  // namespace
 
 void register_trials(lua_State* L) {
-    static const luaL_Reg fns[] = {{"trial", l_trial},           {"has_trial", l_has_trial},
+    static const luaL_Reg fns[] = {{"trial", l_trial},           {"trial_id", l_trial_id},     {"has_trial", l_has_trial},
                                    {"record_start", l_record_start}, {"record_stop", l_record_stop},
                                    {"save_trial", l_save_trial}, {"end_trial", l_end_trial},
                                    {"recorded", l_recorded},     {nullptr, nullptr}};

@@ -19,13 +19,13 @@ Result<ControlMode> parse_mode(const std::string& s) {
 }  // namespace
 
 ParamSchema dynamixel_schema() {
-    return {
+    ParamSchema schema{
         param_string("device", std::string("/dev/ttyUSB0"),
                      "serial port of the bus (a pty path for rollsense-dxl-emu), or 'emulator': servos emulated "
                      "in-process behind a pty, moving on the run clock"),
-        param_number("emulated_object", 65.0,
-                     "device 'emulator' only: effective width of an object clamped between sensing_finger, "
-                     "pushing_finger and palm (0: none)",
+        param_number("emulated_object", etroll::kDefaultEmulatedObjectWidth,
+                     "device 'emulator' only: width of an object clamped between sensing_finger and "
+                     "pushing_finger (0: none); the palm fits it using finger_offset_sum and array_distance",
                      0, {}, "mm"),
         param_int("baud", 57600, "bus baud rate; must match every servo's Baud Rate item", 9600, 4500000, "bit/s"),
         param_int_list("ids", std::nullopt, "servo id of each joint", 0, 252),
@@ -54,6 +54,9 @@ ParamSchema dynamixel_schema() {
         param_bool("torque_off_on_deactivate", true,
                    "turn torque off on deactivate (false: servos keep holding, e.g. a loaded winch)"),
     };
+    // device "emulator" only: the hand the emulated object sits in.
+    for (auto& spec : etroll::hand_geometry_params()) schema.push_back(std::move(spec));
+    return schema;
 }
 
 Result<BusConfig> parse_config(const ParamSet& params) {
@@ -65,6 +68,7 @@ Result<BusConfig> parse_config(const ParamSet& params) {
     c.write_position_limits = params.get_bool("write_position_limits");
     c.torque_off_on_deactivate = params.get_bool("torque_off_on_deactivate");
     c.emulated_object_mm = params.get_number("emulated_object");
+    c.hand = etroll::hand_geometry_from(params);
 
     const auto ids = params.get_int_list("ids");
     const auto names = params.get_string_list("names");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "joint_map.hpp"
+#include "rollsense/etroll_hand/hand_geometry.hpp"
 #include "rollsense/params.hpp"
 #include "rollsense/status.hpp"
 
@@ -19,7 +20,10 @@ struct BusConfig {
     std::chrono::microseconds timeout{std::chrono::milliseconds(30)};
     bool write_position_limits = true;
     bool torque_off_on_deactivate = true;
-    double emulated_object_mm = 65.0;  // device "emulator" only
+    // device "emulator" only: the object between the fingers (0: none) and the
+    // hand it sits in (the profile's hand geometry, share/profiles/etroll-hand.lua).
+    double emulated_object_mm = etroll::kDefaultEmulatedObjectWidth;
+    etroll::HandGeometry hand;
     std::vector<JointMap> joints;
 };
 

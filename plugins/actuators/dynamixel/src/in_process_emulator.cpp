@@ -1,5 +1,7 @@
 #include "in_process_emulator.hpp"
 
+#include "rollsense/etroll_hand/clamped_object.hpp"
+
 #include <chrono>
 #include <thread>
 
@@ -37,14 +39,15 @@ Result<std::unique_ptr<InProcessEmulator>> InProcessEmulator::start(const BusCon
             return Error{ErrorCode::invalid_argument,
                          "device 'emulator': an emulated object needs joints named sensing_finger, pushing_finger "
                          "and palm (set emulated_object = 0 for a bus without one)"};
-        hal::dxl::ClampedObject object;
+        etroll::ClampedObject object;
         object.sensing_id = sensing->id;
         object.pushing_id = pushing->id;
         object.palm_id = palm->id;
         object.palm_mm_per_degree = palm->scale();
         object.palm_centre_mm = palm->offset;
-        object.effective_width_mm = config.emulated_object_mm;
-        bus.set_clamped_object(object);
+        object.object_width_mm = config.emulated_object_mm;
+        object.hand = config.hand;
+        if (auto st = etroll::clamp_object(bus, object); !st.ok()) return Error{st.code(), "device 'emulator': " + st.message()};
     }
     hal::dxl::PtyEmulatorOptions options;
     options.real_time = false;  // time moves only through advance_to()

@@ -5,12 +5,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
 #include <vector>
 
-#include "rollsense/hal/dynamixel/clamped_object.hpp"
 #include "rollsense/hal/dynamixel/emulated_servo.hpp"
 #include "rollsense/hal/dynamixel/protocol.hpp"
 
@@ -43,11 +43,16 @@ public:
     // as on a real bus.
     void set_line_baud(std::uint32_t baud) { line_baud_ = baud; }
 
-    // An object between the fingers of a hand on this bus (nullopt: none).
-    // Its servos must be on the bus.
-    void set_clamped_object(std::optional<ClampedObject> object) { object_ = object; }
+    // A mechanical coupling between servos on this bus (for instance an object
+    // held between two fingers, which the HAL knows nothing about): called
+    // before every step of the servos' motion models, at most kCouplingStep of
+    // emulated time apart, to move obstacles with the servos that push them.
+    // An empty function: none.
+    using Coupling = std::function<void(BusEmulator&)>;
+    static constexpr double kCouplingStep = 0.001;  // s
+    void set_coupling(Coupling coupling) { coupling_ = std::move(coupling); }
 
-    // Advance every servo's motion model (and the object's coupling between them).
+    // Advance every servo's motion model (and the coupling between them).
     void advance(double seconds);
 
     // ---- fault injection
@@ -69,10 +74,8 @@ private:
     bool hears(const EmulatedServo& s) const;
     bool reply(EmulatedServo& s, std::uint8_t error, std::span<const std::uint8_t> params, std::vector<Bytes>& out);
 
-    void place_object();
-
     std::vector<EmulatedServo> servos_;
-    std::optional<ClampedObject> object_;
+    Coupling coupling_;
     std::map<std::uint8_t, FaultPlan> faults_;
     Bytes garbage_;
     std::uint32_t line_baud_ = 0;

@@ -1,12 +1,15 @@
-#include "object_catalogue.hpp"
+#include "rollsense/object_catalogue.hpp"
+
+#include <dlfcn.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <set>
 
 #include "rollsense/csv.hpp"
 
-namespace rollsense::sim {
+namespace rollsense {
 
 namespace {
 
@@ -47,8 +50,8 @@ std::string ObjectCatalogue::ids() const {
 Result<ObjectCatalogue> ObjectCatalogue::load(const std::filesystem::path& file) {
     if (!std::filesystem::exists(file))
         return Error{ErrorCode::not_found, "object catalogue " + file.string() +
-                                               " does not exist; set the sim sensor's 'catalogue' parameter to a "
-                                               "CSV file (see docs/simulation.md, 'Object catalogue')"};
+                                               " does not exist; give a CSV file of objects (see docs/simulation.md, "
+                                               "'Object catalogue')"};
     auto opened = csv::Reader::open(file);
     if (!opened) return opened.error();
     csv::Reader& reader = opened.value();
@@ -151,4 +154,18 @@ Result<ObjectCatalogue> ObjectCatalogue::load(const std::filesystem::path& file)
     return cat;
 }
 
-}  // namespace rollsense::sim
+std::filesystem::path default_share_dir() {
+    namespace fs = std::filesystem;
+    if (const char* env = std::getenv("ROLLSENSE_SHARE"); env && *env) return env;
+    // This library's own file: <prefix>/<libdir>/librollsense_data.so → <prefix>/share/rollsense.
+    static const char anchor = 0;  // any object inside this library
+    Dl_info info{};
+    if (::dladdr(&anchor, &info) != 0 && info.dli_fname) {
+        std::error_code ec;
+        const fs::path installed = (fs::path(info.dli_fname).parent_path() / ROLLSENSE_LIB_TO_SHARE).lexically_normal();
+        if (fs::exists(installed / "profiles", ec)) return installed;
+    }
+    return ROLLSENSE_SOURCE_SHARE_DIR;
+}
+
+}  // namespace rollsense

@@ -1,4 +1,6 @@
-// The catalogue of objects the simulation can roll (share/objects/*.csv).
+// The catalogue of objects (share/objects/*.csv), in one place for everything
+// that needs to know the objects: the simulation rolls them, the paper's
+// analyses and the report group and draw them by shape.
 //
 // One CSV row per object; the columns are documented in docs/simulation.md
 // ("Object catalogue"). A user adds an object by adding a row. Every error names
@@ -11,7 +13,7 @@
 
 #include "rollsense/status.hpp"
 
-namespace rollsense::sim {
+namespace rollsense {
 
 struct ObjectSpec {
     std::string id;           // catalogue id, e.g. "C1"; what TrialInfo::object names
@@ -49,4 +51,14 @@ private:
 // Number of sides for a base name ("circle" = 0, "square" = 4, ...); -1 if unknown.
 int sides_for_base(const std::string& base);
 
-}  // namespace rollsense::sim
+// The stock catalogue, relative to the share folder (the sim sensor's default
+// 'catalogue' parameter).
+inline constexpr const char* kStockCatalogue = "objects/paper_table2.csv";
+
+// The share folder this installation reads: $ROLLSENSE_SHARE if set, else
+// <prefix>/share/rollsense next to the installed library, else the source
+// tree's share/ (a build that was not installed). The same rule as the
+// rollsense program's.
+std::filesystem::path default_share_dir();
+
+}  // namespace rollsense

@@ -1,12 +1,14 @@
 // rollsense-dxl-emu: a bus of emulated X-series servos on a pseudo-terminal.
 //
 //   rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]
-//                     [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]
+//                     [--object WIDTH_MM|none] [--finger-offset-sum MM] [--array-distance MM]
+//                     [--palm MM_PER_DEG:CENTRE_MM]
 //                     [--baud N] [--return-delay-us N] [--wire-baud N|line|0]
 //                     [--status-every SECONDS]
 //
 // Without --servo it emulates the E-TRoll bus (ids 1-4) holding an object
-// between the fingers (clamped_object.hpp). It prints the pty
+// between the fingers (plugins/common/etroll_hand: the E-TRoll hand's geometry,
+// the simulation's calibrated values by default). It prints the pty
 // path (and makes --link a symlink to it) so a profile can point its `device`
 // there; it runs until Ctrl-C.
 #include <unistd.h>
@@ -21,21 +23,34 @@
 #include <thread>
 #include <vector>
 
+#include "rollsense/etroll_hand/clamped_object.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
 
 using namespace rollsense::hal::dxl;
+using rollsense::etroll::ClampedObject;
 
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
+
+// A whole string that is a positive number of mm.
+bool positive_mm(const char* text, double& out) {
+    char* end = nullptr;
+    const double v = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !(v > 0)) return false;
+    out = v;
+    return true;
+}
 void on_signal(int) { g_stop = 1; }
 
 int usage(const char* why) {
     if (why) std::fprintf(stderr, "rollsense-dxl-emu: %s\n", why);
+    const ClampedObject d;  // the defaults: the E-TRoll hand's geometry, in one place
     std::fprintf(stderr,
                  "usage: rollsense-dxl-emu [--servo ID:MODEL[:START_DEG[:MODE[:CONTACT_DEG]]]]... [--link PATH]\n"
-                 "                         [--object WIDTH_MM|none] [--object-lever MM] [--palm MM_PER_DEG:CENTRE_MM]\n"
+                 "                         [--object WIDTH_MM|none] [--finger-offset-sum MM] [--array-distance MM]\n"
+                 "                         [--palm MM_PER_DEG:CENTRE_MM]\n"
                  "                         [--baud N] [--return-delay-us N] [--wire-baud N|line|0]\n"
                  "                         [--status-every SECONDS]\n"
                  "  --servo         one emulated servo (repeatable); default: the E-TRoll bus,\n"
@@ -43,18 +58,23 @@ int usage(const char* why) {
                  "                  MODE: position|extended_position|current|current_based_position|velocity\n"
                  "  --link PATH     also create PATH as a symlink to the pty (removed on exit)\n"
                  "  --object        an object between the fingers (servos 1 sensing, 2 pushing, 3 palm):\n"
-                 "                  its effective width in mm (object + both fingers' thickness);\n"
-                 "                  default 65 on the E-TRoll bus, none with --servo\n"
-                 "  --object-lever  joint axes to the contact along the fingers, mm (default 60)\n"
+                 "                  its width between the finger surfaces in mm; default %g (the mean\n"
+                 "                  flat width of the paper's objects) on the E-TRoll bus, none with --servo\n"
+                 "  --finger-offset-sum  the hand: joint axis to contact surface, both fingers summed,\n"
+                 "                  mm (default %g, the simulation's calibrated value)\n"
+                 "  --array-distance  the hand: along a finger from its joint to the contact (barometer 2),\n"
+                 "                  mm (default %g, the simulation's calibrated value)\n"
                  "  --palm          palm width per palm-servo degree and at its centre tick\n"
-                 "                  (default 0.349:65, the etroll profile's radius 10, ratio 2, offset 65)\n"
+                 "                  (default %.3f:%g, the etroll profile's radius 10, ratio 2, offset 65)\n"
                  "  --baud N        every servo's Baud Rate item (default: 1000000 on the E-TRoll bus,\n"
                  "                  as configured at bring-up; 57600, the factory value, with --servo)\n"
                  "  --return-delay-us N  every servo's Return Delay Time (default: 0 on the E-TRoll bus,\n"
                  "                  as configured at bring-up; 500, the factory value, with --servo)\n"
                  "  --wire-baud N   delay replies as a real bus at N baud would; 'line' (default): at the\n"
                  "                  rate the client set on the port; 0: answer instantly\n"
-                 "  --status-every  print every servo's state each SECONDS (default: off)\n");
+                 "  --status-every  print every servo's state each SECONDS (default: off)\n",
+                 d.object_width_mm, d.hand.finger_offset_sum, d.hand.array_distance, d.palm_mm_per_degree,
+                 d.palm_centre_mm);
     return 2;
 }
 
@@ -93,17 +113,16 @@ int main(int argc, char** argv) {
             const char* v = value();
             if (!v) return usage("--object needs a width in mm or 'none'");
             object_wanted = std::string(v) != "none";
-            if (*object_wanted) {
-                char* end = nullptr;
-                geometry.effective_width_mm = std::strtod(v, &end);
-                if (*end != '\0' || geometry.effective_width_mm <= 0)
-                    return usage(("--object: bad width '" + std::string(v) + "' (a positive number of mm, or none)").c_str());
-            }
-        } else if (a == "--object-lever") {
+            if (*object_wanted && !positive_mm(v, geometry.object_width_mm))
+                return usage(("--object: bad width '" + std::string(v) + "' (a positive number of mm, or none)").c_str());
+        } else if (a == "--finger-offset-sum") {
             const char* v = value();
-            char* end = nullptr;
-            geometry.lever_mm = v ? std::strtod(v, &end) : 0.0;
-            if (!v || *end != '\0' || geometry.lever_mm <= 0) return usage("--object-lever needs a positive length in mm");
+            if (!v || !positive_mm(v, geometry.hand.finger_offset_sum))
+                return usage("--finger-offset-sum needs a positive length in mm");
+        } else if (a == "--array-distance") {
+            const char* v = value();
+            if (!v || !positive_mm(v, geometry.hand.array_distance))
+                return usage("--array-distance needs a positive length in mm");
         } else if (a == "--palm") {
             const char* v = value();
             char* end = nullptr;
@@ -150,12 +169,8 @@ int main(int argc, char** argv) {
         bus.add_servo(s);
     }
     if (object_wanted.value_or(!any)) {
-        for (auto id : {geometry.sensing_id, geometry.pushing_id, geometry.palm_id})
-            if (!bus.servo(id))
-                return usage(("--object needs servos 1 (sensing), 2 (pushing) and 3 (palm); servo " +
-                              std::to_string(id) + " is not on the bus")
-                                 .c_str());
-        bus.set_clamped_object(geometry);
+        if (auto st = rollsense::etroll::clamp_object(bus, geometry); !st.ok())
+            return usage((st.message() + " (--object needs servos 1 sensing, 2 pushing and 3 palm)").c_str());
     }
 
     auto emu = PtyBusEmulator::start(std::move(bus), options);
