@@ -290,7 +290,7 @@ TEST_CASE("a missing dataset is an error naming it", "[report][errors]") {
     CHECK_THAT(r.error().message, Catch::Contains("/nonexistent/rollsense-dataset"));
 }
 
-TEST_CASE("several classifiers: compared side by side; one classifier: no comparison", "[report][compare]") {
+TEST_CASE("several classifiers are compared side by side, a single one gets no comparison", "[report][compare]") {
     const auto& single = rendered();
     CHECK_THAT(single.html, !Catch::Contains("id=\"sec-compare\"") && !Catch::Contains("fig-paired"));
 
