@@ -73,7 +73,8 @@ std::string paired_rows(const learn::Evaluation& ev) {
 }  // namespace
 
 std::string paired_difference_figure(const learn::Evaluation& ev, const std::string& id) {
-    const double left = 260.0, right = 30.0, top = 40.0, row_h = 46.0, plot_w = 520.0;
+    // Names go above their row (they can be long: plugin and parameters), the axis spans the width.
+    const double left = 40.0, right = 40.0, top = 30.0, row_h = 60.0, plot_w = 640.0;
     const double height = top + row_h * static_cast<double>(std::max<std::size_t>(1, ev.paired.size())) + 50.0;
     Svg svg(left + plot_w + right, height, id, "Paired per-fold accuracy differences");
     // A symmetric axis around zero, wide enough for every fold's difference.
@@ -96,8 +97,8 @@ std::string paired_difference_figure(const learn::Evaluation& ev, const std::str
     for (std::size_t r = 0; r < ev.paired.size(); ++r) {
         const auto& p = ev.paired[r];
         const double cy = top + row_h * (static_cast<double>(r) + 0.5);
-        svg.text(left - 10.0, cy + 4.0, ev.classifiers[p.a].name + " \u2212 " + ev.classifiers[p.b].name,
-                 {12.0, Anchor::end});
+        svg.text(left, cy - 14.0, ev.classifiers[p.a].name + " \u2212 " + ev.classifiers[p.b].name,
+                 {12.0, Anchor::start});
         const auto& d = p.difference;
         // Folds spread a little vertically so equal differences stay countable.
         for (std::size_t i = 0; i < d.per_fold.size(); ++i) {
