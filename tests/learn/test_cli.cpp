@@ -10,6 +10,7 @@
 
 #include "rollsense/dataset.hpp"
 #include "rollsense/features.hpp"
+#include "json_reader.hpp"
 #include "run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -80,6 +81,27 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("2 x repeated stratified 3-fold") && Catch::Contains("Wilson"));
     CHECK(fs::exists(dir / "report.txt"));
+    CHECK(fs::exists(dir / "report.json"));
+
+    // Two classifiers on the same folds; evaluation.json beside the text.
+    r = rollsense_cli("evaluate " + features.string() +
+                      " --repeats 2 --folds 3 --set learners=5 --classifier bagged_trees,bagged_trees:learners=9 -o " +
+                      (dir / "two.txt").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("2 classifiers on the same 2 x stratified 3-fold partitions") &&
+                             Catch::Contains("bagged_trees − bagged_trees:learners=9: mean"));
+    {
+        std::ifstream json_in(dir / "two.json");
+        const std::string text((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+        const auto j = rollsense::testing::JsonReader::parse(text);
+        CHECK(j["clean"].num() == 33);
+        CHECK(j["classifiers"].arr().size() == 2);
+        CHECK(j["classifiers"][0]["parameters"]["learners"].num() == 5);
+        CHECK(j["classifiers"][1]["parameters"]["learners"].num() == 9);
+        CHECK(j["classifiers"][0]["trials_refused"].arr().size() == 3);
+        CHECK(j["paired_differences"][0]["n"].num() == 6);
+    }
 
     const auto model = dir / "model.rbt";
     r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");
@@ -103,4 +125,18 @@ TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][c
     CHECK(r.status == 3);
     r = rollsense_cli("evaluate /tmp --frobnicate");
     CHECK(r.status == 2);
+    // An unknown classifier in a list: named, with what is available, before any extraction.
+    r = rollsense_cli("evaluate /nonexistent.csv --classifier bagged_trees,no_such_thing");
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("no classifier plugin named 'no_such_thing'") &&
+                             Catch::Contains("Available classifier plugins:"));
+    const auto listed = r.output.substr(r.output.find("Available classifier plugins:"));
+    CHECK_THAT(listed.substr(0, listed.find('(')), Catch::Contains("bagged_trees"));
+    CHECK_THAT(r.output, !Catch::Contains("nonexistent.csv"));
+    r = rollsense_cli("evaluate /tmp --classifier bagged_trees,,x");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("empty entry"));
+    r = rollsense_cli("train /tmp -o /tmp/m.rbt --classifier bagged_trees,bagged_trees");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("takes one classifier"));
 }

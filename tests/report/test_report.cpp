@@ -55,8 +55,9 @@ const Rendered& rendered() {
         learn::EvaluationOptions o;
         o.folds = 3;
         o.repeats = 2;
-        o.params.set("learners", std::int64_t{20});
-        auto ev = learn::evaluate(*rows, bagged_trees_factory(), o);
+        ParamSet params;
+        params.set("learners", std::int64_t{20});
+        auto ev = learn::evaluate_features(*rows, {{"bagged_trees", bagged_trees_factory(), params}}, o);
         REQUIRE(ev.ok());
         out.inputs.dataset_dir = out.root / "dataset";
         out.inputs.rows = *rows;
@@ -178,7 +179,7 @@ TEST_CASE("the report holds every figure and table, self-contained", "[report][s
 
 TEST_CASE("the confusion figure shows the evaluation's counts and TPRs in Fig. 9 order", "[report][structure]") {
     const auto& r = rendered();
-    const auto& m = r.inputs.evaluation.baseline.confusion;
+    const auto& m = r.inputs.evaluation.primary().baseline.confusion;
     const std::string fig = element(r.html, "svg", "fig-confusion");
     REQUIRE_FALSE(fig.empty());
     const ObjectOrder ord = order_objects(m.classes, learn::paper_objects());
@@ -197,7 +198,7 @@ TEST_CASE("the confusion figure shows the evaluation's counts and TPRs in Fig. 9
             shown_total += cells[k].empty() ? 0 : std::stoul(cells[k]);
         }
     CHECK(shown_total == m.total());
-    CHECK(m.total() == r.inputs.evaluation.baseline.total);
+    CHECK(m.total() == r.inputs.evaluation.primary().baseline.total);
     const auto tpr = m.true_positive_rates();
     for (std::size_t i = 0; i < m.size(); ++i) CHECK_THAT(fig, Catch::Contains(">" + percent(tpr[i]) + "</text>"));
     CHECK_THAT(fig, Catch::Contains(std::to_string(m.correct()) + " of " + std::to_string(m.total()) + " correct"));
@@ -205,7 +206,7 @@ TEST_CASE("the confusion figure shows the evaluation's counts and TPRs in Fig. 9
 
 TEST_CASE("the tables carry the evaluation's figures", "[report][structure]") {
     const auto& r = rendered();
-    const auto& ev = r.inputs.evaluation;
+    const auto& ev = r.inputs.evaluation.primary();
     const std::string& h = r.html;
     const std::string headline = h.substr(h.find("id=\"headline\""), 300);
     CHECK_THAT(headline, Catch::Contains(fixed(100.0 * ev.baseline.mean, 1) + " \u00b1 " +
@@ -275,7 +276,7 @@ TEST_CASE("text summary: the headline figures and where the report is", "[report
     const auto& r = rendered();
     const std::string s = text_summary(r.inputs);
     char acc[32];
-    std::snprintf(acc, sizeof acc, "accuracy %.1f %%", 100.0 * r.inputs.evaluation.baseline.mean);
+    std::snprintf(acc, sizeof acc, "accuracy %.1f %%", 100.0 * r.inputs.evaluation.primary().baseline.mean);
     CHECK_THAT(s, Catch::Contains(acc) && Catch::Contains("paper 90.5 %") && Catch::Contains("2 x 3-fold CV") &&
                       Catch::Contains("report: " + (r.root / "dataset" / "report.html").string()) &&
                       Catch::Contains("by speed"));
@@ -287,4 +288,43 @@ TEST_CASE("a missing dataset is an error naming it", "[report][errors]") {
     auto r = write_report(in);
     REQUIRE_FALSE(r.ok());
     CHECK_THAT(r.error().message, Catch::Contains("/nonexistent/rollsense-dataset"));
+}
+
+TEST_CASE("several classifiers are compared side by side, a single one gets no comparison", "[report][compare]") {
+    const auto& single = rendered();
+    CHECK_THAT(single.html, !Catch::Contains("id=\"sec-compare\"") && !Catch::Contains("fig-paired"));
+
+    auto dataset = DatasetReader::open(single.root / "dataset");
+    REQUIRE(dataset.ok());
+    learn::EvaluationOptions o;
+    o.folds = 3;
+    o.repeats = 2;
+    ParamSet few, many;
+    few.set("learners", std::int64_t{3});
+    many.set("learners", std::int64_t{20});
+    auto ev = learn::evaluate_features(
+        single.inputs.rows, {{"few", bagged_trees_factory(), few}, {"many", bagged_trees_factory(), many}}, o);
+    REQUIRE(ev.ok());
+    ReportInputs in = single.inputs;
+    in.evaluation = *ev;
+    auto html = render_report(in);
+    REQUIRE(html.ok());
+    const std::string& h = *html;
+    CHECK_THAT(h, Catch::Contains("id=\"sec-compare\"") && Catch::Contains("id=\"compare-accuracy\"") &&
+                      Catch::Contains("id=\"compare-per-class\"") && Catch::Contains("id=\"compare-paired\"") &&
+                      Catch::Contains("id=\"fig-paired\"") && Catch::Contains("id=\"fig-confusion-1\"") &&
+                      Catch::Contains("id=\"fig-confusion-2\""));
+    // The accuracy table carries each classifier's own figure.
+    const std::string table = h.substr(h.find("id=\"compare-accuracy\""), 2000);
+    for (const auto& c : ev->classifiers)
+        CHECK_THAT(table, Catch::Contains(c.name) &&
+                              Catch::Contains(fixed(100.0 * c.baseline.mean, 1) + " \u00b1 " +
+                                              fixed(100.0 * c.baseline.sd, 1)));
+    const std::string paired = h.substr(h.find("id=\"compare-paired\""), 1500);
+    CHECK_THAT(paired, Catch::Contains("few \u2212 many") &&
+                           Catch::Contains(fixed(100.0 * ev->paired[0].difference.mean, 2)));
+    // The headline and the paper's sections stay the first classifier's.
+    CHECK_THAT(h.substr(h.find("id=\"headline\""), 300), Catch::Contains("(few, 2 \u00d7 3-fold CV)"));
+    const std::string summary = text_summary(in);
+    CHECK_THAT(summary, Catch::Contains("compared: many") && Catch::Contains("first minus it"));
 }

@@ -8,6 +8,7 @@
 #include "rollsense/atomic_file.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
+#include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 
 namespace rollsense::cli {
@@ -68,9 +69,53 @@ LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string
     return s;
 }
 
-// Rows (from a dataset or a features file) and a plugin-backed factory.
+// The classifier list of --classifier (with --set for all), or a usage error.
+std::vector<learn::ClassifierSpec> classifier_specs(const LearnSetup& s) {
+    auto specs = learn::parse_classifier_list(s.classifier, s.options.params);
+    if (!specs) throw UsageError("--classifier: " + specs.error().message);
+    return std::move(specs).value();
+}
+
+// The learning pipeline for evaluate and report, with the command's exit codes:
+// a wrong INPUT or plugin is a configuration error, a failed evaluation a failure.
+int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
+                          runtime::PluginRegistry& registry, learn::PipelineResult& out) {
+    learn::PipelineRequest request;
+    request.input = s.input;
+    request.features = feature_settings_from_args(args);
+    request.classifiers = classifier_specs(s);
+    request.options = s.options;
+    request.options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    learn::PipelineStage failed = learn::PipelineStage::evaluation;
+    auto result = learn::run_pipeline(
+        registry, request,
+        [](const std::vector<features::FeatureRow>& rows) {
+            std::printf("%s\n", learn::summarize_rejections(rows).c_str());
+            std::fflush(stdout);
+            return Status{};
+        },
+        &failed);
+    if (!result) {
+        std::fprintf(stderr, "rollsense %s: %s\n", command, result.error().describe().c_str());
+        return failed == learn::PipelineStage::evaluation ? kExitFailure : kExitConfig;
+    }
+    out = std::move(result).value();
+    return kExitOk;
+}
+
+// Rows (from a dataset or a features file) and a plugin-backed factory for one
+// classifier (rollsense train).
 int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
             std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory) {
+    const auto specs = classifier_specs(s);
+    if (specs.size() != 1)
+        throw UsageError(std::string(command) + " takes one classifier, got '" + s.classifier + "'");
+    // The plugin and its parameters first, before minutes of extraction.
+    auto prepared = learn::prepare_classifiers(registry, specs);
+    if (!prepared) {
+        std::fprintf(stderr, "rollsense %s: %s\n", command, prepared.error().describe().c_str());
+        return kExitConfig;
+    }
     auto loaded = learn::load_feature_rows(s.input, feature_settings_from_args(args));
     if (!loaded) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, loaded.error().describe().c_str());
@@ -78,17 +123,7 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
     }
     rows = std::move(loaded).value();
     std::printf("%s\n", learn::summarize_rejections(rows).c_str());
-    auto f = learn::plugin_classifier_factory(registry, s.classifier);
-    if (!f) {
-        std::fprintf(stderr, "rollsense %s: %s\n", command, f.error().describe().c_str());
-        return kExitConfig;
-    }
-    factory = std::move(f).value();
-    // Check the parameters once, before minutes of cross-validation.
-    if (auto probe = factory(s.options.params); !probe) {
-        std::fprintf(stderr, "rollsense %s: %s\n", command, probe.error().describe().c_str());
-        return kExitConfig;
-    }
+    factory = prepared->front().factory;
     return kExitOk;
 }
 
@@ -103,6 +138,9 @@ Reports, for the clean trials:
   * the classifier preset under repeated stratified k-fold CV: accuracy mean ±
     sd over repetitions, a 95 % Wilson interval on the pooled out-of-fold
     predictions, the confusion matrix and per-class true-positive rates;
+  * with several classifiers (--classifier a,b): each one on the same folds,
+    and per pair the per-fold accuracy differences (mean, sd, paired t, the
+    Nadeau-Bengio corrected t, sign counts);
   * the paper's analyses (cylinder vs polygon, cylinders misclassified, base
     edge length among polygons, pentagon <-> hexagon) beside the paper's numbers;
   * with --optimize: the paper's protocol, Bayesian optimisation on ONE fixed
@@ -110,15 +148,18 @@ Reports, for the clean trials:
     every outer training fold), the honest tuned figure.
 
 options:
-  --classifier NAME   classifier plugin (bagged_trees)
-  --set KEY=VALUE     classifier parameter, repeatable (e.g. --set learners=100)
+  --classifier LIST   classifier plugin(s), comma-separated (bagged_trees); an
+                      entry may carry its own parameters: bagged_trees:learners=10
+  --set KEY=VALUE     classifier parameter for every listed classifier,
+                      repeatable (e.g. --set learners=100)
   --folds K           k of the k-fold CV (5)
   --repeats R         repetitions of the CV with different partitions (10)
   --seed S            partition and optimiser seed (1)
   --optimize          also run the Bayesian optimisation (classifier.md §3 search space)
   --evaluations N     optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV (much faster, no honest tuned figure)
-  -o, --output FILE   also write the report to FILE
+  -o, --output FILE   also write the report to FILE and evaluation.json beside
+                      it (FILE's stem + .json; schema: docs/evaluation-json.md)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features' when INPUT is a dataset)";
 
@@ -127,23 +168,12 @@ int run(const std::vector<std::string>& argv) {
     const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested"});
     setup_logging(args);
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
-    std::vector<features::FeatureRow> rows;
-    learn::ClassifierFactory factory;
-    if (int rc = prepare("evaluate", args, s, registry, rows, factory); rc != kExitOk) return rc;
-    learn::EvaluationOptions o = s.options;
-    o.progress = [](const std::string& line) {
-        std::fprintf(stderr, "%s\n", line.c_str());
-    };
-    auto report = learn::evaluate(rows, factory, o);
-    if (!report) {
-        std::fprintf(stderr, "rollsense evaluate: %s\n", report.error().describe().c_str());
-        return kExitFailure;
-    }
-    const std::string text = learn::format_report(*report);
-    std::printf("\n%s", text.c_str());
+    learn::PipelineResult result;
+    if (int rc = run_learning_pipeline("evaluate", args, s, registry, result); rc != kExitOk) return rc;
+    std::printf("\n%s", learn::format_evaluation(result.evaluation).c_str());
     if (auto out = args.option("--output", "-o"); !out.empty()) {
-        if (auto st = write_file_atomic(out, text); !st) {
-            std::fprintf(stderr, "rollsense evaluate: cannot write '%s': %s\n", out.c_str(), st.message().c_str());
+        if (auto st = learn::write_evaluation_files(result.evaluation, out); !st) {
+            std::fprintf(stderr, "rollsense evaluate: %s\n", st.message().c_str());
             return kExitFailure;
         }
     }

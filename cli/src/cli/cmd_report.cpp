@@ -8,7 +8,7 @@
 #include "cli/log_setup.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
-#include "analysis/learn/plugin_factory.hpp"
+#include "analysis/learn/pipeline.hpp"
 #include "analysis/report/report.hpp"
 
 namespace rollsense::cli {
@@ -16,8 +16,8 @@ namespace rollsense::cli {
 // Shared with evaluate and train (cmd_evaluate.cpp, cmd_features.cpp).
 using LearnSetup = learn::CommandSetup;
 LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags);
-int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
-            std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory);
+int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
+                          runtime::PluginRegistry& registry, learn::PipelineResult& out);  // cmd_evaluate.cpp
 features::FeatureSettings feature_settings_from_args(const Args& args);
 
 namespace {
@@ -32,6 +32,9 @@ on its peaks (Fig. 8), accuracy with interval, clean rates and accuracies per
 speed and object, the paper's analyses beside the paper's numbers, the
 hyperparameters, and the run's provenance. Opens in any browser without a
 network; prints well. A short summary is printed on the terminal.
+With several classifiers (--classifier a,b) the page compares them side by
+side on the same folds. evaluation.txt and evaluation.json (docs/
+evaluation-json.md) are written beside the report.
 
 options:
   -o, --output FILE   report file (default: DATASET/report.html)
@@ -41,8 +44,9 @@ options:
   --optimize          also run the paper's Bayesian optimisation and nested CV
   --evaluations N     optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
-  --classifier NAME   classifier plugin (bagged_trees)
-  --set KEY=VALUE     classifier parameter, repeatable
+  --classifier LIST   classifier plugin(s), comma-separated (bagged_trees);
+                      NAME:KEY=VALUE gives one entry its own parameters
+  --set KEY=VALUE     classifier parameter for every listed classifier, repeatable
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'
 
@@ -62,28 +66,23 @@ int run(const std::vector<std::string>& argv) {
         return kExitConfig;
     }
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
-    std::vector<features::FeatureRow> rows;
-    learn::ClassifierFactory factory;
-    if (int rc = prepare("report", args, s, registry, rows, factory); rc != kExitOk) return rc;
-    learn::EvaluationOptions o = s.options;
-    o.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
-    auto evaluation = learn::evaluate(rows, factory, o);
-    if (!evaluation) {
-        std::fprintf(stderr, "rollsense report: %s\n", evaluation.error().describe().c_str());
-        return kExitFailure;
-    }
+    learn::PipelineResult result;
+    if (int rc = run_learning_pipeline("report", args, s, registry, result); rc != kExitOk) return rc;
     report::ReportInputs in;
     in.dataset_dir = s.input;
     in.output = args.option("--output", "-o");
-    in.rows = std::move(rows);
-    in.evaluation = std::move(evaluation).value();
+    in.rows = std::move(result.rows);
+    in.evaluation = std::move(result.evaluation);
     in.settings = feature_settings_from_args(args);
-    in.classifier = s.classifier;
     in.command_line = "rollsense report";
     for (const auto& a : argv) in.command_line += " " + a;
     auto written = report::write_report(in);
     if (!written) {
         std::fprintf(stderr, "rollsense report: %s\n", written.error().describe().c_str());
+        return kExitFailure;
+    }
+    if (auto st = learn::write_evaluation_files(in.evaluation, written->parent_path() / "evaluation.txt"); !st) {
+        std::fprintf(stderr, "rollsense report: %s\n", st.message().c_str());
         return kExitFailure;
     }
     std::printf("\n%s", report::text_summary(in).c_str());

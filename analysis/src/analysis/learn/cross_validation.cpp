@@ -36,9 +36,9 @@ Result<ClassifierPtr> train_classifier(const FeatureTable& table, const Classifi
     return c;
 }
 
-Result<std::vector<int>> predict_labels(const Classifier& c, const FeatureTable& table,
-                                        std::span<const std::size_t> rows) {
-    std::vector<int> out;
+Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureTable& table,
+                                             std::span<const std::size_t> rows) {
+    std::vector<Prediction> out;
     out.reserve(rows.size());
     try {
         for (std::size_t r : rows) {
@@ -48,13 +48,23 @@ Result<std::vector<int>> predict_labels(const Classifier& c, const FeatureTable&
                 return Error{ErrorCode::plugin_error, "classifier predicted label " + std::to_string(p->label) +
                                                           " outside the table's " +
                                                           std::to_string(table.class_names.size()) + " classes"};
-            out.push_back(p->label);
+            out.push_back(std::move(p).value());
         }
     } catch (const StatusError& e) {
         return e.status();
     } catch (const std::exception& e) {
         return Error{ErrorCode::plugin_error, std::string("classifier threw during prediction: ") + e.what()};
     }
+    return out;
+}
+
+Result<std::vector<int>> predict_labels(const Classifier& c, const FeatureTable& table,
+                                        std::span<const std::size_t> rows) {
+    auto predictions = predict_rows(c, table, rows);
+    if (!predictions) return predictions.error();
+    std::vector<int> out;
+    out.reserve(predictions->size());
+    for (const auto& p : *predictions) out.push_back(p.label);
     return out;
 }
 
@@ -65,18 +75,21 @@ Result<CvResult> cross_validate(const FeatureTable& table, std::span<const int> 
                                                       " rows, the table " + std::to_string(table.rows)};
     CvResult r;
     r.predicted.assign(table.rows, -1);
+    r.scores.assign(table.rows, {});
     for (int f = 0; f < k; ++f) {
         const auto train_rows = fold_rows(folds, f, false);
         const auto test_rows = fold_rows(folds, f, true);
         if (test_rows.empty()) continue;
         auto model = train_classifier(subset(table, train_rows), factory, params);
         if (!model) return Status(model.error()).with_context("fold " + std::to_string(f + 1));
-        auto labels = predict_labels(**model, table, test_rows);
-        if (!labels) return Status(labels.error()).with_context("fold " + std::to_string(f + 1));
+        auto predictions = predict_rows(**model, table, test_rows);
+        if (!predictions) return Status(predictions.error()).with_context("fold " + std::to_string(f + 1));
         std::size_t ok = 0;
         for (std::size_t i = 0; i < test_rows.size(); ++i) {
-            r.predicted[test_rows[i]] = (*labels)[i];
-            ok += (*labels)[i] == table.y[test_rows[i]];
+            auto& p = (*predictions)[i];
+            r.predicted[test_rows[i]] = p.label;
+            ok += p.label == table.y[test_rows[i]];
+            r.scores[test_rows[i]] = std::move(p.scores);
         }
         r.correct += ok;
         r.fold_accuracy.push_back(static_cast<double>(ok) / static_cast<double>(test_rows.size()));

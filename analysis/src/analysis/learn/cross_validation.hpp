@@ -27,12 +27,17 @@ FeatureTable subset(const FeatureTable& table, std::span<const std::size_t> rows
 // Train with exceptions from the classifier turned into errors.
 Result<ClassifierPtr> train_classifier(const FeatureTable& table, const ClassifierFactory& factory,
                                        const ParamSet& params);
-// Labels for table rows `rows` (exceptions turned into errors).
+// Predictions (label and per-class scores) for table rows `rows`; exceptions
+// and labels outside the table's classes turned into errors.
+Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureTable& table,
+                                             std::span<const std::size_t> rows);
+// Labels only, for table rows `rows`.
 Result<std::vector<int>> predict_labels(const Classifier& c, const FeatureTable& table,
                                         std::span<const std::size_t> rows);
 
 struct CvResult {
     std::vector<int> predicted;           // out-of-fold label per table row
+    std::vector<std::vector<double>> scores;  // out-of-fold class scores per table row
     std::vector<double> fold_accuracy;    // per fold
     std::size_t correct = 0;
     double accuracy() const { return predicted.empty() ? 0.0 : static_cast<double>(correct) / static_cast<double>(predicted.size()); }

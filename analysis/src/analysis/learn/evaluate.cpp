@@ -1,5 +1,6 @@
 #include "analysis/learn/evaluate.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -37,20 +38,21 @@ Objective cv_error(const FeatureTable& table, const std::vector<int>& folds, int
 }  // namespace
 
 Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
-                               int folds, int repeats, std::uint64_t seed, const std::vector<std::string>* groups) {
+                               const FoldPlan& plan) {
     RepeatedCv r;
-    r.folds = folds;
-    r.repeats = repeats;
+    r.folds = plan.folds;
+    r.repeats = static_cast<int>(plan.repeats());
     r.confusion = ConfusionMatrix(table.class_names);
-    for (int rep = 0; rep < repeats; ++rep) {
-        auto f = make_folds(table.y, groups, folds, seed + static_cast<std::uint64_t>(rep));
-        if (!f) return f.error();
-        auto cv = cross_validate(table, *f, folds, factory, params);
+    for (std::size_t rep = 0; rep < plan.repeats(); ++rep) {
+        auto cv = cross_validate(table, plan.assignment[rep], plan.folds, factory, params);
         if (!cv) return Status(cv.error()).with_context("repetition " + std::to_string(rep + 1));
         r.repeat_accuracy.push_back(cv->accuracy());
         r.fold_accuracy.insert(r.fold_accuracy.end(), cv->fold_accuracy.begin(), cv->fold_accuracy.end());
         for (std::size_t i = 0; i < table.rows; ++i) r.confusion.add(table.y[i], cv->predicted[i]);
-        if (rep == 0) r.first_predicted = cv->predicted;
+        if (rep == 0) {
+            r.first_predicted = cv->predicted;
+            r.first_scores = std::move(cv->scores);
+        }
     }
     r.mean = mean(r.repeat_accuracy);
     r.sd = standard_deviation(r.repeat_accuracy);
@@ -60,32 +62,37 @@ Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactor
     return r;
 }
 
-Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
-                                  const EvaluationOptions& options) {
-    const auto started = std::chrono::steady_clock::now();
-    std::vector<std::size_t> row_of;
-    const FeatureTable table = features::to_feature_table(rows, &row_of);
-    if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to evaluate"};
-    if (table.class_names.size() < 2)
-        return Error{ErrorCode::invalid_argument, "evaluation needs at least two classes among the clean trials"};
+Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
+                               int folds, int repeats, std::uint64_t seed, const std::vector<std::string>* groups) {
+    auto plan = make_fold_plan(table.y, groups, folds, repeats, seed);
+    if (!plan) return plan.error();
+    return repeated_cv(table, factory, params, *plan);
+}
 
+namespace {
+
+// One classifier of the comparison: the preset on the shared plan, the paper's
+// analyses of its first repetition, and with options.optimize the tuning.
+Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& rows, const FeatureTable& table,
+                                      const std::vector<std::size_t>& row_of,
+                                      const std::vector<std::string>* group_ptr, const FoldPlan& plan,
+                                      const ClassifierRequest& request, const EvaluationOptions& options,
+                                      bool several) {
+    const auto& factory = request.factory;
     EvaluationReport rep;
+    rep.name = request.name;
     rep.trials = rows.size();
     rep.clean = table.rows;
     rep.classes = table.class_names;
-    rep.params = options.params;
+    rep.params = request.params;
     rep.space = options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+    const std::vector<std::string> no_groups;
+    const std::vector<std::string>& groups = group_ptr ? *group_ptr : no_groups;
 
-    std::vector<std::string> groups;
-    const std::vector<std::string>* group_ptr = nullptr;
-    if (options.group_of) {
-        for (std::size_t r : row_of) groups.push_back(options.group_of(rows[r]));
-        group_ptr = &groups;
-    }
-
-    say(options, "cross-validating the preset: " + std::to_string(options.repeats) + " x " +
-                     std::to_string(options.folds) + "-fold on " + std::to_string(table.rows) + " clean trials");
-    auto base = repeated_cv(table, factory, options.params, options.folds, options.repeats, options.seed, group_ptr);
+    say(options, "cross-validating the preset" + (several ? " of " + request.name : std::string()) + ": " +
+                     std::to_string(plan.repeats()) + " x " + std::to_string(plan.folds) + "-fold on " +
+                     std::to_string(table.rows) + " clean trials");
+    auto base = repeated_cv(table, factory, request.params, plan);
     if (!base) return base.error();
     rep.baseline = std::move(base).value();
     rep.analysis = analyse_like_paper(rows, row_of, table.y, rep.baseline.first_predicted, table.class_names,
@@ -105,7 +112,7 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
             };
         say(options, "Bayesian optimisation on one fixed partition (" + std::to_string(bo.evaluations) +
                          " evaluations)");
-        auto search = bayes_optimize(rep.space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
+        auto search = bayes_optimize(rep.space, cv_error(table, *fixed, options.folds, factory), request.params, bo);
         if (!search) return search.error();
         TunedCv tuned;
         tuned.search = std::move(search).value();
@@ -140,7 +147,7 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
                                                     ? bagged_trees_search_space(inner_table.rows, inner_table.cols())
                                                     : options.space;
                 auto s = bayes_optimize(inner_space, cv_error(inner_table, *inner, options.folds, factory),
-                                        options.params, ibo);
+                                        request.params, ibo);
                 if (!s) return Status(s.error()).with_context("nested CV outer fold " + std::to_string(f + 1));
                 auto model = train_classifier(inner_table, factory, s->best_params());
                 if (!model) return model.error();
@@ -162,8 +169,81 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
             rep.nested = std::move(nested);
         }
     }
-    rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return rep;
+}
+
+}  // namespace
+
+Result<Evaluation> evaluate_table(const std::vector<features::FeatureRow>& rows, const FeatureTable& table,
+                                  const std::vector<std::size_t>& row_of,
+                                  const std::vector<ClassifierRequest>& classifiers,
+                                  const EvaluationOptions& options) {
+    const auto started = std::chrono::steady_clock::now();
+    if (classifiers.empty()) return Error{ErrorCode::invalid_argument, "no classifier to evaluate"};
+    if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to evaluate"};
+    if (table.class_names.size() < 2)
+        return Error{ErrorCode::invalid_argument, "evaluation needs at least two classes among the clean trials"};
+    if (row_of.size() != table.rows)
+        return Error{ErrorCode::invalid_argument, "the input table has " + std::to_string(table.rows) +
+                                                      " rows but " + std::to_string(row_of.size()) +
+                                                      " trial references"};
+
+    Evaluation ev;
+    ev.trials = rows.size();
+    ev.clean = table.rows;
+    ev.classes = table.class_names;
+    ev.truth = table.y;
+    std::vector<bool> used(rows.size(), false);
+    for (std::size_t r : row_of) {
+        ev.trial_ids.push_back(rows[r].trial_id);
+        used[r] = true;
+    }
+    for (std::size_t r = 0; r < rows.size(); ++r)
+        if (!used[r]) ev.refused.push_back({rows[r].trial_id, rows[r].reason.empty() ? "not clean" : rows[r].reason});
+
+    std::vector<std::string> groups;
+    const std::vector<std::string>* group_ptr = nullptr;
+    if (options.group_of) {
+        for (std::size_t r : row_of) groups.push_back(options.group_of(rows[r]));
+        group_ptr = &groups;
+    }
+    // One plan for everyone: the paired comparison is only fair on identical folds.
+    auto plan = make_fold_plan(table.y, group_ptr, options.folds, options.repeats, options.seed);
+    if (!plan) return plan.error();
+    ev.plan = std::move(plan).value();
+
+    for (const auto& request : classifiers) {
+        const auto one_started = std::chrono::steady_clock::now();
+        auto one = evaluate_one(rows, table, row_of, group_ptr, ev.plan, request, options, classifiers.size() > 1);
+        if (!one) return Status(one.error()).with_context("classifier '" + request.name + "'");
+        one->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - one_started).count();
+        ev.classifiers.push_back(std::move(one).value());
+    }
+    const double ratio = 1.0 / static_cast<double>(std::max(1, options.folds - 1));
+    for (std::size_t a = 0; a < ev.classifiers.size(); ++a)
+        for (std::size_t b = a + 1; b < ev.classifiers.size(); ++b)
+            ev.paired.push_back({a, b,
+                                 paired_difference(ev.classifiers[a].baseline.fold_accuracy,
+                                                   ev.classifiers[b].baseline.fold_accuracy, ratio)});
+    ev.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    // A lone classifier's report covers the whole evaluation, as it always did.
+    if (ev.classifiers.size() == 1) ev.classifiers.front().seconds = ev.seconds;
+    return ev;
+}
+
+Result<Evaluation> evaluate_features(const std::vector<features::FeatureRow>& rows,
+                                     const std::vector<ClassifierRequest>& classifiers,
+                                     const EvaluationOptions& options) {
+    std::vector<std::size_t> row_of;
+    const FeatureTable table = features::to_feature_table(rows, &row_of);
+    return evaluate_table(rows, table, row_of, classifiers, options);
+}
+
+Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
+                                  const EvaluationOptions& options) {
+    auto ev = evaluate_features(rows, {ClassifierRequest{"classifier", factory, options.params}}, options);
+    if (!ev) return ev.error();
+    return std::move(ev->classifiers.front());
 }
 
 Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
@@ -224,7 +304,7 @@ std::string figure(double m, double sd, const Interval& w, std::size_t k, std::s
 
 }  // namespace
 
-std::string format_report(const EvaluationReport& r) {
+std::string format_report(const EvaluationReport& r, bool with_timing) {
     std::string out;
     char buf[256];
     std::snprintf(buf, sizeof buf, "trials %zu, clean %zu, classes %zu\n\n", r.trials, r.clean, r.classes.size());
@@ -256,7 +336,44 @@ std::string format_report(const EvaluationReport& r) {
     out += "\nthe paper's analyses (preset, first repetition = one " + std::to_string(b.folds) +
            "-fold CV) beside the paper:\n";
     out += format_paper_comparison(r.analysis);
-    std::snprintf(buf, sizeof buf, "\nevaluation took %.1f s\n", r.seconds);
+    if (with_timing) {
+        std::snprintf(buf, sizeof buf, "\nevaluation took %.1f s\n", r.seconds);
+        out += buf;
+    }
+    return out;
+}
+
+std::string format_evaluation(const Evaluation& ev) {
+    if (ev.classifiers.size() == 1) return format_report(ev.primary());
+    std::string out;
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "trials %zu, clean %zu, classes %zu\n\n", ev.trials, ev.clean, ev.classes.size());
+    out += buf;
+    std::size_t width = 10;
+    for (const auto& c : ev.classifiers) width = std::max(width, c.name.size());
+    const int w = static_cast<int>(width);
+    std::snprintf(buf, sizeof buf, "%zu classifiers on the same %zu x %s %d-fold partitions (seeds %llu..%llu):\n",
+                  ev.classifiers.size(), ev.plan.repeats(), ev.plan.grouped ? "grouped" : "stratified",
+                  ev.plan.folds, static_cast<unsigned long long>(ev.plan.seeds.front()),
+                  static_cast<unsigned long long>(ev.plan.seeds.back()));
+    out += buf;
+    for (const auto& c : ev.classifiers) {
+        std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %% ± %.1f (sd over repetitions)\n", w, c.name.c_str(),
+                      100.0 * c.baseline.mean, 100.0 * c.baseline.sd);
+        out += buf;
+    }
+    out += "\npaired per-fold accuracy differences (a − b, every fold of every repetition; t: paired t, df = n − 1;\n"
+           "t corrected: Nadeau-Bengio, which allows for folds sharing training trials; a/b/ties: sign counts):\n";
+    for (const auto& p : ev.paired) {
+        const auto& d = p.difference;
+        std::snprintf(buf, sizeof buf,
+                      "  %s − %s: mean %+.2f points, sd %.2f, n %zu, t %.2f, t corrected %.2f, a/b/ties %zu/%zu/%zu\n",
+                      ev.classifiers[p.a].name.c_str(), ev.classifiers[p.b].name.c_str(), 100.0 * d.mean,
+                      100.0 * d.sd, d.n(), d.t, d.t_corrected, d.a_better, d.b_better, d.ties);
+        out += buf;
+    }
+    for (const auto& c : ev.classifiers) out += "\n==== " + c.name + " ====\n" + format_report(c, false);
+    std::snprintf(buf, sizeof buf, "\nevaluation took %.1f s\n", ev.seconds);
     out += buf;
     return out;
 }

@@ -13,6 +13,7 @@
 #include "rollsense/features.hpp"
 #include "analysis/learn/bayes_opt.hpp"
 #include "analysis/learn/cross_validation.hpp"
+#include "analysis/learn/folds.hpp"
 #include "analysis/learn/metrics.hpp"
 #include "analysis/learn/paper_analysis.hpp"
 
@@ -43,6 +44,7 @@ struct RepeatedCv {
     std::size_t correct = 0, total = 0;   // pooled
     ConfusionMatrix confusion;            // pooled over repetitions
     std::vector<int> first_predicted;     // out-of-fold labels of the first repetition
+    std::vector<std::vector<double>> first_scores;  // their class scores (one vector per table row)
 };
 
 struct TunedCv {
@@ -60,7 +62,10 @@ struct NestedCv {
     ConfusionMatrix confusion;
 };
 
+// One classifier's evaluation. `name` is how the comparison calls it (the
+// plugin, with its parameters when the same plugin is compared with itself).
 struct EvaluationReport {
+    std::string name;
     std::size_t trials = 0;
     std::size_t clean = 0;
     std::vector<std::string> classes;
@@ -73,10 +78,63 @@ struct EvaluationReport {
     double seconds = 0.0;
 };
 
+// A classifier to evaluate: its name in the results, how to make it, its parameters.
+struct ClassifierRequest {
+    std::string name;
+    ClassifierFactory factory;
+    ParamSet params;
+};
+
+// A trial the input step left out, and why (features: the rejection reason).
+struct RefusedTrial {
+    std::string trial_id;
+    std::string reason;
+};
+
+// Between two classifiers of the comparison: their per-fold accuracies over
+// every fold of every repetition, paired (same folds), a − b.
+struct PairedComparison {
+    std::size_t a = 0, b = 0;  // indices into Evaluation::classifiers
+    PairedDifference difference;
+};
+
+// Several classifiers evaluated on the same input table and the same folds.
+// With one classifier this is exactly the single evaluation of the past.
+struct Evaluation {
+    std::string input = "features";  // the input step that made the table (features | series)
+    std::size_t trials = 0, clean = 0;
+    std::vector<std::string> classes;
+    std::vector<std::string> trial_ids;  // the table's rows: the trials used, in fold-assignment order
+    std::vector<int> truth;              // their true labels (indices into classes)
+    std::vector<RefusedTrial> refused;   // trials the input step left out
+    FoldPlan plan;                       // the partitions every classifier was scored on
+    std::vector<EvaluationReport> classifiers;
+    std::vector<PairedComparison> paired;  // every pair (i < j), i − j
+    double seconds = 0.0;
+    const EvaluationReport& primary() const { return classifiers.front(); }
+};
+
+Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
+                               const FoldPlan& plan);
 Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
                                int folds, int repeats, std::uint64_t seed,
                                const std::vector<std::string>* groups = nullptr);
 
+// Every classifier on `table` (its rows are rows[row_of[i]]), all on one fold
+// plan made from options.folds / repeats / seed / group_of.
+Result<Evaluation> evaluate_table(const std::vector<features::FeatureRow>& rows, const FeatureTable& table,
+                                  const std::vector<std::size_t>& row_of,
+                                  const std::vector<ClassifierRequest>& classifiers,
+                                  const EvaluationOptions& options);
+
+// The feature table of the clean rows, then evaluate_table(): the learning
+// pipeline (analysis/pipeline.hpp) chooses the input step; this is the one
+// for feature-vector classifiers.
+Result<Evaluation> evaluate_features(const std::vector<features::FeatureRow>& rows,
+                                     const std::vector<ClassifierRequest>& classifiers,
+                                     const EvaluationOptions& options);
+
+// One classifier with options.params (kept for tests and simple callers).
 Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                                   const EvaluationOptions& options);
 
@@ -91,6 +149,10 @@ Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, cons
                              const EvaluationOptions& options);
 
 // Human-readable report: every figure labelled with how it was obtained.
-std::string format_report(const EvaluationReport& report);
+// `with_timing` = false leaves out the final "evaluation took" line.
+std::string format_report(const EvaluationReport& report, bool with_timing = true);
+// evaluation.txt: one classifier exactly as format_report(); several: each
+// one's report under its name, then the paired comparison.
+std::string format_evaluation(const Evaluation& evaluation);
 
 }  // namespace rollsense::learn

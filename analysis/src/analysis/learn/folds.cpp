@@ -48,6 +48,24 @@ Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int 
     return fold;
 }
 
+Result<FoldPlan> make_fold_plan(std::span<const int> labels, const std::vector<std::string>* groups, int k,
+                                int repeats, std::uint64_t first_seed) {
+    if (repeats < 1)
+        return Error{ErrorCode::invalid_argument, "cross-validation needs at least 1 repetition, got " +
+                                                      std::to_string(repeats)};
+    FoldPlan plan;
+    plan.folds = k;
+    plan.grouped = groups != nullptr;
+    for (int rep = 0; rep < repeats; ++rep) {
+        const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(rep);
+        auto f = groups ? grouped_folds(*groups, k, seed) : stratified_folds(labels, k, seed);
+        if (!f) return f.error();
+        plan.seeds.push_back(seed);
+        plan.assignment.push_back(std::move(f).value());
+    }
+    return plan;
+}
+
 std::vector<std::size_t> fold_rows(std::span<const int> folds, int test_fold, bool test) {
     std::vector<std::size_t> out;
     for (std::size_t i = 0; i < folds.size(); ++i)

@@ -21,6 +21,19 @@ Result<std::vector<int>> stratified_folds(std::span<const int> labels, int k, st
 // with the seed and assigned greedily to the currently smallest fold.
 Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int k, std::uint64_t seed);
 
+// The partitions of a repeated k-fold CV, made once so that every classifier
+// compared is trained and tested on exactly the same rows. Repetition r uses
+// seed `first_seed + r`, grouped folds when groups are given.
+struct FoldPlan {
+    int folds = 0;
+    bool grouped = false;
+    std::vector<std::uint64_t> seeds;          // one per repetition
+    std::vector<std::vector<int>> assignment;  // [repetition][row] → fold in [0, folds)
+    std::size_t repeats() const { return assignment.size(); }
+};
+Result<FoldPlan> make_fold_plan(std::span<const int> labels, const std::vector<std::string>* groups, int k,
+                                int repeats, std::uint64_t first_seed);
+
 // Row indices of the training (fold != test_fold) or test (fold == test_fold) part.
 std::vector<std::size_t> fold_rows(std::span<const int> folds, int test_fold, bool test);
 

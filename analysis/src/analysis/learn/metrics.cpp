@@ -1,5 +1,6 @@
 #include "analysis/learn/metrics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -62,6 +63,30 @@ double standard_deviation(std::span<const double> v) {
     double s = 0.0;
     for (double x : v) s += (x - m) * (x - m);
     return std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+PairedDifference paired_difference(std::span<const double> a, std::span<const double> b, double test_train_ratio) {
+    PairedDifference d;
+    const std::size_t n = std::min(a.size(), b.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        const double diff = a[i] - b[i];
+        d.per_fold.push_back(diff);
+        if (diff > 0) ++d.a_better;
+        else if (diff < 0) ++d.b_better;
+        else ++d.ties;
+    }
+    if (n == 0) return d;
+    d.mean = mean(d.per_fold);
+    d.sd = standard_deviation(d.per_fold);
+    const double nn = static_cast<double>(n);
+    auto t_of = [&](double variance_factor) {
+        if (d.mean == 0.0) return 0.0;
+        const double se = std::sqrt(variance_factor) * d.sd;
+        return se > 0.0 ? d.mean / se : std::copysign(std::numeric_limits<double>::infinity(), d.mean);
+    };
+    d.t = t_of(1.0 / nn);
+    d.t_corrected = t_of(1.0 / nn + test_train_ratio);
+    return d;
 }
 
 double Count::fraction() const {

@@ -43,6 +43,23 @@ double mean(std::span<const double> v);
 // Sample standard deviation (n − 1); 0 for fewer than two values.
 double standard_deviation(std::span<const double> v);
 
+// Two classifiers scored on the same folds: the per-fold differences a − b and
+// two paired t statistics on them (df = n − 1). `t` is the textbook paired t;
+// it overstates the evidence because the folds of a repeated CV share training
+// rows, so `t_corrected` applies Nadeau and Bengio's corrected resampled t,
+// whose variance term is (1/n + n_test/n_train)·sd². The sign counts give a
+// distribution-free view (a sign test) beside them.
+struct PairedDifference {
+    std::vector<double> per_fold;  // a − b, fold by fold in the same order as the folds
+    double mean = 0.0, sd = 0.0;
+    double t = 0.0, t_corrected = 0.0;  // 0 when every difference is 0; ±inf when all are equal and non-zero
+    std::size_t a_better = 0, b_better = 0, ties = 0;
+    std::size_t n() const { return per_fold.size(); }
+};
+// `test_train_ratio` is n_test / n_train of one fold (1 / (k − 1) for k-fold).
+// a and b must have the same length.
+PairedDifference paired_difference(std::span<const double> a, std::span<const double> b, double test_train_ratio);
+
 // "k of n (p %)" for reports.
 struct Count {
     std::size_t k = 0;

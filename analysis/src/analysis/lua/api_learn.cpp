@@ -8,7 +8,9 @@
 #include "rollsense/features.hpp"
 #include "rollsense/log.hpp"
 #include "analysis/learn/evaluate.hpp"
+#include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/inputs.hpp"
+#include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
@@ -40,25 +42,46 @@ struct SliceGuard {
     ~SliceGuard() { sandbox.start_slice(); }
 };
 
+// The classifier list of rs.analyse: `classifiers = {"a", "b:learners=10"}`
+// or the single `classifier = "a"`; entries as on the command line.
+std::vector<learn::ClassifierSpec> classifier_specs_from(lua_State* L, int opts, const ParamSet& common) {
+    std::string list;
+    lua_getfield(L, opts, "classifiers");
+    if (lua_istable(L, -1)) {
+        const auto n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+        if (n == 0) luaL_error(L, "rs.analyse: classifiers = {} is empty; give at least one plugin name");
+        for (lua_Integer i = 1; i <= n; ++i) {
+            lua_rawgeti(L, -1, i);
+            if (!lua_isstring(L, -1))
+                luaL_error(L, "rs.analyse: classifiers[%d] is not a string (a plugin name, e.g. \"bagged_trees\")",
+                           static_cast<int>(i));
+            list += (list.empty() ? "" : ",") + std::string(lua_tostring(L, -1));
+            lua_pop(L, 1);
+        }
+    } else if (!lua_isnil(L, -1)) {
+        luaL_error(L, "rs.analyse: classifiers must be a list of plugin names, e.g. {\"bagged_trees\"}");
+    }
+    lua_pop(L, 1);
+    const std::string plugin = opt_field_string(L, opts, "classifier", "bagged_trees");
+    if (list.empty()) list = plugin;
+    auto specs = learn::parse_classifier_list(list, common);
+    if (!specs) raise_status(L, Status(specs.error()).with_context("rs.analyse"));
+    return std::move(specs).value();
+}
+
 // rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier="bagged_trees",
-//             params={...}, model="model.rsm" } → summary table
+//             classifiers={"a","b"}, params={...}, model="model.rsm" } → summary table
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
     const int opts = 1;
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
     check(L, s.flush_dataset());
-    auto dataset = DatasetReader::open(s.output_dir());
-    check(L, dataset.status());
-    auto rows = features::extract_dataset(*dataset, features::FeatureSettings{});
-    check(L, rows.status());
-    check(L, features::write_features_csv(s.output_dir() / "features.csv", *rows));
-    log_info("analysis", learn::summarize_rejections(*rows));
 
-    const std::string plugin = opt_field_string(L, opts, "classifier", "bagged_trees");
-    auto factory = learn::plugin_classifier_factory(s.registry(), plugin);
-    check(L, factory.status());
-    learn::EvaluationOptions eo;
+    learn::PipelineRequest request;
+    request.input = s.output_dir();
+    request.features = features::FeatureSettings{};
+    learn::EvaluationOptions& eo = request.options;
     eo.folds = static_cast<int>(opt_field_number(L, opts, "folds", 5));
     eo.repeats = static_cast<int>(opt_field_number(L, opts, "repeats", 10));
     eo.seed = s.options().seed;
@@ -67,34 +90,47 @@ int l_analyse(lua_State* L) {
     eo.nested = opt_field_bool(L, opts, "nested", eo.optimize);
     eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
-    auto report = learn::evaluate(*rows, *factory, eo);
-    check(L, report.status());
-    const std::string text = learn::format_report(*report);
-    check(L, s.write_output_text("evaluation.txt", text));
-
-    // report.html: the paper's figures and tables for this dataset, and the terminal summary.
-    report::ReportInputs ri;
-    ri.dataset_dir = s.output_dir();
-    ri.rows = *rows;
-    ri.evaluation = *report;
-    ri.classifier = plugin;
-    ri.command_line = s.options().command_line;
-    auto page = report::write_report(ri);
-    check(L, page.status());
-    std::fprintf(stderr, "\n%s", report::text_summary(ri).c_str());
-    log_info("analysis", "report written to " + page->string() + "; the full evaluation is in evaluation.txt");
-
-    auto final_model = learn::fit_final(*rows, *factory, eo);
-    check(L, final_model.status());
+    request.classifiers = classifier_specs_from(L, opts, eo.params);
     const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
     if (model_name.find('/') != std::string::npos)
         return luaL_error(L, "rs.analyse: model '%s' must be a plain file name (it goes into the output folder)",
                           model_name.c_str());
+
+    auto result = learn::run_pipeline(s.registry(), request, [&s](const std::vector<features::FeatureRow>& rows) {
+        if (auto st = features::write_features_csv(s.output_dir() / "features.csv", rows); !st) return st;
+        log_info("analysis", learn::summarize_rejections(rows));
+        return Status{};
+    });
+    check(L, result.status());
+    const learn::Evaluation& evaluation = result->evaluation;
+    const learn::EvaluationReport& primary = evaluation.primary();
+    check(L, s.write_output_text("evaluation.txt", learn::format_evaluation(evaluation)));
+    check(L, s.write_output_text("evaluation.json", learn::evaluation_json(evaluation)));
+
+    // report.html: the paper's figures and tables for this dataset, and the terminal summary.
+    report::ReportInputs ri;
+    ri.dataset_dir = s.output_dir();
+    ri.rows = result->rows;
+    ri.evaluation = evaluation;
+    ri.command_line = s.options().command_line;
+    auto page = report::write_report(ri);
+    check(L, page.status());
+    std::fprintf(stderr, "\n%s", report::text_summary(ri).c_str());
+    log_info("analysis", "report written to " + page->string() +
+                             "; the full evaluation is in evaluation.txt and evaluation.json");
+
+    // The model to deploy is the first classifier's.
+    const auto& first = result->classifiers.front();
+    eo.params = first.spec.params;
+    const auto& rows = result->rows;
+    auto final_model = learn::fit_final(rows, first.factory, eo);
+    check(L, final_model.status());
     const auto model_path = s.output_dir() / model_name;
     check(L, final_model->classifier->save(model_path));
     log_info("analysis", "model saved to " + model_path.string());
 
     lua_newtable(L);
+    const auto* report = &primary;
     lua_pushinteger(L, static_cast<lua_Integer>(report->trials));
     lua_setfield(L, -2, "trials");
     lua_pushinteger(L, static_cast<lua_Integer>(report->clean));
@@ -111,8 +147,24 @@ int l_analyse(lua_State* L) {
         lua_pushnumber(L, report->nested->mean);
         lua_setfield(L, -2, "nested_accuracy");
     }
+    // Every classifier compared, in the order given: {name=, accuracy=, accuracy_sd=}.
+    lua_createtable(L, static_cast<int>(evaluation.classifiers.size()), 0);
+    for (std::size_t i = 0; i < evaluation.classifiers.size(); ++i) {
+        const auto& c = evaluation.classifiers[i];
+        lua_newtable(L);
+        lua_pushstring(L, c.name.c_str());
+        lua_setfield(L, -2, "name");
+        lua_pushnumber(L, c.baseline.mean);
+        lua_setfield(L, -2, "accuracy");
+        lua_pushnumber(L, c.baseline.sd);
+        lua_setfield(L, -2, "accuracy_sd");
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_setfield(L, -2, "classifiers");
     lua_pushstring(L, model_path.c_str());
     lua_setfield(L, -2, "model");
+    lua_pushstring(L, (s.output_dir() / "evaluation.json").c_str());
+    lua_setfield(L, -2, "evaluation");
     lua_pushstring(L, (s.output_dir() / "features.csv").c_str());
     lua_setfield(L, -2, "features");
     lua_pushstring(L, page->c_str());

@@ -6,6 +6,7 @@
 #include "rollsense/atomic_file.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/report/breakdown.hpp"
+#include "analysis/report/comparison.hpp"
 #include "analysis/report/confusion_figure.hpp"
 #include "analysis/report/feature_figure.hpp"
 #include "analysis/report/page_style.hpp"
@@ -65,8 +66,11 @@ Result<std::string> render_report(const ReportInputs& in) {
     if (!dataset) return dataset.error();
     auto run_info = read_run_info(in.dataset_dir);
     if (!run_info) return run_info.error();
-    const learn::EvaluationReport& ev = in.evaluation;
+    // The first classifier's figures fill the paper's sections; a comparison
+    // of several gets its own section.
+    const learn::EvaluationReport& ev = in.evaluation.primary();
     const auto& b = ev.baseline;
+    const bool several = in.evaluation.classifiers.size() > 1;
 
     std::string body;
     const std::string name = in.dataset_dir.filename().empty() ? in.dataset_dir.parent_path().filename().string()
@@ -76,18 +80,24 @@ Result<std::string> render_report(const ReportInputs& in) {
             std::to_string(ev.trials) + " trials, " + std::to_string(ev.clean) + " clean. Figures and analyses of " +
             "the E-TRoll paper computed for this data.</p>\n";
     body += "<p class=\"headline\" id=\"headline\">Accuracy " + fixed(100.0 * b.mean, 1) + " \u00b1 " +
-            fixed(100.0 * b.sd, 1) + "\u00a0% (" + escape_xml(in.classifier) + ", " + std::to_string(b.repeats) +
+            fixed(100.0 * b.sd, 1) + "\u00a0% (" + escape_xml(ev.name) + ", " + std::to_string(b.repeats) +
             " \u00d7 " + std::to_string(b.folds) + "-fold CV), 95\u00a0% interval " + fixed(100.0 * b.wilson.low, 1) +
             "\u2013" + fixed(100.0 * b.wilson.high, 1) + "\u00a0%; the paper: 90.5\u00a0%.</p>\n</header>\n";
-    body += "<nav><ol><li><a href=\"#sec-accuracy\">Accuracy</a></li><li><a href=\"#sec-confusion\">Confusion "
+    body += "<nav><ol><li><a href=\"#sec-accuracy\">Accuracy</a></li>" +
+            std::string(several ? "<li><a href=\"#sec-compare\">Classifiers compared</a></li>" : "") + "<li><a href=\"#sec-confusion\">Confusion "
             "matrix</a></li><li><a href=\"#sec-breakdown\">By speed and object</a></li><li><a "
             "href=\"#sec-paper\">The paper's analyses</a></li><li><a href=\"#sec-peaks\">Peak plots</a></li><li><a "
             "href=\"#sec-features\">Features</a></li><li><a href=\"#sec-tuning\">Tuning</a></li><li><a "
             "href=\"#sec-provenance\">Provenance</a></li></ol></nav>\n";
 
-    body += section("sec-accuracy", "Accuracy", accuracy_table(ev, in.classifier) +
+    body += section("sec-accuracy", "Accuracy", accuracy_table(ev, ev.name) +
                                                     "<p class=\"note\">" + escape_xml(learn::summarize_rejections(in.rows)) +
                                                     "</p>\n");
+    if (several)
+        body += section("sec-compare", "Classifiers compared on the same folds",
+                        comparison_section(in.evaluation, in.catalogue) +
+                            "<p class=\"note\">The sections below show the first classifier, " +
+                            escape_xml(ev.name) + ".</p>\n");
 
     body += section("sec-confusion", "Confusion matrix (cf. the paper's Fig. 9)",
                     figure(confusion_figure(b.confusion, in.catalogue, "fig-confusion", "Confusion matrix"),
@@ -142,7 +152,7 @@ Result<std::string> render_report(const ReportInputs& in) {
     KeyValues made = {{"report generated (UTC)", utc_timestamp()},
                       {"report software version", ROLLSENSE_VERSION},
                       {"report command line", in.command_line.empty() ? std::string("(not given)") : in.command_line},
-                      {"evaluation seconds", fixed(ev.seconds, 1)}};
+                      {"evaluation seconds", fixed(in.evaluation.seconds, 1)}};
     const DatasetInfo& di = dataset->info();
     KeyValues recorded = {{"profile", di.profile},
                           {"seed", std::to_string(di.seed)},

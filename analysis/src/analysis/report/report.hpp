@@ -20,9 +20,9 @@ struct ReportInputs {
     std::filesystem::path dataset_dir;            // the recorded dataset (trials are re-read for the plots)
     std::filesystem::path output;                 // empty: <dataset_dir>/report.html
     std::vector<features::FeatureRow> rows;       // every trial, clean and rejected, as evaluated
-    learn::EvaluationReport evaluation;           // learn::evaluate() on `rows`
+    learn::Evaluation evaluation;                 // the learning pipeline's evaluation of `rows`: one
+                                                  // classifier, or several compared on the same folds
     features::FeatureSettings settings;           // the settings `rows` were extracted with
-    std::string classifier = "bagged_trees";
     std::string command_line;                     // what made this report (shown under provenance)
     std::vector<learn::ObjectShape> catalogue = learn::paper_objects();
 };
@@ -35,7 +35,8 @@ Result<std::string> render_report(const ReportInputs& inputs);
 Result<std::filesystem::path> write_report(const ReportInputs& inputs);
 
 // A few lines for the terminal: trials, clean rate, accuracy with interval
-// beside the paper's, tuned figures, weakest objects.
+// beside the paper's, tuned figures, weakest objects (of the first
+// classifier), and one line per further classifier compared.
 std::string text_summary(const ReportInputs& inputs);
 
 std::filesystem::path report_path(const ReportInputs& inputs);

@@ -23,7 +23,7 @@ std::string pct(double fraction) {
 }  // namespace
 
 std::string text_summary(const ReportInputs& in) {
-    const auto& ev = in.evaluation;
+    const auto& ev = in.evaluation.primary();
     const auto& b = ev.baseline;
     std::string out;
     char buf[512];
@@ -32,7 +32,7 @@ std::string text_summary(const ReportInputs& in) {
     out += "  " + learn::summarize_rejections(in.rows) + "\n";
     std::snprintf(buf, sizeof buf,
                   "  accuracy %s +- %.1f (%s, %d x %d-fold CV), 95 %% interval %.1f-%.1f %%; paper 90.5 %%\n",
-                  pct(b.mean).c_str(), 100.0 * b.sd, in.classifier.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
+                  pct(b.mean).c_str(), 100.0 * b.sd, ev.name.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
                   100.0 * b.wilson.high);
     out += buf;
     if (ev.tuned) {
@@ -44,6 +44,20 @@ std::string text_summary(const ReportInputs& in) {
         std::snprintf(buf, sizeof buf, "  tuned, nested CV (honest): %s +- %.1f\n", pct(ev.nested->mean).c_str(),
                       100.0 * ev.nested->sd);
         out += buf;
+    }
+    // Further classifiers of a comparison: their figure and the paired difference to the first.
+    for (std::size_t i = 1; i < in.evaluation.classifiers.size(); ++i) {
+        const auto& c = in.evaluation.classifiers[i];
+        std::snprintf(buf, sizeof buf, "  compared: %s %s +- %.1f", c.name.c_str(), pct(c.baseline.mean).c_str(),
+                      100.0 * c.baseline.sd);
+        out += buf;
+        for (const auto& p : in.evaluation.paired)
+            if (p.a == 0 && p.b == i) {
+                std::snprintf(buf, sizeof buf, "; first minus it %+.1f points per fold (corrected t %.2f)",
+                              100.0 * p.difference.mean, p.difference.t_corrected);
+                out += buf;
+            }
+        out += "\n";
     }
     // The objects most often confused: the ones a reader looks for first.
     const Breakdown split = breakdown(in.rows, ev, in.catalogue);

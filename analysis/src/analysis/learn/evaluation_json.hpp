@@ -1,0 +1,17 @@
+// evaluation.json: the in-memory Evaluation as a machine-readable file for
+// scripts and notebooks (schema: docs/evaluation-json.md). Rendered from the
+// same Evaluation as the terminal summary, evaluation.txt and the report.
+#pragma once
+
+#include <string>
+
+#include "analysis/learn/evaluate.hpp"
+
+namespace rollsense::learn {
+
+// Bumped whenever a field changes meaning or disappears (additions keep it).
+inline constexpr int kEvaluationJsonVersion = 1;
+
+std::string evaluation_json(const Evaluation& evaluation);
+
+}  // namespace rollsense::learn

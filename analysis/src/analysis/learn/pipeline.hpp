@@ -1,0 +1,98 @@
+// The learning pipeline every evaluation runs — `rollsense evaluate`,
+// `rollsense report` and rs.analyse alike:
+//
+//   classifiers  resolve every requested plugin, validate its parameters and
+//                ask which input it takes, before any work
+//   rows         the dataset's trials with the feature-extraction step's
+//                settings (or a features CSV as it was written)
+//   input table  the step the classifiers' input() picks: features → the
+//                clean trials' feature vectors; series → not available yet
+//   evaluation   every classifier on the same folds, paired differences
+//   outputs      evaluation.txt and evaluation.json from the one Evaluation
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rollsense/features.hpp"
+#include "analysis/learn/evaluate.hpp"
+#include "runtime/plugin/plugin_registry.hpp"
+
+namespace rollsense::learn {
+
+// One entry of a classifier list: which plugin, with which parameters, and the
+// name the results use for it.
+struct ClassifierSpec {
+    std::string name;
+    std::string plugin;
+    ParamSet params;
+};
+
+// "a,b:learners=10:min_leaf=2": comma-separated entries, each a plugin name
+// optionally followed by ":KEY=VALUE" parameters. `common` (the --set values)
+// apply to every entry, the entry's own ones on top. An entry's name is its
+// text; a name given twice gets " #2", " #3".
+Result<std::vector<ClassifierSpec>> parse_classifier_list(const std::string& text, const ParamSet& common = {});
+// A spec's name from its plugin and own parameters (as parse_classifier_list names it).
+std::string spec_name(const std::string& plugin, const ParamSet& own);
+// Gives repeated names a " #2", " #3" suffix so every result can be told apart.
+void make_names_unique(std::vector<ClassifierSpec>& specs);
+
+struct PreparedClassifier {
+    ClassifierSpec spec;
+    ClassifierFactory factory;
+    ClassifierInput input = ClassifierInput::features;
+};
+
+// The names of the classifier plugins the registry can load, sorted.
+std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry);
+
+// Every spec's plugin found, its parameters accepted and its input known. An
+// unknown plugin fails with the list of available classifier plugins.
+Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegistry& registry,
+                                                            const std::vector<ClassifierSpec>& specs);
+
+// The input step for `kind`: the table, and which row each table row came from.
+struct InputTable {
+    FeatureTable table;
+    std::vector<std::size_t> row_of;
+    std::string kind;  // "features" | "series"
+};
+Result<InputTable> make_input_table(const std::vector<features::FeatureRow>& rows, ClassifierInput kind);
+
+// Input step, then every classifier on the same folds.
+Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& rows,
+                                     const std::vector<PreparedClassifier>& classifiers,
+                                     const EvaluationOptions& options);
+
+struct PipelineRequest {
+    std::filesystem::path input;          // dataset folder or features CSV
+    features::FeatureSettings features;   // the feature-extraction step's settings
+    std::vector<ClassifierSpec> classifiers;
+    EvaluationOptions options;            // options.params is ignored: each spec has its own
+};
+
+struct PipelineResult {
+    std::vector<features::FeatureRow> rows;
+    std::vector<PreparedClassifier> classifiers;
+    Evaluation evaluation;
+};
+
+// Where the pipeline stopped, so that commands can tell a wrong input or
+// plugin (configuration) from an evaluation that failed.
+enum class PipelineStage { classifiers, rows, evaluation };
+
+// The whole pipeline. `on_rows` runs once the rows are read (print the
+// rejection summary, write features.csv); its error stops the pipeline.
+Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const PipelineRequest& request,
+                                    const std::function<Status(const std::vector<features::FeatureRow>&)>& on_rows = {},
+                                    PipelineStage* failed = nullptr);
+
+// evaluation.json beside a text file: same folder and stem ("out/evaluation.txt" → "out/evaluation.json").
+std::filesystem::path json_path_beside(const std::filesystem::path& text_path);
+// Writes `text_path` (format_evaluation) and the JSON beside it, atomically.
+Status write_evaluation_files(const Evaluation& evaluation, const std::filesystem::path& text_path);
+
+}  // namespace rollsense::learn
