@@ -127,7 +127,10 @@ TEST_CASE("a real trial's contact stretched 1.5× prepares to nearly the same se
             diff = std::max(diff, std::abs(base->values[i] - slow->values[i]));
             top = std::max(top, std::abs(base->values[i]));
         }
-        CHECK(diff < 0.1 * top);
+        // The stretch re-interpolates the reading noise: allow three steps of
+        // the barometers' quantisation (0.0094; measured at most 0.023 on
+        // peaks 0.21–0.58 high).
+        CHECK(diff < 0.03);
         // Relative to the roll, the same change is plain to see.
         SeriesSettings roll;
         roll.time_axis = TimeAxis::roll_relative;
