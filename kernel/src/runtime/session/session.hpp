@@ -108,9 +108,6 @@ public:
     Status write_output_text(const std::string& name, const std::string& text);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 
-    // Cancel the run (e-stop, failure of a device).
-    void request_cancel(const std::string& reason) { scheduler_->cancel(reason); }
-
     // The error code of the last Status a binding raised as a Lua error, so a
     // script that dies of it keeps the code (limit violation, hardware fault).
     void set_raised_code(ErrorCode code) { raised_code_ = code; }
