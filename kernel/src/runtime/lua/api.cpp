@@ -58,26 +58,33 @@ void register_extras(lua_State* L) {
     for (auto r : extras()) r(L);
 }
 
-Task& waiting_task(lua_State* L, const char* function) {
+LuaTask& waiting_task(lua_State* L, const char* function) {
     Session& s = Session::of(L);
-    Task* t = s.current_task();
-    if (!t || t->thread != L || !lua_isyieldable(L))
+    auto* t = dynamic_cast<LuaTask*>(s.scheduler().current());
+    if (!t || t->thread() != L || !lua_isyieldable(L))
         luaL_error(L, "%s cannot wait here (not inside a procedure: e.g. in a wait_until condition or a "
                       "function called from C such as a table.sort comparator)", function);
     return *t;
 }
 
-int yield_task(lua_State* L, lua_KFunction k) { return lua_yieldk(L, 0, 0, k); }
+int yield_task(lua_State* L, LuaTask& task, Wait wait, lua_KFunction k) {
+    task.request(std::move(wait));
+    return lua_yieldk(L, 0, 0, k);
+}
+
+namespace {
+LuaTask* resumed_task(lua_State* L) { return dynamic_cast<LuaTask*>(Session::of(L).scheduler().current()); }
+}  // namespace
 
 int finish_wait(lua_State* L, int, lua_KContext) {
     Session& s = Session::of(L);
-    Task* t = s.current_task();
+    LuaTask* t = resumed_task(L);
     if (!t) return 0;
-    if (t->outcome == WaitOutcome::cancelled)
+    if (t->outcome() == WaitOutcome::cancelled)
         return luaL_error(L, "cancelled: %s", s.sandbox().cancel_reason().c_str());
-    if (t->outcome == WaitOutcome::timed_out) {
+    if (t->outcome() == WaitOutcome::timed_out) {
         s.set_raised_code(ErrorCode::timeout);
-        return luaL_error(L, "timed out waiting for %s", t->waiting_for.c_str());
+        return luaL_error(L, "timed out waiting for %s", t->waiting_for().c_str());
     }
     return 0;
 }
@@ -130,23 +137,17 @@ int l_wait(lua_State* L) {
     const double ms = luaL_checknumber(L, 1);
     if (!(ms >= 0) || !std::isfinite(ms)) return luaL_error(L, "rs.wait: milliseconds must be a number >= 0");
     Session& s = Session::of(L);
-    Task& t = waiting_task(L, "rs.wait");
-    t.wait = Task::Wait::time;
-    t.wake_time = s.now() + s.quantize(ms / 1000.0);
-    t.outcome = WaitOutcome::ready;
-    return yield_task(L, finish_wait);
+    LuaTask& t = waiting_task(L, "rs.wait");
+    return yield_task(L, t, Wait::for_time(s.now() + s.quantize(ms / 1000.0)), finish_wait);
 }
 
 int after_wait_until(lua_State* L, int, lua_KContext) {
     Session& s = Session::of(L);
-    Task* t = s.current_task();
-    if (t->predicate_ref != LUA_NOREF) {
-        luaL_unref(L, LUA_REGISTRYINDEX, t->predicate_ref);
-        t->predicate_ref = LUA_NOREF;
-    }
-    if (t->outcome == WaitOutcome::cancelled)
+    LuaTask* t = resumed_task(L);
+    t->release_predicate();
+    if (t->outcome() == WaitOutcome::cancelled)
         return luaL_error(L, "cancelled: %s", s.sandbox().cancel_reason().c_str());
-    lua_pushboolean(L, t->outcome == WaitOutcome::ready);
+    lua_pushboolean(L, t->outcome() == WaitOutcome::ready);
     return 1;
 }
 
@@ -156,14 +157,16 @@ int l_wait_until(lua_State* L) {
     luaL_checktype(L, 1, LUA_TFUNCTION);
     const double ms = luaL_optnumber(L, 2, -1);
     Session& s = Session::of(L);
-    Task& t = waiting_task(L, "rs.wait_until");
+    LuaTask& t = waiting_task(L, "rs.wait_until");
     lua_pushvalue(L, 1);
-    t.predicate_ref = luaL_ref(L, LUA_REGISTRYINDEX);
-    t.wait = Task::Wait::predicate;
-    t.wake_time = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
-    t.outcome = WaitOutcome::ready;
-    t.waiting_for = "a condition";
-    return yield_task(L, after_wait_until);
+    const int ref = luaL_ref(L, LUA_REGISTRYINDEX);
+    t.hold_predicate(ref);
+    Wait w;
+    w.kind = Wait::Kind::predicate;
+    w.predicate = lua_predicate(s.sandbox(), ref);
+    w.until = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
+    w.what = "a condition";
+    return yield_task(L, t, std::move(w), after_wait_until);
 }
 
 // rs.setting(key, default): a --set value (converted to the default's type

@@ -12,9 +12,10 @@ namespace rollsense::runtime::lua_api {
 
 // The task running this Lua code; raises if the caller cannot wait here
 // (inside a wait_until condition, at load time of a module, ...).
-Task& waiting_task(lua_State* L, const char* function);
-// Yield the current task until the scheduler resumes it; `k` is the continuation.
-int yield_task(lua_State* L, lua_KFunction k);
+LuaTask& waiting_task(lua_State* L, const char* function);
+// Yield the current task until the scheduler resumes it, waiting for `wait`;
+// `k` is the continuation.
+int yield_task(lua_State* L, LuaTask& task, Wait wait, lua_KFunction k);
 // Continuation that turns a cancelled or timed-out wait into an error and
 // returns nothing otherwise.
 int finish_wait(lua_State* L, int status, lua_KContext ctx);

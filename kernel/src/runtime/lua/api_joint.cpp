@@ -26,17 +26,17 @@ void command_or_raise(lua_State* L, Joint& j, const JointCommand& c) {
 
 // Wait until every joint in `joints` has arrived (not moving, within tolerance
 // of its goal), or raise on timeout.
-int wait_arrival(lua_State* L, std::vector<Joint*> joints, double timeout_s, double tolerance,
+int wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout_s, double tolerance,
                  const std::string& what) {
     Session& s = Session::of(L);
-    Task& t = waiting_task(L, "move");
-    t.wait = Task::Wait::joints;
-    t.joints = std::move(joints);
-    t.tolerance = tolerance;
-    t.wake_time = s.now() + s.quantize(timeout_s);
-    t.outcome = WaitOutcome::ready;
-    t.waiting_for = what + " (timeout " + std::to_string(timeout_s) + " s)";
-    return yield_task(L, finish_wait);
+    LuaTask& t = waiting_task(L, "move");
+    Wait w;
+    w.kind = Wait::Kind::joints;
+    w.joints = std::move(joints);
+    w.tolerance = tolerance;
+    w.until = s.now() + s.quantize(timeout_s);
+    w.what = what + " (timeout " + std::to_string(timeout_s) + " s)";
+    return yield_task(L, t, std::move(w), finish_wait);
 }
 
 // A timeout that fits the move: trapezoid duration plus a margin.
@@ -211,7 +211,7 @@ int l_joints(lua_State* L) {
 // rs.wait_joints({j1, j2, ...}, {timeout_ms=, tolerance=})
 int l_wait_joints(lua_State* L) {
     luaL_checktype(L, 1, LUA_TTABLE);
-    std::vector<Joint*> list;
+    std::vector<const Joint*> list;
     std::string names;
     for (lua_Integer i = 1; i <= static_cast<lua_Integer>(lua_rawlen(L, 1)); ++i) {
         lua_rawgeti(L, 1, i);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "rollsense/status.hpp"
+#include "runtime/session/cancellation.hpp"
 
 namespace rollsense::runtime {
 
@@ -26,10 +27,12 @@ struct SandboxLimits {
     double max_slice_ms = 5000;             // Lua may run this long without yielding
 };
 
-class Sandbox {
+// The sandbox is the run's Cancellation while a script runs: its instruction
+// hook must see the flag at once, and sets it itself (slice limit, Ctrl-C).
+class Sandbox final : public Cancellation {
 public:
     Sandbox(SandboxLimits limits, std::vector<std::filesystem::path> module_path);
-    ~Sandbox();
+    ~Sandbox() override;
     Sandbox(const Sandbox&) = delete;
     Sandbox& operator=(const Sandbox&) = delete;
 
@@ -45,10 +48,10 @@ public:
     Status load_string(const std::string& code, const std::string& chunk_name);
 
     // Cancellation: every Lua thread notices at its next instruction.
-    void cancel(const std::string& reason);
-    void clear_cancel();
-    bool cancelled() const { return cancelled_.load(); }
-    const std::string& cancel_reason() const { return cancel_reason_; }
+    void cancel(const std::string& reason) override;
+    void clear_cancel() override;
+    bool cancelled() const override { return cancelled_.load(); }
+    const std::string& cancel_reason() const override { return cancel_reason_; }
     // Install the hook on a coroutine (new threads inherit it, this re-arms).
     void arm(lua_State* thread);
     // Called by the scheduler right before resuming Lua code.

@@ -211,9 +211,7 @@ Status Robot::read_actuators(double time) {
         auto st = a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); });
         if (!st.ok()) return st;
         for (std::size_t i = 0; i < a.joints.size(); ++i) {
-            auto& j = joints_[a.joints[i]];
-            j.state = a.states[i];
-            joint_states_[a.joints[i]] = a.states[i];
+            joints_[a.joints[i]].state = a.states[i];
         }
     }
     return {};
@@ -378,6 +376,15 @@ void Robot::disable_all_controllers(double time) {
         }
 }
 
+// The SDK hands sensors the joints as parallel name and state vectors; they
+// are filled from the joint table when a sensor is called, so the table stays
+// the one store of joint state (a copy updated on read went stale when the
+// safe state re-read the joints).
+SampleInput Robot::sample_input(double time) {
+    for (std::size_t i = 0; i < joints_.size(); ++i) joint_states_[i] = joints_[i].state;
+    return SampleInput{time, &joint_names_, &joint_states_};
+}
+
 Status Robot::begin_trial(const TrialInfo& trial) {
     for (auto& s : sensors_) {
         if (auto st = s.handle->require_active("begin_trial"); !st.ok()) return st;
@@ -388,7 +395,7 @@ Status Robot::begin_trial(const TrialInfo& trial) {
 }
 
 Status Robot::start_recording(double time) {
-    SampleInput in{time, &joint_names_, &joint_states_};
+    const SampleInput in = sample_input(time);
     for (auto& s : sensors_)
         if (auto st = s.handle->call("start_recording", [&] { return s.handle->plugin().start_recording(in); });
             !st.ok())
@@ -410,7 +417,7 @@ Status Robot::end_trial() {
 }
 
 Status Robot::sample(double time, TrialData& data) {
-    SampleInput in{time, &joint_names_, &joint_states_};
+    const SampleInput in = sample_input(time);
     if (data.channels.size() != channel_columns_.size()) data.channels.resize(channel_columns_.size());
     if (data.joints.size() != recorded_joints_.size()) data.joints.resize(recorded_joints_.size());
     bool valid = true;

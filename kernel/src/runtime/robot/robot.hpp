@@ -94,6 +94,7 @@ private:
     Status read_actuators(double time);
     Status write_actuators(double time);
     std::vector<JointCommand> safe_commands(const ActuatorHandle& actuator) const;
+    SampleInput sample_input(double time);
 
     struct ActuatorSlot {
         std::unique_ptr<ActuatorHandle> handle;
@@ -118,7 +119,7 @@ private:
     std::vector<ControllerSlot> controllers_;
     std::vector<Joint> joints_;
     std::vector<std::string> joint_names_;       // for SampleInput
-    std::vector<JointState> joint_states_;       // for SampleInput
+    std::vector<JointState> joint_states_;       // for SampleInput: a view filled from joints_
     std::vector<std::string> channel_columns_;
     std::vector<std::string> recorded_joints_;
     std::vector<std::size_t> recorded_joint_index_;

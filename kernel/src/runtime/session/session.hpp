@@ -1,29 +1,30 @@
-// One run of a roll script on a robot profile: the scheduler loop on injected
-// time, the control and sampling loops, recording into a dataset, the Lua
-// procedure runtime, cancellation and the safe state.
-//
-// The loop is single-threaded. Each iteration resumes the coroutines that are
-// ready, then advances the clock to the next event (control tick, sample tick,
-// or a task's wake time). Control ticks read every actuator, run controllers
-// and write every actuator; sample ticks (while recording) read every sensor.
+// One run of a roll script on a robot profile: the assembly of the parts a
+// run needs, in the order it needs them. The profile's robot (plugins), the
+// injected clock, the recorder (trials, dataset), the safety lines, the Lua
+// sandbox with the rollsense module, and the scheduler that runs the script's
+// coroutines as tasks, then its cleanup functions, and leaves the hand safe.
+// The scheduler, recorder and safety know nothing of Lua (see scheduler.hpp);
+// this class and runtime/lua/ are the layer that drives them from a script.
 #pragma once
 
-#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <optional>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "rollsense/dataset.hpp"
 #include "rollsense/digital_io.hpp"
+#include "runtime/lua/lua_task.hpp"
 #include "runtime/lua/sandbox.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
 #include "runtime/profile/profile.hpp"
 #include "runtime/robot/robot.hpp"
 #include "runtime/session/loop_timing.hpp"
 #include "runtime/session/progress.hpp"
+#include "runtime/session/recorder.hpp"
+#include "runtime/session/safety.hpp"
+#include "runtime/session/scheduler.hpp"
 #include "runtime/time/clock.hpp"
 
 namespace rollsense::runtime {
@@ -56,25 +57,6 @@ struct RunSummary {
     std::optional<LoopTimingSummary> control_timing;  // monotonic clock only
 };
 
-enum class WaitOutcome { ready, timed_out, cancelled };
-
-struct Task {
-    lua_State* thread = nullptr;
-    int ref = LUA_NOREF;       // keeps the coroutine alive
-    std::string name;
-    bool is_cleanup = false;
-    bool finished = false;
-    // What the task waits for.
-    enum class Wait { none, time, joints, predicate } wait = Wait::none;
-    double wake_time = 0;       // Wait::time: wake; other waits: timeout (inf = none)
-    std::vector<Joint*> joints; // Wait::joints
-    double tolerance = 0.5;
-    int predicate_ref = LUA_NOREF;
-    std::string waiting_for;    // for timeout messages
-    WaitOutcome outcome = WaitOutcome::ready;
-    int nargs = 0;              // values pushed for the next resume
-};
-
 class Session {
 public:
     explicit Session(SessionOptions options);
@@ -92,39 +74,39 @@ public:
     // -------- used by the Lua bindings --------
     static Session& of(lua_State* L);
     double now() const { return clock_->now(); }
-    // Round a duration to the virtual clock's grid (2^-20 s), so that time
-    // differences are exact and a trial does not depend on when it started.
-    double quantize(double t) const;
-    Task* current_task() { return current_; }
+    // Round a duration to the virtual clock's grid (Clock::quantize).
+    double quantize(double t) const { return clock_ ? clock_->quantize(t) : t; }
+    Scheduler& scheduler() { return *scheduler_; }
+    Recorder& recorder() { return *recorder_; }
     Robot& robot() { return *robot_; }
     const Profile& profile() const { return profile_; }
     const SessionOptions& options() const { return options_; }
     Sandbox& sandbox() { return *sandbox_; }
     PluginRegistry& registry() { return *registry_; }
 
-    Status begin_trial(TrialInfo info);
-    const TrialInfo& trial() const { return trial_; }
-    bool trial_open() const { return trial_open_; }
+    // Trials: the recorder's, plus what a recording means for the scheduler
+    // (control grid re-phased) and the safety lines (trigger pulse).
+    Status begin_trial(TrialInfo info) { return recorder_->begin_trial(std::move(info)); }
+    const TrialInfo& trial() const { return recorder_->trial(); }
+    bool trial_open() const { return recorder_->trial_open(); }
     Status record_start();
-    Status record_stop();
-    bool recording() const { return recording_; }
-    const TrialData& recorded() const { return data_; }
-    Status save_trial();
+    Status record_stop() { return recorder_->stop(); }
+    bool recording() const { return recorder_->recording(); }
+    const TrialData& recorded() const { return recorder_->recorded(); }
+    Status save_trial() { return recorder_->save_trial(); }
     // Make every saved trial durable and listed in the manifest (before analysing the dataset).
-    Status flush_dataset();
-    Status end_trial();
+    Status flush_dataset() { return recorder_->flush(); }
+    Status end_trial() { return recorder_->end_trial(); }
     // Already in the dataset (a resumed run skips it; counted as skipped).
-    bool has_trial(const std::string& id);
-    std::mt19937_64& trial_random() { return trial_rng_; }
+    bool has_trial(const std::string& id) { return recorder_->has_trial(id); }
+    std::mt19937_64& trial_random() { return recorder_->trial_random(); }
 
+    // A concurrent task running the Lua function at `function_index` of L.
     void spawn(lua_State* L, int function_index, std::string name);
     void add_cleanup(int function_ref) { cleanup_refs_.push_back(function_ref); }
     void report_progress(std::size_t done, std::size_t total, const std::string& label);
     Status write_output_text(const std::string& name, const std::string& text);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
-
-    // Cancel the run (Ctrl-C, e-stop, failure of a device); thread-safe flag.
-    void request_cancel(const std::string& reason);
 
     // The error code of the last Status a binding raised as a Lua error, so a
     // script that dies of it keeps the code (limit violation, hardware fault).
@@ -136,65 +118,30 @@ public:
     }
 
     // Derive a per-trial seed from the run seed and the trial id.
-    static std::uint64_t trial_seed(std::uint64_t run_seed, const std::string& trial_id);
+    static std::uint64_t trial_seed(std::uint64_t run_seed, const std::string& trial_id) {
+        return Recorder::trial_seed(run_seed, trial_id);
+    }
 
 private:
     Status open_dataset();
-    Status open_safety_lines();
-    // Emergency stop: checked every control period; asserted (or unreadable)
-    // stops every joint at once, locks out commands and cancels the script.
-    void check_estop();
-    void update_trigger();
-    Status loop(bool cleanup_phase);
-    bool resume_task(Task& t);
-    bool condition_met(Task& t);
-    void check_conditions();
-    Status control_tick();
-    Status sample_tick();
-    void fail(Status status);
     void run_cleanup();
-    void release_task(Task& t);
+    void write_run_info(const Status& status, double wall_start);
 
+    // Declared in the order they depend on each other: the scheduler (whose
+    // Lua tasks hold references into the sandbox) goes first, the robot last.
     SessionOptions options_;
     Profile profile_;
     std::unique_ptr<PluginRegistry> registry_;
     std::unique_ptr<Robot> robot_;
     std::unique_ptr<Clock> clock_;
-    std::unique_ptr<Sandbox> sandbox_;
-    std::unique_ptr<DatasetWriter> dataset_;
-    std::unique_ptr<Progress> progress_;
-
-    std::vector<std::unique_ptr<Task>> tasks_;
-    Task* current_ = nullptr;
-    std::vector<int> cleanup_refs_;
-    Status failure_;            // first failure: script error, device error, cancellation
-    bool main_finished_ = false;
-
-    double control_period_ = 0.01;
-    double sample_period_ = 1 / 31.1;
-    double control_epoch_ = 0;  // control ticks at epoch + k * period
-    std::uint64_t control_k_ = 0;
-    double next_control_ = 0;
-    double last_control_ = 0;
     std::unique_ptr<LoopTiming> loop_timing_;  // monotonic clock only
-    bool recording_ = false;
-    double sample_epoch_ = 0;
-    std::uint64_t sample_m_ = 0;
-    double next_sample_ = 0;
-
-    TrialInfo trial_;
-    bool trial_open_ = false;
-    TrialData data_;
-    std::mt19937_64 trial_rng_;
-    std::size_t trials_saved_ = 0;
-    std::size_t trials_skipped_ = 0;
-    std::atomic<bool> cancel_flag_{false};
-    std::string cancel_reason_;
+    Safety safety_;
+    std::unique_ptr<Recorder> recorder_;
+    std::unique_ptr<Sandbox> sandbox_;
+    std::unique_ptr<Scheduler> scheduler_;
+    std::unique_ptr<Progress> progress_;
+    std::vector<int> cleanup_refs_;
     bool prepared_ = false;
-    std::unique_ptr<DigitalInput> estop_;
-    std::unique_ptr<DigitalOutput> trigger_;
-    double trigger_off_time_ = -1;  // run-clock time to end the current pulse, -1 = none
-    bool estop_tripped_ = false;
     ErrorCode raised_code_ = ErrorCode::ok;
 };
 

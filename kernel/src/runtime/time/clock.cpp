@@ -13,6 +13,11 @@ double monotonic_seconds() {
 }
 }  // namespace
 
+double Clock::quantize(double t) const {
+    constexpr double kGrid = 1048576.0;  // 2^20 steps per second
+    return is_virtual() ? std::round(t * kGrid) / kGrid : t;
+}
+
 MonotonicClock::MonotonicClock() : origin_(monotonic_seconds()) {}
 
 double MonotonicClock::now() const { return monotonic_seconds() - origin_; }

@@ -14,6 +14,10 @@ public:
     virtual double now() const = 0;           // seconds since the run started
     virtual void sleep_until(double t) = 0;   // returns at once if t <= now()
     virtual bool is_virtual() const = 0;
+    // Round a duration to the virtual clock's grid (2^-20 s), so that time
+    // differences are exact and a trial does not depend on when it started.
+    // Real clocks have no grid: unchanged.
+    double quantize(double t) const;
 };
 
 class VirtualClock final : public Clock {

@@ -1,0 +1,124 @@
+#include "runtime/session/recorder.hpp"
+
+#include <cmath>
+
+#include "rollsense/random.hpp"
+#include "runtime/robot/robot.hpp"
+#include "runtime/time/clock.hpp"
+
+namespace rollsense::runtime {
+
+Recorder::Recorder(Robot& robot, const Clock& clock, double sample_rate_hz, std::uint64_t run_seed)
+    : robot_(robot), clock_(clock), sample_period_(1.0 / sample_rate_hz), run_seed_(run_seed) {}
+
+Recorder::~Recorder() = default;
+
+std::uint64_t Recorder::trial_seed(std::uint64_t run_seed, const std::string& trial_id) {
+    // FNV-1a of the id, with the offset basis this project has always used
+    // (1469598103934665603, not FNV's 14695981039346656037): every recorded
+    // dataset's trial seeds depend on it, so it stays.
+    std::uint64_t h = 1469598103934665603ULL;
+    for (unsigned char c : trial_id) {
+        h ^= c;
+        h *= 1099511628211ULL;
+    }
+    return random::splitmix64(run_seed ^ h);
+}
+
+Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInfo& info, bool resume,
+                              std::size_t commit_every) {
+    auto w = DatasetWriter::open(dir, info, resume ? DatasetOpenMode::resume : DatasetOpenMode::create);
+    if (!w) return w.status();
+    dataset_ = std::move(*w);
+    dataset_->set_commit_every(commit_every);
+    return {};
+}
+
+Status Recorder::begin_trial(TrialInfo info) {
+    if (recording_) return {ErrorCode::state_error, "a trial cannot begin while recording (call rs.record_stop() first)"};
+    if (info.id.empty()) return {ErrorCode::invalid_argument, "a trial needs an id"};
+    info.seed = trial_seed(run_seed_, info.id);
+    trial_ = std::move(info);
+    trial_rng_.seed(trial_.seed);
+    trial_open_ = true;
+    data_ = TrialData{};
+    return robot_.begin_trial(trial_);
+}
+
+Status Recorder::can_start() const {
+    if (!trial_open_) return {ErrorCode::state_error, "recording needs a trial: call rs.trial{object=..., ...} first"};
+    if (recording_) return {ErrorCode::state_error, "already recording"};
+    return {};
+}
+
+Status Recorder::start(double now) {
+    if (auto s = can_start(); !s.ok()) return s;
+    if (auto s = robot_.start_recording(now); !s.ok()) return s;
+    data_ = TrialData{};
+    data_.channels.resize(robot_.channel_columns().size());
+    data_.joints.resize(robot_.recorded_joints().size());
+    recording_ = true;
+    sample_epoch_ = now;
+    sample_m_ = 0;
+    next_sample_ = now;
+    return {};
+}
+
+Status Recorder::stop() {
+    if (!recording_) return {ErrorCode::state_error, "not recording"};
+    recording_ = false;
+    return robot_.stop_recording();
+}
+
+Status Recorder::sample_tick(double now) {
+    if (auto s = robot_.sample(now, data_); !s.ok()) {
+        recording_ = false;
+        return s;
+    }
+    // Time since the recording started, from the sample index: identical for
+    // identical trials wherever they fall in a run.
+    data_.time.back() = std::round(static_cast<double>(sample_m_) * sample_period_ * 1e6) / 1e6;
+    ++sample_m_;
+    next_sample_ = sample_epoch_ + clock_.quantize(static_cast<double>(sample_m_) * sample_period_);
+    return {};
+}
+
+void Recorder::abort_recording() {
+    if (!recording_) return;
+    recording_ = false;
+    (void)robot_.stop_recording();
+}
+
+Status Recorder::save_trial() {
+    if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR to save trials"};
+    if (recording_) return {ErrorCode::state_error, "stop recording before saving the trial"};
+    if (data_.samples() == 0) return {ErrorCode::state_error, "trial '" + trial_.id + "' recorded no samples"};
+    TrialRecord rec;
+    rec.info = trial_;
+    auto s = dataset_->add_trial(rec, data_);
+    if (s.ok()) ++trials_saved_;
+    return s;
+}
+
+Status Recorder::end_trial() {
+    if (recording_) (void)stop();
+    trial_open_ = false;
+    return robot_.end_trial();
+}
+
+Status Recorder::flush() {
+    if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR"};
+    return dataset_->flush();
+}
+
+bool Recorder::has_trial(const std::string& id) {
+    if (!dataset_ || !dataset_->has_trial(id)) return false;
+    ++trials_skipped_;
+    return true;
+}
+
+void Recorder::write_run_info(const std::vector<std::pair<std::string, std::string>>& fields) {
+    if (dataset_) (void)dataset_->write_run_info(fields);
+}
+
+}  // namespace rollsense::runtime

@@ -1,0 +1,86 @@
+// Trials and recording, apart from any script: a trial opens (its seed and
+// random stream derive from the run seed and its id), recording starts and
+// stops, the scheduler's sample ticks read every sensor into the trial's
+// data, and a saved trial goes to the dataset. Sample times come from the
+// sample index, so identical trials record identical data wherever they fall
+// in a run.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rollsense/dataset.hpp"
+
+namespace rollsense::runtime {
+
+class Clock;
+class Robot;
+
+class Recorder {
+public:
+    Recorder(Robot& robot, const Clock& clock, double sample_rate_hz, std::uint64_t run_seed);
+    ~Recorder();
+
+    // Open (or, resuming, reopen) the dataset trials are saved into. Without
+    // one, trials can be recorded but not saved.
+    Status open_dataset(const std::filesystem::path& dir, const DatasetInfo& info, bool resume,
+                        std::size_t commit_every);
+    bool has_dataset() const { return dataset_ != nullptr; }
+
+    Status begin_trial(TrialInfo info);
+    const TrialInfo& trial() const { return trial_; }
+    bool trial_open() const { return trial_open_; }
+    // Why recording cannot start now (no trial, already recording); ok if it can.
+    Status can_start() const;
+    Status start(double now);
+    Status stop();
+    bool recording() const { return recording_; }
+    const TrialData& recorded() const { return data_; }
+    Status save_trial();
+    Status end_trial();
+    // Make every saved trial durable and listed in the manifest.
+    Status flush();
+    // Already in the dataset (a resumed run skips it; counted as skipped).
+    bool has_trial(const std::string& id);
+    std::mt19937_64& trial_random() { return trial_rng_; }
+
+    // The scheduler's sampling: when the next sample is due (infinity when
+    // not recording), and taking it. A failed sample ends the recording.
+    double next_sample() const { return recording_ ? next_sample_ : std::numeric_limits<double>::infinity(); }
+    Status sample_tick(double now);
+    // The run failed or ended while recording: stop the sensors, keep nothing.
+    void abort_recording();
+
+    std::size_t trials_saved() const { return trials_saved_; }
+    std::size_t trials_skipped() const { return trials_skipped_; }
+    // run-info.csv of the dataset, if one is open (best effort).
+    void write_run_info(const std::vector<std::pair<std::string, std::string>>& fields);
+
+    // A per-trial seed from the run seed and the trial id.
+    static std::uint64_t trial_seed(std::uint64_t run_seed, const std::string& trial_id);
+
+private:
+    Robot& robot_;
+    const Clock& clock_;
+    double sample_period_;
+    std::uint64_t run_seed_;
+    std::unique_ptr<DatasetWriter> dataset_;
+    TrialInfo trial_;
+    bool trial_open_ = false;
+    TrialData data_;
+    std::mt19937_64 trial_rng_;
+    bool recording_ = false;
+    double sample_epoch_ = 0;
+    std::uint64_t sample_m_ = 0;
+    double next_sample_ = 0;
+    std::size_t trials_saved_ = 0;
+    std::size_t trials_skipped_ = 0;
+};
+
+}  // namespace rollsense::runtime
