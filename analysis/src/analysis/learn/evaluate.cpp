@@ -74,7 +74,10 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
     rep.clean = table.rows;
     rep.classes = table.class_names;
     rep.params = options.params;
-    rep.space = options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+    auto space = options.optimize ? tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier)
+                                  : declared_search_space(factory, options.params, table.rows, table.cols(), options.space);
+    if (!space && options.optimize) return space.error();  // before minutes of CV
+    rep.space = space ? std::move(space).value() : SearchSpace{};  // else the CV below reports the factory's error
 
     std::vector<std::string> groups;
     const std::vector<std::string>* group_ptr = nullptr;
@@ -136,10 +139,10 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
                 ibo.progress = nullptr;
                 say(options, "nested CV: tuning inside outer fold " + std::to_string(f + 1) + " of " +
                                  std::to_string(options.folds));
-                const SearchSpace inner_space = options.space.empty()
-                                                    ? bagged_trees_search_space(inner_table.rows, inner_table.cols())
-                                                    : options.space;
-                auto s = bayes_optimize(inner_space, cv_error(inner_table, *inner, options.folds, factory),
+                auto inner_space = tuning_space(factory, options.params, inner_table.rows, inner_table.cols(),
+                                                options.space, options.classifier);
+                if (!inner_space) return inner_space.error();
+                auto s = bayes_optimize(*inner_space, cv_error(inner_table, *inner, options.folds, factory),
                                         options.params, ibo);
                 if (!s) return Status(s.error()).with_context("nested CV outer fold " + std::to_string(f + 1));
                 auto model = train_classifier(inner_table, factory, s->best_params());
@@ -175,11 +178,11 @@ Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, cons
     if (options.optimize) {
         auto fixed = stratified_folds(table.y, options.folds, options.seed);
         if (!fixed) return fixed.error();
-        const SearchSpace space =
-            options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+        auto space = tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier);
+        if (!space) return space.error();
         BayesOptOptions bo = options.bayes;
         bo.seed = options.seed;
-        auto s = bayes_optimize(space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
+        auto s = bayes_optimize(*space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
         if (!s) return s.error();
         out.params = s->best_params();
         out.search = std::move(s).value();
