@@ -7,6 +7,7 @@
 
 #include "rollsense/features.hpp"
 #include "rollsense/log.hpp"
+#include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/plugin_factory.hpp"
@@ -40,7 +41,7 @@ struct SliceGuard {
     ~SliceGuard() { sandbox.start_slice(); }
 };
 
-// rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier="bagged_trees",
+// rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier=<share/analysis/defaults.csv>,
 //             params={...}, model="model.rsm" } → summary table
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
@@ -55,7 +56,9 @@ int l_analyse(lua_State* L) {
     check(L, features::write_features_csv(s.output_dir() / "features.csv", *rows));
     log_info("analysis", learn::summarize_rejections(*rows));
 
-    const std::string plugin = opt_field_string(L, opts, "classifier", "bagged_trees");
+    auto chosen = learn::classifier_or_default(opt_field_string(L, opts, "classifier", ""), s.options().share_dir);
+    check(L, chosen.status());
+    const std::string plugin = *chosen;
     auto factory = learn::plugin_classifier_factory(s.registry(), plugin);
     check(L, factory.status());
     learn::EvaluationOptions eo;
@@ -67,6 +70,7 @@ int l_analyse(lua_State* L) {
     eo.nested = opt_field_bool(L, opts, "nested", eo.optimize);
     eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
+    eo.classifier = plugin;
     auto report = learn::evaluate(*rows, *factory, eo);
     check(L, report.status());
     const std::string text = learn::format_report(*report);
@@ -131,14 +135,16 @@ int l_classifier_gc(lua_State* L) {
     return 0;
 }
 
-// rs.classifier{ model = PATH, classifier = "bagged_trees" } → a loaded model
+// rs.classifier{ model = PATH, classifier = <share/analysis/defaults.csv> } → a loaded model
 int l_classifier(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
     luaL_checktype(L, 1, LUA_TTABLE);
     const std::string model = opt_field_string(L, 1, "model", "");
     if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
-    auto factory = learn::plugin_classifier_factory(s.registry(), opt_field_string(L, 1, "classifier", "bagged_trees"));
+    auto chosen = learn::classifier_or_default(opt_field_string(L, 1, "classifier", ""), s.options().share_dir);
+    check(L, chosen.status());
+    auto factory = learn::plugin_classifier_factory(s.registry(), *chosen);
     check(L, factory.status());
     auto clf = (*factory)(ParamSet{});
     check(L, clf.status());

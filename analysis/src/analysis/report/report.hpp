@@ -22,7 +22,7 @@ struct ReportInputs {
     std::vector<features::FeatureRow> rows;       // every trial, clean and rejected, as evaluated
     learn::EvaluationReport evaluation;           // learn::evaluate() on `rows`
     features::FeatureSettings settings;           // the settings `rows` were extracted with
-    std::string classifier = "bagged_trees";
+    std::string classifier;                       // the classifier plugin evaluated (shown in the report)
     std::string command_line;                     // what made this report (shown under provenance)
     std::vector<learn::ObjectShape> catalogue = learn::paper_objects();
 };
