@@ -74,8 +74,10 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
     rep.clean = table.rows;
     rep.classes = table.class_names;
     rep.params = options.params;
-    auto space = options.optimize ? tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier)
-                                  : declared_search_space(factory, options.params, table.rows, table.cols(), options.space);
+    const std::size_t n_rows = table.rows, n_cols = table.cols();
+    auto space = options.optimize
+                     ? tuning_space(factory, options.params, n_rows, n_cols, options.space, options.classifier)
+                     : declared_search_space(factory, options.params, n_rows, n_cols, options.space);
     if (!space && options.optimize) return space.error();  // before minutes of CV
     rep.space = space ? std::move(space).value() : SearchSpace{};  // else the CV below reports the factory's error
 

@@ -216,7 +216,8 @@ Status Model::deserialize(std::string_view text, const std::string& source) {
     }
     m.centroids.assign(k * p, 0.0);
     for (std::size_t c = 0; c < k; ++c) {
-        if (!in.next(line)) return in.truncated("reading centroid " + std::to_string(c + 1) + " of " + std::to_string(k));
+        if (!in.next(line))
+            return in.truncated("reading centroid " + std::to_string(c + 1) + " of " + std::to_string(k));
         std::size_t index = 0;
         if (!keyword(line, "centroid", rest) || !take(rest, index)) return in.fail("expected 'centroid <k> ...'");
         if (index != c) return in.fail("centroid " + std::to_string(index) + " where centroid " + std::to_string(c) +
