@@ -105,3 +105,32 @@ TEST_CASE("factory and data errors surface with context", "[learn][evaluate]") {
     REQUIRE_FALSE(r.ok());
     CHECK_THAT(r.error().message, Catch::Contains("learners") && Catch::Contains("fold 1"));
 }
+
+TEST_CASE("optimisation of a classifier that declares no search space fails naming it", "[learn][evaluate]") {
+    // The bagged-trees core behind a Classifier that keeps the SDK's default
+    // (empty) search_space.
+    struct Untunable final : Classifier {
+        bagged_trees::BaggedTrees inner;
+        Status train(const FeatureTable& t) override { return inner.train(t); }
+        Result<Prediction> predict(std::span<const double> f) const override { return inner.predict(f); }
+        std::vector<std::string> class_names() const override { return inner.class_names(); }
+        Status save(const std::filesystem::path& f) const override { return inner.save(f); }
+        Status load(const std::filesystem::path& f) override { return inner.load(f); }
+    };
+    const ClassifierFactory factory = [](const ParamSet&) -> Result<ClassifierPtr> {
+        return ClassifierPtr(std::make_shared<Untunable>());
+    };
+    const auto rows = synthetic_rows(6, 0.1, 6);
+    EvaluationOptions o;
+    o.repeats = 1;
+    o.folds = 3;
+    o.classifier = "untunable";
+    REQUIRE(evaluate(rows, factory, o).ok());  // without tuning it is fine
+    o.optimize = true;
+    auto r = evaluate(rows, factory, o);
+    REQUIRE_FALSE(r.ok());
+    CHECK_THAT(r.error().message, Catch::Contains("'untunable'") && Catch::Contains("no hyperparameters"));
+    auto m = fit_final(rows, factory, o);
+    REQUIRE_FALSE(m.ok());
+    CHECK_THAT(m.error().message, Catch::Contains("'untunable'"));
+}

@@ -5,7 +5,9 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/paths.hpp"
 #include "rollsense/atomic_file.hpp"
+#include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/pipeline.hpp"
@@ -62,7 +64,8 @@ LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string
     o.optimize = args.flag("--optimize");
     o.nested = !args.flag("--no-nested");
     o.bayes.evaluations = integer_option(args, "--evaluations", o.bayes.evaluations, 1);
-    if (auto c = args.option("--classifier"); !c.empty()) s.classifier = c;
+    s.classifier = value_or_throw(learn::classifier_or_default(args.option("--classifier"), share_dir()));
+    o.classifier = s.classifier;
     for (const auto& a : args.options("--set"))
         if (auto st = learn::parse_assignment(a, o.params); !st) throw UsageError(st.message());
     for (const auto& p : args.options("--plugin-path")) s.plugin_path.emplace_back(p);
@@ -148,8 +151,9 @@ Reports, for the clean trials:
     every outer training fold), the honest tuned figure.
 
 options:
-  --classifier LIST   classifier plugin(s), comma-separated (bagged_trees); an
-                      entry may carry its own parameters: bagged_trees:learners=10
+  --classifier LIST   classifier plugin(s), comma-separated (default:
+                      {default_classifier}); an entry may carry its own
+                      parameters: NAME:KEY=VALUE
   --set KEY=VALUE     classifier parameter for every listed classifier,
                       repeatable (e.g. --set learners=100)
   --folds K           k of the k-fold CV (5)
@@ -180,7 +184,8 @@ int run(const std::vector<std::string>& argv) {
     return kExitOk;
 }
 
-const Registration reg{{"evaluate", "cross-validate a classifier on a dataset or features file", kHelp, &run}};
+const Registration reg{{"evaluate", "cross-validate a classifier on a dataset or features file",
+                        learn::with_default_classifier(kHelp, share_dir()), &run}};
 
 }  // namespace
 }  // namespace rollsense::cli

@@ -6,6 +6,8 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/paths.hpp"
+#include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/pipeline.hpp"
@@ -44,8 +46,9 @@ options:
   --optimize          also run the paper's Bayesian optimisation and nested CV
   --evaluations N     optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
-  --classifier LIST   classifier plugin(s), comma-separated (bagged_trees);
-                      NAME:KEY=VALUE gives one entry its own parameters
+  --classifier LIST   classifier plugin(s), comma-separated (default:
+                      {default_classifier}); NAME:KEY=VALUE gives one entry
+                      its own parameters
   --set KEY=VALUE     classifier parameter for every listed classifier, repeatable
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'
@@ -90,7 +93,7 @@ int run(const std::vector<std::string>& argv) {
 }
 
 const Registration reg{{"report", "evaluate a dataset and write its HTML report (the paper's figures and tables)",
-                        kHelp, &run}};
+                        learn::with_default_classifier(kHelp, share_dir()), &run}};
 
 }  // namespace
 }  // namespace rollsense::cli

@@ -5,6 +5,8 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/paths.hpp"
+#include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/plugin_factory.hpp"
@@ -27,7 +29,7 @@ partition); run 'rollsense evaluate --optimize' for an honest figure of that.
 
 options:
   -o, --output MODEL  model file to write (required)
-  --classifier NAME   classifier plugin (bagged_trees)
+  --classifier NAME   classifier plugin ({default_classifier})
   --set KEY=VALUE     classifier parameter, repeatable
   --optimize          choose the parameters by Bayesian optimisation
   --evaluations N     optimiser evaluations (30)
@@ -46,11 +48,20 @@ int run(const std::vector<std::string>& argv) {
     learn::ClassifierFactory factory;
     if (int rc = prepare("train", args, s, registry, rows, factory); rc != kExitOk) return rc;
     learn::EvaluationOptions o = s.options;
-    if (o.optimize)
-        o.bayes.progress = [](int i, const ParamSet& p, double v) {
+    if (o.optimize) {
+        // The space the classifier declares for this data, so the progress
+        // lines name exactly the searched parameters.
+        const FeatureTable table = features::to_feature_table(rows);
+        auto space = learn::tuning_space(factory, o.params, table.rows, table.cols(), o.space, s.classifier);
+        if (!space) {
+            std::fprintf(stderr, "rollsense train: %s\n", space.error().describe().c_str());
+            return kExitConfig;
+        }
+        o.bayes.progress = [space = *space](int i, const ParamSet& p, double v) {
             std::fprintf(stderr, "optimiser %d: error %.1f %%  %s\n", i, 100.0 * v,
-                         learn::describe_params(p, learn::bagged_trees_search_space(1000, 13)).c_str());
+                         learn::describe_params(p, space).c_str());
         };
+    }
     auto model = learn::fit_final(rows, factory, o);
     if (!model) {
         std::fprintf(stderr, "rollsense train: %s\n", model.error().describe().c_str());
@@ -68,7 +79,8 @@ int run(const std::vector<std::string>& argv) {
     return kExitOk;
 }
 
-const Registration reg{{"train", "train a classifier on a dataset or features file and save the model", kHelp, &run}};
+const Registration reg{{"train", "train a classifier on a dataset or features file and save the model",
+                        learn::with_default_classifier(kHelp, share_dir()), &run}};
 
 }  // namespace
 }  // namespace rollsense::cli

@@ -13,15 +13,27 @@ namespace rollsense::learn {
 
 using Scale = SearchDimension::Scale;
 
-SearchSpace bagged_trees_search_space(std::size_t rows, std::size_t predictors) {
-    const double n = static_cast<double>(rows), p = static_cast<double>(predictors);
-    return {
-        {"learners", Scale::integer_log, 10, 500, {}},
-        {"min_leaf_size", Scale::integer_log, 1, std::max(2.0, std::floor(n / 2)), {}},
-        {"max_num_splits", Scale::integer_log, 1, std::max(2.0, n - 1), {}},
-        {"predictors_per_split", Scale::integer_linear, 1, std::max(2.0, p), {}},
-        {"split_criterion", Scale::categorical, 0, 0, {"gdi", "twoing", "deviance"}},
-    };
+Result<SearchSpace> declared_search_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
+                                          std::size_t cols, const SearchSpace& given) {
+    if (!given.empty()) return given;
+    // One untrained instance: the space is the plugin's to declare, and its
+    // ranges may depend on the configured parameters as well as the shape.
+    auto probe = factory(params);
+    if (!probe) return Status(probe.error()).with_context("asking the classifier for its search space");
+    return (*probe)->search_space(rows, cols);
+}
+
+Result<SearchSpace> tuning_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
+                                 std::size_t cols, const SearchSpace& given, const std::string& classifier) {
+    auto space = declared_search_space(factory, params, rows, cols, given);
+    if (!space) return space;
+    if (space->empty())
+        return Error{ErrorCode::invalid_argument,
+                     "classifier '" + (classifier.empty() ? std::string("(unnamed)") : classifier) +
+                         "' declares no hyperparameters to tune (its search_space is empty); run without "
+                         "--optimize / optimize=true and set its parameters with --set KEY=VALUE, or choose a "
+                         "classifier that declares a search space"};
+    return space;
 }
 
 namespace {

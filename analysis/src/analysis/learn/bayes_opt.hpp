@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/learn/cross_validation.hpp"
 #include "rollsense/classifier.hpp"
 #include "rollsense/params.hpp"
 #include "rollsense/status.hpp"
@@ -24,12 +25,6 @@ namespace rollsense::learn {
 // The space is declared by the classifier (rollsense/classifier.hpp).
 using rollsense::SearchDimension;
 using rollsense::SearchSpace;
-
-// classifier.md §3, the bagged-trees part (what the paper's optimiser searched):
-// learners 10…500 (log), min_leaf_size 1…max(2, floor(n/2)) (log),
-// max_num_splits 1…max(2, n−1) (log), predictors_per_split 1…max(2, p),
-// split_criterion gdi / twoing / deviance.
-SearchSpace bagged_trees_search_space(std::size_t rows, std::size_t predictors);
 
 struct BayesOptOptions {
     int evaluations = 30;     // MATLAB MaxObjectiveEvaluations
@@ -60,6 +55,16 @@ using Objective = std::function<Result<double>(const ParamSet& params)>;
 // searched (seed, threads, ...); they are passed with every evaluation.
 Result<BayesOptResult> bayes_optimize(const SearchSpace& space, const Objective& objective,
                                       const ParamSet& fixed, const BayesOptOptions& options);
+
+// The space tuning searches on a table of `rows` trials × `cols` columns:
+// `given` when not empty (a test's or a caller's own), else what one
+// classifier made by `factory` with `params` declares (Classifier::search_space;
+// it may be empty: nothing to tune).
+Result<SearchSpace> declared_search_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
+                                          std::size_t cols, const SearchSpace& given = {});
+// The same, for tuning: an empty space is an error naming `classifier`.
+Result<SearchSpace> tuning_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
+                                 std::size_t cols, const SearchSpace& given, const std::string& classifier);
 
 // "learners=123 min_leaf_size=2 ..." for reports.
 std::string describe_params(const ParamSet& params, const SearchSpace& space);

@@ -85,7 +85,12 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
     rep.clean = table.rows;
     rep.classes = table.class_names;
     rep.params = request.params;
-    rep.space = options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+    const std::size_t n_rows = table.rows, n_cols = table.cols();
+    auto space = options.optimize
+                     ? tuning_space(factory, request.params, n_rows, n_cols, options.space, request.name)
+                     : declared_search_space(factory, request.params, n_rows, n_cols, options.space);
+    if (!space && options.optimize) return space.error();  // before minutes of CV
+    rep.space = space ? std::move(space).value() : SearchSpace{};  // else the CV below reports the factory's error
     const std::vector<std::string> no_groups;
     const std::vector<std::string>& groups = group_ptr ? *group_ptr : no_groups;
 
@@ -143,10 +148,10 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
                 ibo.progress = nullptr;
                 say(options, "nested CV: tuning inside outer fold " + std::to_string(f + 1) + " of " +
                                  std::to_string(options.folds));
-                const SearchSpace inner_space = options.space.empty()
-                                                    ? bagged_trees_search_space(inner_table.rows, inner_table.cols())
-                                                    : options.space;
-                auto s = bayes_optimize(inner_space, cv_error(inner_table, *inner, options.folds, factory),
+                auto inner_space = tuning_space(factory, request.params, inner_table.rows, inner_table.cols(),
+                                                options.space, request.name);
+                if (!inner_space) return inner_space.error();
+                auto s = bayes_optimize(*inner_space, cv_error(inner_table, *inner, options.folds, factory),
                                         request.params, ibo);
                 if (!s) return Status(s.error()).with_context("nested CV outer fold " + std::to_string(f + 1));
                 auto model = train_classifier(inner_table, factory, s->best_params());
@@ -255,11 +260,11 @@ Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, cons
     if (options.optimize) {
         auto fixed = stratified_folds(table.y, options.folds, options.seed);
         if (!fixed) return fixed.error();
-        const SearchSpace space =
-            options.space.empty() ? bagged_trees_search_space(table.rows, table.cols()) : options.space;
+        auto space = tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier);
+        if (!space) return space.error();
         BayesOptOptions bo = options.bayes;
         bo.seed = options.seed;
-        auto s = bayes_optimize(space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
+        auto s = bayes_optimize(*space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
         if (!s) return s.error();
         out.params = s->best_params();
         out.search = std::move(s).value();

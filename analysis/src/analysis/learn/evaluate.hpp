@@ -27,7 +27,8 @@ struct EvaluationOptions {
     bool optimize = false;      // run the paper's Bayesian optimisation as well
     bool nested = true;         // with optimize: nested CV for the honest tuned figure
     BayesOptOptions bayes;      // evaluations (30), seed points, ...
-    SearchSpace space;          // empty = bagged_trees_search_space(rows, features)
+    SearchSpace space;          // empty = the one the classifier declares (Classifier::search_space)
+    std::string classifier;     // the classifier's name, for messages
     // Optional group per trial id (session, rig state): grouped folds instead of stratified.
     std::function<std::string(const features::FeatureRow&)> group_of;
     std::vector<ObjectShape> catalogue = paper_objects();

@@ -25,7 +25,7 @@ Status parse_assignment(const std::string& text, ParamSet& into);
 struct CommandSetup {
     std::string input;                 // dataset folder or features CSV
     EvaluationOptions options;
-    std::string classifier = "bagged_trees";
+    std::string classifier;            // plugin name; the CLI fills in default_classifier() (defaults.hpp)
     std::vector<std::filesystem::path> plugin_path;
 };
 

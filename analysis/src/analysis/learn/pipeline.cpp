@@ -32,8 +32,8 @@ Result<std::vector<ClassifierSpec>> parse_classifier_list(const std::string& tex
         start = end + 1;
         if (entry.empty())
             return Error{ErrorCode::invalid_argument, "classifier list '" + text +
-                                                          "' has an empty entry (write NAME[,NAME...], e.g. "
-                                                          "bagged_trees,nearest_centroid)"};
+                                                          "' has an empty entry (write NAME[,NAME...], an entry "
+                                                          "optionally NAME:KEY=VALUE)"};
         ClassifierSpec spec;
         ParamSet own;
         std::size_t colon = entry.find(':');

@@ -7,6 +7,7 @@
 
 #include "rollsense/features.hpp"
 #include "rollsense/log.hpp"
+#include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/inputs.hpp"
@@ -53,23 +54,27 @@ std::vector<learn::ClassifierSpec> classifier_specs_from(lua_State* L, int opts,
         for (lua_Integer i = 1; i <= n; ++i) {
             lua_rawgeti(L, -1, i);
             if (!lua_isstring(L, -1))
-                luaL_error(L, "rs.analyse: classifiers[%d] is not a string (a plugin name, e.g. \"bagged_trees\")",
+                luaL_error(L, "rs.analyse: classifiers[%d] is not a string (a classifier plugin name)",
                            static_cast<int>(i));
             list += (list.empty() ? "" : ",") + std::string(lua_tostring(L, -1));
             lua_pop(L, 1);
         }
     } else if (!lua_isnil(L, -1)) {
-        luaL_error(L, "rs.analyse: classifiers must be a list of plugin names, e.g. {\"bagged_trees\"}");
+        luaL_error(L, "rs.analyse: classifiers must be a list of plugin names, e.g. {\"NAME\"}");
     }
     lua_pop(L, 1);
-    const std::string plugin = opt_field_string(L, opts, "classifier", "bagged_trees");
-    if (list.empty()) list = plugin;
+    if (list.empty()) {
+        auto chosen = learn::classifier_or_default(opt_field_string(L, opts, "classifier", ""),
+                                                   Session::of(L).options().share_dir);
+        if (!chosen) raise_status(L, Status(chosen.error()).with_context("rs.analyse"));
+        list = *chosen;
+    }
     auto specs = learn::parse_classifier_list(list, common);
     if (!specs) raise_status(L, Status(specs.error()).with_context("rs.analyse"));
     return std::move(specs).value();
 }
 
-// rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier="bagged_trees",
+// rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier=<share/analysis/defaults.csv>,
 //             classifiers={"a","b"}, params={...}, model="model.rsm" } → summary table
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
@@ -183,14 +188,16 @@ int l_classifier_gc(lua_State* L) {
     return 0;
 }
 
-// rs.classifier{ model = PATH, classifier = "bagged_trees" } → a loaded model
+// rs.classifier{ model = PATH, classifier = <share/analysis/defaults.csv> } → a loaded model
 int l_classifier(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
     luaL_checktype(L, 1, LUA_TTABLE);
     const std::string model = opt_field_string(L, 1, "model", "");
     if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
-    auto factory = learn::plugin_classifier_factory(s.registry(), opt_field_string(L, 1, "classifier", "bagged_trees"));
+    auto chosen = learn::classifier_or_default(opt_field_string(L, 1, "classifier", ""), s.options().share_dir);
+    check(L, chosen.status());
+    auto factory = learn::plugin_classifier_factory(s.registry(), *chosen);
     check(L, factory.status());
     auto clf = (*factory)(ParamSet{});
     check(L, clf.status());

@@ -1,5 +1,6 @@
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rollsense::bagged_trees {
@@ -56,6 +57,18 @@ Status BaggedTrees::on_configure(const ParamSet& params, const PluginContext&) {
     if (!o) return o.status();
     options_ = *o;
     return {};
+}
+
+SearchSpace BaggedTrees::search_space(std::size_t rows, std::size_t cols) const {
+    using Scale = SearchDimension::Scale;
+    const double n = static_cast<double>(rows), p = static_cast<double>(cols);
+    return {
+        {"learners", Scale::integer_log, 10, 500, {}},
+        {"min_leaf_size", Scale::integer_log, 1, std::max(2.0, std::floor(n / 2)), {}},
+        {"max_num_splits", Scale::integer_log, 1, std::max(2.0, n - 1), {}},
+        {"predictors_per_split", Scale::integer_linear, 1, std::max(2.0, p), {}},
+        {"split_criterion", Scale::categorical, 0, 0, {"gdi", "twoing", "deviance"}},
+    };
 }
 
 Status BaggedTrees::train(const FeatureTable& data) { return model_.train(data, options_); }

@@ -21,6 +21,12 @@ public:
 
     Status on_configure(const ParamSet& params, const PluginContext& context) override;
 
+    // classifier.md §3 (what the paper's optimiser searched): learners 10…500
+    // (log), min_leaf_size 1…max(2, floor(n/2)) (log), max_num_splits
+    // 1…max(2, n−1) (log), predictors_per_split 1…max(2, p), split_criterion
+    // gdi / twoing / deviance.
+    SearchSpace search_space(std::size_t rows, std::size_t cols) const override;
+
     Status train(const FeatureTable& data) override;
     Result<Prediction> predict(std::span<const double> features) const override;
     std::vector<std::string> class_names() const override { return model_.class_names(); }
