@@ -81,7 +81,7 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
     CHECK_THAT(r.output, Catch::Contains("2 x repeated stratified 3-fold") && Catch::Contains("Wilson"));
     CHECK(fs::exists(dir / "report.txt"));
 
-    const auto model = dir / "model.rbt";
+    const auto model = dir / "model.rsm";
     r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");
     INFO(r.output);
     REQUIRE(r.status == 0);
