@@ -42,7 +42,7 @@ TEST_CASE("save and load give a model with identical predictions", "[bagged_tree
     o.seed = 77;
     BaggedTrees a(o);
     REQUIRE(a.train(train).ok());
-    const auto file = temp_file("model.rbt");
+    const auto file = temp_file("model.rsm");
     REQUIRE(a.save(file).ok());
     BaggedTrees b;
     REQUIRE(b.load(file).ok());
@@ -62,7 +62,7 @@ TEST_CASE("save and load give a model with identical predictions", "[bagged_tree
 TEST_CASE("a damaged model file gives a clear error naming the file", "[bagged_trees][model]") {
     BaggedTrees a;
     REQUIRE(a.train(toy::separable(100, 13)).ok());
-    const auto file = temp_file("damaged.rbt");
+    const auto file = temp_file("damaged.rsm");
     REQUIRE(a.save(file).ok());
     const std::string good = read(file);
     BaggedTrees b;

@@ -103,7 +103,7 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
         CHECK(j["paired_differences"][0]["n"].num() == 6);
     }
 
-    const auto model = dir / "model.rbt";
+    const auto model = dir / "model.rsm";
     r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");
     INFO(r.output);
     REQUIRE(r.status == 0);

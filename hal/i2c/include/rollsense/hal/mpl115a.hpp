@@ -2,7 +2,7 @@
 // compensation formula. Pure functions, shared by the sensor plugin, the
 // `rollsense probe i2c` diagnostic and the device model (which encodes).
 //
-// Facts (Freescale MPL115A2 datasheet; /work/shared/reference/hardware.md §1):
+// Facts (Freescale MPL115A2 datasheet; docs/hardware.md §1):
 //   0x00–0x03  Padc, Tadc: 10-bit ADC values left-justified in 16-bit words (>> 6)
 //   0x04–0x0B  a0, b1, b2, c12: 16-bit two's-complement words, MSB first
 //   0x12       write + one data byte: start a pressure and temperature conversion
