@@ -81,7 +81,7 @@ TEST_CASE("the default classifier comes from share/analysis/defaults.csv", "[nea
     auto r = rollsense::testing::run_command(env + ROLLSENSE_BIN_DIR "/rollsense train --help");
     CHECK_THAT(r.output, Catch::Contains("classifier plugin (nearest_centroid)"));
     r = rollsense::testing::run_command(env + ROLLSENSE_BIN_DIR "/rollsense evaluate --help");
-    CHECK_THAT(r.output, Catch::Contains("classifier plugin (nearest_centroid)"));
+    CHECK_THAT(r.output, Catch::Contains("classifier plugin (default nearest_centroid)"));
     r = rollsense::testing::run_command(env + ROLLSENSE_BIN_DIR "/rollsense train " + features.string() + " -o " +
                                         (dir / "m").string());
     INFO(r.output);

@@ -1,7 +1,7 @@
 // nearest_centroid against the classifier contract every plugin meets.
 #include <catch2/catch.hpp>
 
-#include "classifier_conformance.hpp"
+#include "rollsense/testing/classifier_conformance.hpp"
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 #include "rollsense/nearest_centroid/nearest_centroid.hpp"
 #include "temp_dir.hpp"

@@ -151,9 +151,9 @@ Reports, for the clean trials:
     every outer training fold), the honest tuned figure.
 
 options:
-  --classifier LIST   classifier plugin(s), comma-separated (default:
-                      {default_classifier}); an entry may carry its own
-                      parameters: NAME:KEY=VALUE
+  --classifier LIST   classifier plugin (default {default_classifier}), or
+                      several, comma-separated: each on the same folds; an
+                      entry may carry its own parameters: NAME:KEY=VALUE
   --set KEY=VALUE     classifier parameter for every listed classifier,
                       repeatable (e.g. --set learners=100)
   --folds K           k of the k-fold CV (5)

@@ -46,9 +46,9 @@ options:
   --optimize          also run the paper's Bayesian optimisation and nested CV
   --evaluations N     optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
-  --classifier LIST   classifier plugin(s), comma-separated (default:
-                      {default_classifier}); NAME:KEY=VALUE gives one entry
-                      its own parameters
+  --classifier LIST   classifier plugin (default {default_classifier}), or
+                      several, comma-separated; NAME:KEY=VALUE gives one
+                      entry its own parameters
   --set KEY=VALUE     classifier parameter for every listed classifier, repeatable
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'

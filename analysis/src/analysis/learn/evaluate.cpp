@@ -246,7 +246,8 @@ Result<Evaluation> evaluate_features(const std::vector<features::FeatureRow>& ro
 
 Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                                   const EvaluationOptions& options) {
-    auto ev = evaluate_features(rows, {ClassifierRequest{"classifier", factory, options.params}}, options);
+    const std::string name = options.classifier.empty() ? "classifier" : options.classifier;
+    auto ev = evaluate_features(rows, {ClassifierRequest{name, factory, options.params}}, options);
     if (!ev) return ev.error();
     return std::move(ev->classifiers.front());
 }
