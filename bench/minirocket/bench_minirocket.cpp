@@ -1,7 +1,9 @@
 // MiniRocket bench: our C++ plugin beside a numba/scikit-learn reference
 // (minirocket_reference.py) on the same prepared series and the same folds.
 //   bench_minirocket [--dataset DIR] [--length 128] [--repeats 10] [--folds 5]
-//                    [--seed 1] [--threads 0] [--no-python]
+//                    [--seed 1] [--threads 0] [--alpha-high 3] [--keep-amplitude] [--no-python]
+// (--alpha-high: log10 of the largest ridge α, for our side only;
+// --keep-amplitude: the stand-in preparation skips the z-normalisation)
 // Without --dataset: 1,170 synthetic shape trials × 3 channels × 128 samples
 // (the size of the stock experiment). With --dataset: the clean trials of a
 // recorded dataset, prepared by the bench's STAND-IN rule (prepare_series.hpp).
@@ -76,7 +78,8 @@ int main(int argc, char** argv) {
     int repeats = 10, folds = 5;
     std::uint64_t seed = 1;
     unsigned threads = 0;
-    bool python = true;
+    bool python = true, keep_amplitude = false;
+    double alpha_high = 3.0;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -94,9 +97,11 @@ int main(int argc, char** argv) {
         else if (a == "--seed") seed = std::stoull(value());
         else if (a == "--threads") threads = static_cast<unsigned>(std::stoul(value()));
         else if (a == "--no-python") python = false;
+        else if (a == "--alpha-high") alpha_high = std::stod(value());
+        else if (a == "--keep-amplitude") keep_amplitude = true;
         else {
             std::cerr << "usage: bench_minirocket [--dataset DIR] [--out DIR] [--length 128] [--repeats 10] "
-                         "[--folds 5] [--seed 1] [--threads 0] [--no-python]\n";
+                         "[--folds 5] [--seed 1] [--threads 0] [--alpha-high 3] [--keep-amplitude] [--no-python]\n";
             return 2;
         }
     }
@@ -108,7 +113,7 @@ int main(int argc, char** argv) {
         std::cout << "data: synthetic shapes, ";
     } else {
         std::size_t skipped = 0;
-        auto d = bench::prepare_dataset(dataset, length, skipped);
+        auto d = bench::prepare_dataset(dataset, length, skipped, !keep_amplitude);
         if (!d) {
             std::cerr << "bench_minirocket: " << d.error().message << "\n";
             return 1;
@@ -139,6 +144,7 @@ int main(int argc, char** argv) {
     minirocket::Options options;
     options.threads = threads;
     options.transform.seed = seed;
+    options.log10_alpha_high = alpha_high;
 
     // 1. Transform: fit biases on every trial and transform them all.
     const std::vector<float> xf(data.x.begin(), data.x.end());
@@ -205,7 +211,7 @@ int main(int argc, char** argv) {
     if (python) {
         const std::string cmd = "NUMBA_NUM_THREADS=" + std::to_string(threads) +
                                 " OPENBLAS_NUM_THREADS=" + std::to_string(threads) + " OMP_NUM_THREADS=" +
-                                std::to_string(threads) + " python3 " + ROLLSENSE_BENCH_DIR +
+                                std::to_string(threads) + " /usr/bin/python3 " + ROLLSENSE_BENCH_DIR +
                                 "/minirocket_reference.py " + out_dir + " " + std::to_string(seed);
         FILE* pipe = popen(cmd.c_str(), "r");
         if (pipe) {

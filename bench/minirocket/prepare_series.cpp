@@ -52,7 +52,8 @@ std::vector<double> resample(const std::vector<double>& x, std::size_t b, std::s
 
 }  // namespace
 
-Result<FeatureTable> prepare_dataset(const std::filesystem::path& dir, std::size_t length, std::size_t& skipped) {
+Result<FeatureTable> prepare_dataset(const std::filesystem::path& dir, std::size_t length, std::size_t& skipped,
+                                     bool z_normalise) {
     auto info = key_values(dir / "dataset-info.csv");
     if (!info) return info.error();
     std::vector<std::string> channels;
@@ -142,7 +143,7 @@ Result<FeatureTable> prepare_dataset(const std::filesystem::path& dir, std::size
             mean /= static_cast<double>(length);
             for (double v : y) var += (v - mean) * (v - mean);
             const double sd = std::sqrt(var / static_cast<double>(length));
-            for (double v : y) t.x.push_back(sd > 1e-12 ? (v - mean) / sd : 0.0);
+            for (double v : y) t.x.push_back(!z_normalise ? v : sd > 1e-12 ? (v - mean) / sd : 0.0);
         }
         const std::string& object = f[*object_col];
         auto [it, added] = class_of.emplace(object, static_cast<int>(t.class_names.size()));

@@ -112,18 +112,25 @@ Status MiniRocket::train(const FeatureTable& data) {
     // Standardise with the training statistics (constant features keep scale 1).
     m.mean.resize(p);
     m.scale.resize(p);
-    const Eigen::RowVectorXd mean = x.cast<double>().colwise().mean();
+    // Row by row in double (the matrix is row-major; column walks would stride).
+    std::vector<double> sum(p, 0.0), sq(p, 0.0);
+    for (std::size_t r = 0; r < n; ++r) {
+        const float* v = x.data() + r * p;
+        for (std::size_t j = 0; j < p; ++j) {
+            sum[j] += v[j];
+            sq[j] += static_cast<double>(v[j]) * v[j];
+        }
+    }
     for (std::size_t j = 0; j < p; ++j) {
-        const auto c = static_cast<Eigen::Index>(j);
-        const double var = (x.col(c).cast<double>().array() - mean(c)).square().mean();
-        m.mean[j] = static_cast<float>(mean(c));
+        const double mu = sum[j] / static_cast<double>(n);
+        const double var = std::max(0.0, sq[j] / static_cast<double>(n) - mu * mu);
+        m.mean[j] = static_cast<float>(mu);
         m.scale[j] = var > 1e-12 ? static_cast<float>(std::sqrt(var)) : 1.0f;
     }
-    for (Eigen::Index r = 0; r < x.rows(); ++r)
-        for (std::size_t j = 0; j < p; ++j) {
-            float& v = x(r, static_cast<Eigen::Index>(j));
-            v = (v - m.mean[j]) / m.scale[j];
-        }
+    for (std::size_t r = 0; r < n; ++r) {
+        float* v = x.data() + r * p;
+        for (std::size_t j = 0; j < p; ++j) v[j] = (v[j] - m.mean[j]) / m.scale[j];
+    }
 
     auto fit = fit_ridge_loo(x, data.y, k, log_grid(options_.log10_alpha_low, options_.log10_alpha_high, options_.alphas),
                              threads);
