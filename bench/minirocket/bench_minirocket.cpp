@@ -1,9 +1,10 @@
 // MiniRocket bench: our C++ plugin beside a numba/scikit-learn reference
 // (minirocket_reference.py) on the same prepared series and the same folds.
 //   bench_minirocket [--dataset DIR] [--length 128] [--repeats 10] [--folds 5]
-//                    [--seed 1] [--threads 0] [--alpha-high 3] [--keep-amplitude] [--no-python]
+//                    [--seed 1] [--threads 0] [--alpha-high 3] [--keep-amplitude] [--crop 0.1] [--no-python]
 // (--alpha-high: log10 of the largest ridge α, for our side only;
-// --keep-amplitude: the stand-in preparation skips the z-normalisation)
+// --keep-amplitude: the stand-in preparation skips the z-normalisation;
+// --crop F: it crops where the channel sum exceeds F × its peak)
 // Without --dataset: 1,170 synthetic shape trials × 3 channels × 128 samples
 // (the size of the stock experiment). With --dataset: the clean trials of a
 // recorded dataset, prepared by the bench's STAND-IN rule (prepare_series.hpp).
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
     std::uint64_t seed = 1;
     unsigned threads = 0;
     bool python = true, keep_amplitude = false;
-    double alpha_high = 3.0;
+    double alpha_high = 3.0, crop = 0.1;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -99,9 +100,10 @@ int main(int argc, char** argv) {
         else if (a == "--no-python") python = false;
         else if (a == "--alpha-high") alpha_high = std::stod(value());
         else if (a == "--keep-amplitude") keep_amplitude = true;
+        else if (a == "--crop") crop = std::stod(value());
         else {
             std::cerr << "usage: bench_minirocket [--dataset DIR] [--out DIR] [--length 128] [--repeats 10] "
-                         "[--folds 5] [--seed 1] [--threads 0] [--alpha-high 3] [--keep-amplitude] [--no-python]\n";
+                         "[--folds 5] [--seed 1] [--threads 0] [--alpha-high 3] [--keep-amplitude] [--crop 0.1] [--no-python]\n";
             return 2;
         }
     }
@@ -113,7 +115,7 @@ int main(int argc, char** argv) {
         std::cout << "data: synthetic shapes, ";
     } else {
         std::size_t skipped = 0;
-        auto d = bench::prepare_dataset(dataset, length, skipped, !keep_amplitude);
+        auto d = bench::prepare_dataset(dataset, length, skipped, !keep_amplitude, crop);
         if (!d) {
             std::cerr << "bench_minirocket: " << d.error().message << "\n";
             return 1;

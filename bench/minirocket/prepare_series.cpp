@@ -53,7 +53,7 @@ std::vector<double> resample(const std::vector<double>& x, std::size_t b, std::s
 }  // namespace
 
 Result<FeatureTable> prepare_dataset(const std::filesystem::path& dir, std::size_t length, std::size_t& skipped,
-                                     bool z_normalise) {
+                                     bool z_normalise, double crop) {
     auto info = key_values(dir / "dataset-info.csv");
     if (!info) return info.error();
     std::vector<std::string> channels;
@@ -132,8 +132,8 @@ Result<FeatureTable> prepare_dataset(const std::filesystem::path& dir, std::size
         const double peak = *std::max_element(sum.begin(), sum.end());
         std::size_t b = 0, e = sum.size();
         if (peak > 0) {
-            while (b < sum.size() && sum[b] <= 0.1 * peak) ++b;
-            while (e > b && sum[e - 1] <= 0.1 * peak) --e;
+            while (b < sum.size() && sum[b] <= crop * peak) ++b;
+            while (e > b && sum[e - 1] <= crop * peak) --e;
         }
         if (e - b < 2) b = 0, e = sum.size();
         for (auto& ch : x) {

@@ -16,7 +16,8 @@ namespace bench {
 // The dataset's trials (only clean ones when features.csv says which) as a
 // series table, classes in order of first appearance.
 rollsense::Result<rollsense::FeatureTable> prepare_dataset(const std::filesystem::path& dir, std::size_t length,
-                                                           std::size_t& skipped, bool z_normalise = true);
+                                                           std::size_t& skipped, bool z_normalise = true,
+                                                           double crop = 0.1);
 
 // Three separable shapes (bump, two bumps, ramp) on three channels, shifted and noisy.
 rollsense::FeatureTable synthetic_shapes(std::size_t per_class, std::size_t length, std::uint64_t seed);
