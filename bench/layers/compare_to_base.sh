@@ -34,12 +34,10 @@ trap 'rm -rf "$work"' EXIT
 # One dataset both sides read (the formats are the same before and after).
 "${bin[new]}" run "${scripts[new]}/paper_experiment.lua" --seed 11 --set analyse=false --out "$work/ds" -q 2>/dev/null
 
-seconds() {  # seconds a command takes, its output discarded
-  local start end
-  start=$(date +%s.%N)
-  "$@" >/dev/null 2>&1
-  end=$(date +%s.%N)
-  awk -v s="$start" -v e="$end" 'BEGIN { printf "%.4f\n", e - s }'
+seconds() {  # "wall cpu" seconds a command takes (cpu = user + system), its output discarded
+  local TIMEFORMAT='%R %U %S' t
+  t=$({ time "$@" >/dev/null 2>&1; } 2>&1)
+  awk '{ printf "%.4f %.4f\n", $1, $2 + $3 }' <<< "$t"
 }
 
 stages=(stock_record stock_full features evaluate)
@@ -70,11 +68,16 @@ else
   identical="NO"
 fi
 
-echo "base $base_sha vs this build, $repeats interleaved rounds, medians (s):"
-printf '  %-14s %9s %9s %8s\n' stage base new new/base
+median() {  # stage side column
+  awk -v s="$1" -v d="$2" -v c="$3" '$1==s && $2==d {print $c}' "$work/times" | sort -g |
+    awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}'
+}
+echo "base $base_sha vs this build, $repeats interleaved rounds, medians (s); CPU = user + system,"
+echo "the steadier figure on a shared machine:"
+printf '  %-14s %9s %9s %8s   %9s %9s %8s\n' stage "wall base" new new/base "cpu base" new new/base
 for stage in "${stages[@]}"; do
-  b=$(awk -v s="$stage" '$1==s && $2=="base" {print $3}' "$work/times" | sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}')
-  n=$(awk -v s="$stage" '$1==s && $2=="new" {print $3}' "$work/times" | sort -g | awk '{a[NR]=$1} END {print (NR%2) ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2}')
-  awk -v s="$stage" -v b="$b" -v n="$n" 'BEGIN { printf "  %-14s %9.3f %9.3f %8.2f\n", s, b, n, n / b }'
+  awk -v s="$stage" -v bw="$(median "$stage" base 3)" -v nw="$(median "$stage" new 3)" \
+      -v bc="$(median "$stage" base 4)" -v nc="$(median "$stage" new 4)" \
+      'BEGIN { printf "  %-14s %9.3f %9.3f %8.2f   %9.3f %9.3f %8.2f\n", s, bw, nw, nw / bw, bc, nc, nc / bc }'
 done
 echo "stock dataset, manifest and features byte-identical between the two: $identical"
