@@ -154,3 +154,17 @@ TEST_CASE("the third Ctrl-C ends the process with run-info written", "[sandbox][
     REQUIRE(kt::fs::exists(dir / "out" / "run-info.csv"));
     CHECK_THAT(kt::read_file(dir / "out" / "run-info.csv"), Catch::Contains("interrupted three times"));
 }
+
+TEST_CASE("the sandbox's xpcall still lets a procedure wait and runs its handler on ordinary errors", "[sandbox][cancel]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+local t0 = rs.now()
+local ok, v = xpcall(function() rs.wait(50); return 7 end, function(e) return 'handled' end)
+assert(ok and v == 7 and rs.now() - t0 >= 0.05)
+local ok2, e2 = xpcall(function() error('boom') end, function(e) return 'handled: ' .. e end)
+assert(not ok2 and e2:find('handled: ', 1, true))
+local x <close> = setmetatable({}, { __close = function() end })
+)");
+    INFO(r.text);
+    CHECK(r.text == "ok");
+}
