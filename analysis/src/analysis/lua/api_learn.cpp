@@ -81,6 +81,13 @@ int l_analyse(lua_State* L) {
     SliceGuard guard{s.sandbox()};
     const int opts = 1;
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
+    // The model's name is checked before anything is written.
+    const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
+    check(L, Session::check_output_name(model_name, "rs.analyse: model"));
+    for (const char* own : {"evaluation.txt", "evaluation.json", "report.html"})
+        if (model_name == own)
+            return luaL_error(L, "rs.analyse: model '%s' cannot be written: rs.analyse writes %s itself; choose another "
+                                 "name (e.g. model.rsm)", own, own);
     check(L, s.flush_dataset());
 
     learn::PipelineRequest request;
@@ -96,10 +103,6 @@ int l_analyse(lua_State* L) {
     eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
     request.classifiers = classifier_specs_from(L, opts, eo.params);
-    const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
-    if (model_name.find('/') != std::string::npos)
-        return luaL_error(L, "rs.analyse: model '%s' must be a plain file name (it goes into the output folder)",
-                          model_name.c_str());
 
     auto result = learn::run_pipeline(s.registry(), request, [&s](const std::vector<features::FeatureRow>& rows) {
         if (auto st = features::write_features_csv(s.output_dir() / "features.csv", rows); !st) return st;
@@ -177,14 +180,18 @@ int l_analyse(lua_State* L) {
     return 1;
 }
 
+// A live classifier, or an error: a method never runs on a freed object.
 learn::ClassifierPtr& check_classifier(lua_State* L, int index) {
-    return *static_cast<learn::ClassifierPtr*>(luaL_checkudata(L, index, kClassifierMeta));
+    auto& p = *static_cast<learn::ClassifierPtr*>(luaL_checkudata(L, index, kClassifierMeta));
+    if (!p) luaL_error(L, "this classifier has been released; load it again with rs.classifier{...}");
+    return p;
 }
 
+// Lua's finalizer (scripts cannot reach it: the metatable is protected).
+// Emptied rather than destroyed: an empty pointer owns nothing, so a second
+// call frees nothing twice and a method call after it sees "released".
 int l_classifier_gc(lua_State* L) {
-    auto* p = static_cast<learn::ClassifierPtr*>(luaL_checkudata(L, 1, kClassifierMeta));
-    using Ptr = learn::ClassifierPtr;
-    p->~Ptr();
+    static_cast<learn::ClassifierPtr*>(luaL_checkudata(L, 1, kClassifierMeta))->reset();
     return 0;
 }
 
@@ -280,6 +287,7 @@ void register_learn(lua_State* L) {
     static const luaL_Reg methods[] = {{"identify", l_identify}, {"predict", l_predict}, {"classes", l_classes},
                                        {nullptr, nullptr}};
     luaL_newmetatable(L, kClassifierMeta);
+    protect_metatable(L);
     lua_newtable(L);
     luaL_setfuncs(L, methods, 0);
     lua_setfield(L, -2, "__index");

@@ -244,7 +244,7 @@ int l_progress(lua_State* L) {
 int l_spawn(lua_State* L) {
     luaL_checktype(L, 1, LUA_TFUNCTION);
     const char* name = luaL_optstring(L, 2, "task");
-    Session::of(L).spawn(L, 1, name);
+    if (auto st = Session::of(L).spawn(L, 1, name); !st.ok()) raise_status(L, st);
     return 0;
 }
 
@@ -262,7 +262,11 @@ int l_write_output(lua_State* L) {
     const char* name = luaL_checkstring(L, 1);
     size_t len = 0;
     const char* text = luaL_checklstring(L, 2, &len);
-    auto st = Session::of(L).write_output_text(name, std::string(text, len));
+    Session& s = Session::of(L);
+    // Checked before the text is copied out of the Lua heap.
+    if (auto st = Session::check_output_name(name, "rs.write_output"); !st.ok()) raise_status(L, st);
+    if (auto st = s.sandbox().charge(len, std::string("rs.write_output('") + name + "')"); !st.ok()) raise_status(L, st);
+    auto st = s.write_output_text(name, std::string(text, len));
     if (!st.ok()) raise_status(L, st);
     return 0;
 }

@@ -84,6 +84,7 @@ int l_controller_telemetry(lua_State* L) {
 void register_devices(lua_State* L) {
     static const luaL_Reg methods[] = {{"call", l_call}, {"state", l_state}, {"recover", l_recover}, {nullptr, nullptr}};
     luaL_newmetatable(L, kDeviceMeta);
+    protect_metatable(L);
     lua_newtable(L);
     luaL_setfuncs(L, methods, 0);
     lua_setfield(L, -2, "__index");

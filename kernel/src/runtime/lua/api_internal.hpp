@@ -20,6 +20,14 @@ int yield_task(lua_State* L, LuaTask& task, Wait wait, lua_KFunction k);
 // returns nothing otherwise.
 int finish_wait(lua_State* L, int status, lua_KContext ctx);
 
+// On the metatable at the top of the stack: getmetatable() returns a string
+// and setmetatable() is refused, so a script cannot reach __gc or rewrite
+// methods of an object the kernel owns. Every userdata metatable sets this.
+inline void protect_metatable(lua_State* L) {
+    lua_pushliteral(L, "rollsense object (protected metatable)");
+    lua_setfield(L, -2, "__metatable");
+}
+
 double opt_field_number(lua_State* L, int table, const char* key, double fallback);
 bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback);
 std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback);

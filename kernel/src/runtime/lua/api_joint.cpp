@@ -234,6 +234,7 @@ void register_joints(lua_State* L) {
                                        {"moving", l_moving},     {"name", l_name},       {"state", l_state},
                                        {"limits", l_limits},     {nullptr, nullptr}};
     luaL_newmetatable(L, kJointMeta);
+    protect_metatable(L);
     lua_newtable(L);
     luaL_setfuncs(L, methods, 0);
     lua_setfield(L, -2, "__index");

@@ -1,5 +1,7 @@
 // Trials and recording from Lua: rs.trial{...}, rs.trial_id{...}, rs.record_start/stop,
 // rs.save_trial, rs.end_trial, rs.has_trial (for --resume), rs.recorded().
+#include <algorithm>
+
 #include "rollsense/trial_id.hpp"
 #include "runtime/lua/api_internal.hpp"
 
@@ -39,13 +41,28 @@ int l_trial(lua_State* L) {
         if (info.object.empty()) return luaL_error(L, "rs.trial: give an id, or an object (and speed, repetition)");
         info.id = trial_id(info.object, info.speed, info.repetition);
     }
+    // Extras are copied into the trial and its manifest row, outside the Lua
+    // heap: bounded, so a script cannot grow C++ memory past its cap.
+    constexpr std::size_t kMaxExtra = 4096, kMaxExtras = 64 * 1024;
+    std::size_t extras_bytes = 0;
     lua_getfield(L, 1, "extra");
     if (lua_istable(L, -1)) {
         lua_pushnil(L);
         while (lua_next(L, -2)) {
             if (lua_type(L, -2) == LUA_TSTRING) {
-                std::string key = lua_tostring(L, -2);
-                info.extra[key] = luaL_tolstring(L, -1, nullptr);
+                std::size_t klen = 0, vlen = 0;
+                const char* key = lua_tolstring(L, -2, &klen);
+                const char* value = luaL_tolstring(L, -1, &vlen);
+                extras_bytes += klen + vlen;
+                if (vlen > kMaxExtra || extras_bytes > kMaxExtras)
+                    return luaL_error(L,
+                                      "rs.trial: extra '%s' is %d bytes (%d in all); extras go into the manifest row, "
+                                      "at most %d bytes each and %d bytes in all: write large data with "
+                                      "rs.write_output",
+                                      std::string(key, std::min<std::size_t>(klen, 60)).c_str(), static_cast<int>(vlen),
+                                      static_cast<int>(extras_bytes), static_cast<int>(kMaxExtra),
+                                      static_cast<int>(kMaxExtras));
+                info.extra[std::string(key, klen)] = std::string(value, vlen);
                 lua_pop(L, 1);
             }
             lua_pop(L, 1);

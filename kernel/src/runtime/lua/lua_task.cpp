@@ -3,17 +3,49 @@
 #include <utility>
 
 #include "runtime/lua/api.hpp"
+#include "runtime/lua/error_text.hpp"
 #include "runtime/lua/sandbox.hpp"
 #include "runtime/session/session.hpp"
 
 namespace rollsense::runtime {
+namespace {
+
+// The error's text and the traceback, taken where the error was raised
+// (the kernel's pcall below unwinds the stack before the scheduler looks).
+// Called for the hook's cancel error with hooks off: no __tostring then.
+int task_message_handler(lua_State* L) {
+    const std::string text = Sandbox::of(L).cancelled() ? error_text_raw(L, 1) : error_text(L, 1);
+    luaL_traceback(L, L, text.c_str(), 1);
+    return 1;
+}
+
+int task_body_k(lua_State* L, int status, lua_KContext) {
+    // Raised again from here, after Lua has closed the body's <close>
+    // variables with hooks back on; the coroutine ends with the handler's text.
+    if (status != LUA_OK && status != LUA_YIELD) return lua_error(L);
+    return 0;
+}
+
+// Every task's body runs under this pcall. An error the hook raises leaves
+// hooks off until a pcall catches it; a coroutine that died of it would run
+// its `<close>` variables (when closed) with hooks off, and a looping
+// __close could not be stopped. Caught here, they run with hooks on.
+int task_body(lua_State* L) {
+    lua_pushcfunction(L, &task_message_handler);
+    lua_insert(L, 1);
+    return task_body_k(L, lua_pcallk(L, 0, 0, 1, 0, &task_body_k), 0);
+}
+
+}  // namespace
 
 LuaTask::LuaTask(Sandbox& sandbox, lua_State* L, int function_index, std::string name)
     : Task(std::move(name)), sandbox_(sandbox) {
-    lua_State* main = sandbox_.state();
+    // Allocated on the caller's thread: out of memory is an error in the
+    // script that spawned, not a panic of the main state outside any pcall.
     function_index = lua_absindex(L, function_index);
-    thread_ = lua_newthread(main);
-    ref_ = luaL_ref(main, LUA_REGISTRYINDEX);
+    thread_ = lua_newthread(L);
+    ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
+    lua_pushcfunction(thread_, &task_body);
     lua_pushvalue(L, function_index);
     lua_xmove(L, thread_, 1);
     sandbox_.arm(thread_);
@@ -49,17 +81,15 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     outcome_ = last;
     sandbox_.start_slice();
     int nres = 0;
-    const int status = lua_resume(thread_, main, 0, &nres);
+    const int status = lua_resume(thread_, main, std::exchange(first_resume_, false) ? 1 : 0, &nres);
+    sandbox_.end_slice();
     if (status == LUA_YIELD) {
         lua_pop(thread_, nres);
         return TaskStep::waiting(std::exchange(pending_, Wait{}));
     }
     if (status == LUA_OK) return TaskStep::done();
-    const char* msg = lua_tostring(thread_, -1);
-    std::string text = msg ? msg : "(error object is not a string)";
-    luaL_traceback(main, thread_, text.c_str(), 0);
-    std::string trace = lua_tostring(main, -1);
-    lua_pop(main, 1);
+    // The text task_message_handler made (a memory error comes as it is).
+    const std::string trace = error_text_raw(thread_, -1);
     // The code a binding raised (a limit violation, a hardware fault) stays the
     // script's error code.
     ErrorCode code = session_of(main)->take_raised_code();
@@ -73,8 +103,11 @@ std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref) {
         lua_State* main = sandbox.state();
         lua_rawgeti(main, LUA_REGISTRYINDEX, ref);
         sandbox.start_slice();
-        if (lua_pcall(main, 0, 1, 0) != LUA_OK) {
-            std::string msg = lua_tostring(main, -1);
+        const int rc = lua_pcall(main, 0, 1, 0);
+        sandbox.end_slice();
+        if (rc != LUA_OK) {
+            // Any error value: nil, a table, a userdata (hooks are on again here).
+            std::string msg = error_text(main, -1);
             lua_pop(main, 1);
             return Status(sandbox.cancelled() ? ErrorCode::cancelled : ErrorCode::script_error,
                           "wait_until condition failed: " + msg);

@@ -40,6 +40,7 @@ private:
     lua_State* thread_ = nullptr;
     int ref_ = LUA_NOREF;  // keeps the coroutine alive
     int predicate_ref_ = LUA_NOREF;
+    bool first_resume_ = true;  // passes the body to task_body (lua_task.cpp)
     Wait pending_;
     WaitOutcome outcome_ = WaitOutcome::ready;
     std::string waiting_for_;

@@ -1,15 +1,48 @@
 #include "runtime/lua/sandbox.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 
 #include "rollsense/log.hpp"
+#include "runtime/lua/pattern_guard.hpp"
 
 namespace rollsense::runtime {
 namespace {
 
 constexpr int kHookEvery = 10000;  // instructions between watchdog checks
+constexpr std::size_t kMaxModuleName = 200;
+
+// A module name is dotted identifiers: "lib.helper". Nothing else can reach
+// a path outside the module roots ('/', '..', a leading '.').
+bool plain_module_name(const std::string& name) {
+    if (name.empty() || name.size() > kMaxModuleName) return false;
+    bool start = true;
+    for (char c : name) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '.') {
+            if (start) return false;  // empty segment
+            start = true;
+        } else if (std::isalpha(u) || c == '_' || (!start && std::isdigit(u))) {
+            start = false;
+        } else {
+            return false;
+        }
+    }
+    return !start;
+}
+
+// `file` lies inside `root` once symbolic links are resolved.
+bool inside(const std::filesystem::path& root, const std::filesystem::path& file) {
+    std::error_code ec1, ec2;
+    const auto r = std::filesystem::weakly_canonical(root, ec1);
+    const auto f = std::filesystem::weakly_canonical(file, ec2);
+    if (ec1 || ec2) return false;
+    auto [ri, fi] = std::mismatch(r.begin(), r.end(), f.begin(), f.end());
+    return ri == r.end();
+}
 
 double wall_ms() {
     using namespace std::chrono;
@@ -99,6 +132,15 @@ void Sandbox::build_environment() {
     }
     lua_pop(L, 1);
     copy_library(L, env, "string", nullptr, 0, "dump");  // no bytecode out
+    lua_getfield(L, env, "string");
+    guard_string_patterns(L);
+    lua_pop(L, 1);
+    lua_getfield(L, env, "setmetatable");
+    lua_pushcclosure(L, &Sandbox::lua_setmetatable, 1);
+    lua_setfield(L, env, "setmetatable");
+    lua_getfield(L, env, "xpcall");
+    lua_pushcclosure(L, &Sandbox::lua_xpcall, 1);
+    lua_setfield(L, env, "xpcall");
     copy_library(L, env, "table", nullptr, 0);
     copy_library(L, env, "math", nullptr, 0);
     copy_library(L, env, "utf8", nullptr, 0);
@@ -193,9 +235,11 @@ int Sandbox::lua_require(lua_State* L) {
     lua_rawgeti(L, LUA_REGISTRYINDEX, self.loaded_ref_);
     if (lua_getfield(L, -1, name.c_str()) != LUA_TNIL) return 1;
     lua_pop(L, 1);
-    for (char c : name)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'))
-            return luaL_error(L, "require('%s'): module names may hold letters, digits, '_' and '.'", name.c_str());
+    if (!plain_module_name(name))
+        return luaL_error(L,
+                          "require('%s'): a module name is identifiers joined by '.', e.g. 'lib.helper' for "
+                          "lib/helper.lua beside the script or in share/lua (at most %d characters)",
+                          name.substr(0, 60).c_str(), static_cast<int>(kMaxModuleName));
     std::string rel = name;
     for (auto& c : rel)
         if (c == '.') c = '/';
@@ -205,6 +249,9 @@ int Sandbox::lua_require(lua_State* L) {
         searched += "\n\t" + file.string();
         std::error_code ec;
         if (!std::filesystem::exists(file, ec)) continue;
+        if (!inside(dir, file))
+            return luaL_error(L, "require('%s'): %s leads outside %s (a symbolic link?); modules must lie inside it",
+                              name.c_str(), file.c_str(), dir.c_str());
         if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) return lua_error(L);
         lua_rawgeti(L, LUA_REGISTRYINDEX, self.env_ref_);
         lua_setupvalue(L, -2, 1);
@@ -252,8 +299,65 @@ void Sandbox::cancel(const std::string& reason) {
 void Sandbox::clear_cancel() {
     cancelled_.store(false);
     cancel_reason_.clear();
+    arm(L_);  // a wait_until condition may have left the main state's hook on every instruction
 }
 
-void Sandbox::start_slice() { slice_start_ = wall_ms(); }
+void Sandbox::start_slice() {
+    slice_start_ = wall_ms();
+    in_lua_since_ms_.store(static_cast<std::int64_t>(slice_start_) + 1);  // never 0
+}
+
+Status Sandbox::charge(std::size_t bytes, const std::string& what) const {
+    if (memory_used_ + bytes <= limits_.memory_bytes) return {};
+    return {ErrorCode::limit_violation,
+            what + ": a copy of " + std::to_string(bytes) + " bytes would take the script past its memory cap (" +
+                std::to_string(limits_.memory_bytes >> 20) + " MB, " + std::to_string(memory_used_ >> 20) +
+                " MB in use); write less at a time, or raise --memory-limit-mb"};
+}
+
+int Sandbox::lua_setmetatable(lua_State* L) {
+    if (lua_istable(L, 2)) {
+        lua_pushliteral(L, "__gc");
+        if (lua_rawget(L, 2) != LUA_TNIL)
+            return luaL_error(L, "setmetatable: a '__gc' field (a finalizer) is not allowed in scripts: Lua runs "
+                                 "finalizers where no cancel can stop them; use rs.on_cleanup or a <close> variable");
+        lua_pop(L, 1);
+    }
+    const int n = lua_gettop(L);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, n, 1);
+    return 1;
+}
+
+namespace {
+int results_k(lua_State* L, int, lua_KContext) { return lua_gettop(L); }
+}  // namespace
+
+// The script's handler runs only while the run is not cancelled: a handler
+// called for the hook's cancel error would run with hooks off.
+int Sandbox::lua_guarded_handler(lua_State* L) {
+    if (of(L).cancelled()) {
+        lua_settop(L, 1);
+        return 1;
+    }
+    const int n = lua_gettop(L);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, n, 1);
+    return 1;
+}
+
+int Sandbox::lua_xpcall(lua_State* L) {
+    luaL_checktype(L, 2, LUA_TFUNCTION);
+    lua_pushvalue(L, 2);
+    lua_pushcclosure(L, &Sandbox::lua_guarded_handler, 1);
+    lua_replace(L, 2);
+    const int n = lua_gettop(L);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_callk(L, n, LUA_MULTRET, 0, &results_k);  // keeps xpcall yieldable (rs.wait inside it)
+    return lua_gettop(L);
+}
 
 }  // namespace rollsense::runtime

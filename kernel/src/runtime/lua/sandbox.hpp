@@ -6,12 +6,21 @@
 // - `require` that finds only the rollsense module and text modules in the
 //   script's folder and share/lua, loaded into the same sandbox;
 // - an instruction-count hook for cancellation: once cancelled, the hook
-//   re-arms itself to fire on every instruction, so `pcall` cannot swallow it.
+//   re-arms itself to fire on every instruction, so `pcall` cannot swallow it;
+//   xpcall skips the script's message handler once cancelled (a handler runs
+//   where hooks are off when the error came from the hook), and every task
+//   body runs under a pcall of the kernel's so that its `<close>` variables
+//   are closed with hooks on (see lua_task.cpp);
+// - no finalizers: setmetatable refuses a `__gc` field (Lua runs finalizers
+//   with hooks off, so no cancel could stop one);
+// - pattern matching bounded in cost (pattern_guard.hpp);
+// - copies C++ makes of script data are charged against the heap cap (charge()).
 #pragma once
 
 #include <lua.hpp>
 
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -25,6 +34,7 @@ namespace rollsense::runtime {
 struct SandboxLimits {
     std::size_t memory_bytes = 256u << 20;  // Lua heap cap
     double max_slice_ms = 5000;             // Lua may run this long without yielding
+    double cancel_grace_ms = 5000;          // after a cancel, the watchdog's patience (cancel_watchdog.hpp)
 };
 
 // The sandbox is the run's Cancellation while a script runs: its instruction
@@ -54,8 +64,16 @@ public:
     const std::string& cancel_reason() const override { return cancel_reason_; }
     // Install the hook on a coroutine (new threads inherit it, this re-arms).
     void arm(lua_State* thread);
-    // Called by the scheduler right before resuming Lua code.
+    // Called by the scheduler right before resuming Lua code, and right after
+    // Lua hands control back (the cancel watchdog watches the gap).
     void start_slice();
+    void end_slice() { in_lua_since_ms_.store(0); }
+    // Monotonic ms since Lua was entered, 0 when Lua is not running.
+    std::int64_t in_lua_since_ms() const { return in_lua_since_ms_.load(); }
+
+    // A copy of `bytes` C++ makes for the script (`what`, for the message):
+    // refused when the Lua heap plus the copy would pass the cap.
+    Status charge(std::size_t bytes, const std::string& what) const;
 
     std::size_t memory_used() const { return memory_used_; }
     const SandboxLimits& limits() const { return limits_; }
@@ -75,6 +93,9 @@ private:
     static int lua_require(lua_State* L);
     static int lua_load_text(lua_State* L);
     static int lua_print(lua_State* L);
+    static int lua_setmetatable(lua_State* L);
+    static int lua_xpcall(lua_State* L);
+    static int lua_guarded_handler(lua_State* L);
     void build_environment();
 
     SandboxLimits limits_;
@@ -87,6 +108,7 @@ private:
     std::atomic<bool> cancelled_{false};
     std::string cancel_reason_;
     double slice_start_ = 0;
+    std::atomic<std::int64_t> in_lua_since_ms_{0};
     const std::atomic<bool>* external_flag_ = nullptr;
     std::string external_reason_;
 };

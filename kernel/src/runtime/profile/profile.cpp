@@ -3,9 +3,12 @@
 #include <lua.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <memory>
 
 #include "runtime/lua/lua_values.hpp"
+#include "runtime/lua/sandbox.hpp"
 
 namespace rollsense::runtime {
 namespace fs = std::filesystem;
@@ -43,6 +46,41 @@ namespace {
 struct LuaCloser {
     void operator()(lua_State* L) const { lua_close(L); }
 };
+
+// The same two limits a script runs under: a heap cap (an allocation past it
+// fails: "not enough memory") and a wall-time budget checked from an
+// instruction hook, for the whole evaluation of the profile and its includes.
+struct ProfileBudget {
+    std::size_t cap = 0;
+    std::size_t used = 0;
+    double max_ms = 0;
+    std::string file;  // the profile named on the command line (includes run inside it)
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+};
+
+ProfileBudget* budget_of(lua_State* L) { return *static_cast<ProfileBudget**>(lua_getextraspace(L)); }
+
+void* budget_alloc(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
+    auto* b = static_cast<ProfileBudget*>(ud);
+    const std::size_t old = ptr ? osize : 0;
+    if (nsize == 0) {
+        std::free(ptr);
+        b->used -= old;
+        return nullptr;
+    }
+    if (nsize > old && b->used + (nsize - old) > b->cap) return nullptr;
+    void* p = std::realloc(ptr, nsize);
+    if (p) b->used = b->used - old + nsize;
+    return p;
+}
+
+void budget_hook(lua_State* L, lua_Debug*) {
+    auto* b = budget_of(L);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b->start).count();
+    if (ms > b->max_ms)
+        luaL_error(L, "%s: the profile ran %d ms without finishing (an endless loop?); the limit is --slice-limit-ms",
+                   b->file.c_str(), static_cast<int>(ms));
+}
 
 struct LoadState {
     fs::path share_dir;
@@ -365,6 +403,11 @@ Status apply_dotted_settings(lua_State* L, const Settings& settings, const std::
 }  // namespace
 
 Result<Profile> load_profile(const std::string& name_or_path, const fs::path& share_dir, const Settings& settings) {
+    return load_profile(name_or_path, share_dir, settings, SandboxLimits{});
+}
+
+Result<Profile> load_profile(const std::string& name_or_path, const fs::path& share_dir, const Settings& settings,
+                             const SandboxLimits& limits) {
     Profile p;
     p.path = resolve_profile_path(name_or_path, share_dir);
     p.name = p.path.stem().string();
@@ -376,8 +419,15 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
         return Error{ErrorCode::not_found, "profile '" + name_or_path + "' not found at " + p.path.string() +
                                                (known.empty() ? "" : " (profiles here: " + known + ")")};
     }
-    std::unique_ptr<lua_State, LuaCloser> holder(luaL_newstate());
+    ProfileBudget budget;
+    budget.cap = limits.memory_bytes;
+    budget.max_ms = limits.max_slice_ms;
+    budget.file = p.path.string();
+    std::unique_ptr<lua_State, LuaCloser> holder(lua_newstate(&budget_alloc, &budget));
+    if (!holder) return Error{ErrorCode::io_error, "cannot create a Lua state for profile " + p.path.string()};
     lua_State* L = holder.get();
+    *static_cast<ProfileBudget**>(lua_getextraspace(L)) = &budget;
+    lua_sethook(L, &budget_hook, LUA_MASKCOUNT, 10000);
     LoadState st{share_dir, &settings, 0};
     lua_pushlightuserdata(L, &st);
     lua_pushcclosure(
@@ -388,8 +438,14 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
         },
         1);
     lua_pushstring(L, p.path.c_str());
-    if (lua_pcall(L, 1, 1, 0) != LUA_OK)
-        return Error{ErrorCode::parse_error, std::string("profile ") + lua_tostring(L, -1)};
+    if (const int rc = lua_pcall(L, 1, 1, 0); rc != LUA_OK) {
+        const char* msg = lua_tostring(L, -1);
+        std::string text = msg ? msg : "(error object is not a string)";
+        if (rc == LUA_ERRMEM)
+            text = p.path.string() + ": " + text + " (the profile went past the memory cap of " +
+                   std::to_string(limits.memory_bytes >> 20) + " MB; --memory-limit-mb)";
+        return Error{ErrorCode::parse_error, "profile " + text};
+    }
     if (auto s = apply_dotted_settings(L, settings, p.path.string()); !s.ok()) return s.error();
     if (auto s = read_profile_table(L, settings, p); !s.ok()) return s.error();
     return p;

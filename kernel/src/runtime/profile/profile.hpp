@@ -94,7 +94,13 @@ private:
 // Where profiles named without a path are looked up: <share>/profiles/<name>.lua.
 std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);
 
+struct SandboxLimits;
+// A profile is Lua: it runs under the scripts' memory cap and no-wait limit
+// (`limits`; defaults when not given), so a looping or allocating profile
+// ends with an error naming it.
 Result<Profile> load_profile(const std::string& name_or_path, const std::filesystem::path& share_dir,
                              const Settings& settings);
+Result<Profile> load_profile(const std::string& name_or_path, const std::filesystem::path& share_dir,
+                             const Settings& settings, const SandboxLimits& limits);
 
 }  // namespace rollsense::runtime

@@ -50,7 +50,12 @@ private:
 
 // SIGINT/SIGTERM for the lifetime of this object: the first asks the run to
 // stop through `flag` (the script is cancelled, its cleanup runs, the hand is
-// made safe); the third exits at once. The previous handlers come back after.
+// made safe); the third exits at once, unless a watchdog has taken it over
+// (set_hard_interrupt_handled: it makes the hand safe and writes run-info
+// before the exit). The previous handlers come back after.
+int interrupts_received();
+void set_hard_interrupt_handled(bool handled);
+
 class InterruptGuard {
 public:
     explicit InterruptGuard(std::atomic<bool>& flag);

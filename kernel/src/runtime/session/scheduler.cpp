@@ -35,6 +35,10 @@ void Scheduler::spawn(std::unique_ptr<Task> task, TaskRole role) {
     slots_.push_back(std::move(slot));
 }
 
+std::size_t Scheduler::live_tasks() const {
+    return static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [](const auto& s) { return s->task != nullptr; }));
+}
+
 void Scheduler::fail(Status status) {
     if (status.ok()) return;
     if (failure_.ok()) failure_ = std::move(status);
@@ -146,6 +150,9 @@ Status Scheduler::run(TaskRole phase, double deadline, const std::string& over_d
         if (safety_.interrupt_flag().load() && !cancellation_.cancelled())
             cancel(cleanup ? "interrupted again during cleanup" : "interrupted (Ctrl-C)");
         if (cancellation_.cancelled()) cancel_waits();
+        // Ended tasks leave their slots: a script that spawns short tasks for
+        // hours does not grow this list.
+        slots_.erase(std::remove_if(slots_.begin(), slots_.end(), [](const auto& s) { return !s->task; }), slots_.end());
         // Resume every task that is ready; spawned tasks join at the end.
         for (std::size_t i = 0; i < slots_.size(); ++i) {
             Slot& s = *slots_[i];

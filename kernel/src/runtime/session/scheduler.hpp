@@ -42,6 +42,9 @@ public:
     // cancellation). Tasks still alive at the end are destroyed.
     Status run(TaskRole phase, double deadline, const std::string& over_deadline);
 
+    // Tasks not yet ended (of every role).
+    std::size_t live_tasks() const;
+
     // The task being resumed (null between resumes).
     Task* current() const { return current_; }
 

@@ -1,11 +1,16 @@
 #include "runtime/session/session.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <limits>
 
 #include "rollsense/log.hpp"
 #include "runtime/lua/api.hpp"
+#include "runtime/lua/cancel_watchdog.hpp"
 
 namespace rollsense::runtime {
 namespace fs = std::filesystem;
@@ -36,7 +41,7 @@ Session& Session::of(lua_State* L) { return *session_of(L); }
 
 Status Session::prepare() {
     if (prepared_) return {};
-    auto profile = load_profile(options_.profile, options_.share_dir, options_.settings);
+    auto profile = load_profile(options_.profile, options_.share_dir, options_.settings, options_.sandbox);
     if (!profile) return profile.status();
     profile_ = std::move(*profile);
 
@@ -91,6 +96,8 @@ RunSummary Session::run() {
     Status s = prepare();
     if (s.ok()) {
         progress_ = std::make_unique<Progress>(options_.progress);
+        CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
+                                [this, wall_start](const std::string& why) { last_resort(why, wall_start); });
         s = run_main_chunk();
         run_cleanup();
         if (progress_) progress_->finish();
@@ -111,6 +118,21 @@ RunSummary Session::run() {
     summary.cancelled = s.code() == ErrorCode::cancelled;
     if (loop_timing_) summary.control_timing = loop_timing_->summary();
     return summary;
+}
+
+// On the watchdog's thread while the Lua thread is stuck inside the script
+// (in Lua or in long C++ work, past the grace period): it is not in a control
+// tick or a recorder call then, which run between resumes; the robot calls a
+// binding makes are short and bounded by the devices' own timeouts.
+void Session::last_resort(const std::string& why, double wall_start) {
+    log_error("kernel", why);
+    if (robot_) robot_->safe_state(clock_ ? clock_->now() : 0.0);
+    if (recorder_ && recorder_->has_dataset()) {
+        (void)recorder_->flush();
+        write_run_info(Status(ErrorCode::cancelled, why), wall_start);
+    }
+    std::fflush(stderr);
+    std::_Exit(130);
 }
 
 void Session::write_run_info(const Status& s, double wall_start) {
@@ -140,8 +162,13 @@ Status Session::run_main_chunk() {
                                " s of run time)");
 }
 
-void Session::spawn(lua_State* L, int function_index, std::string name) {
+Status Session::spawn(lua_State* L, int function_index, std::string name) {
+    if (const auto live = scheduler_->live_tasks(); live >= kMaxTasks)
+        return {ErrorCode::limit_violation,
+                "rs.spawn: at most " + std::to_string(kMaxTasks) + " tasks at once (" + std::to_string(live) +
+                    " have not ended); let tasks end before spawning more, or loop inside one task"};
     scheduler_->spawn(std::make_unique<LuaTask>(*sandbox_, L, function_index, std::move(name)), TaskRole::background);
+    return {};
 }
 
 // However the script ended: stop the hand first if it failed, then let the
@@ -189,11 +216,27 @@ void Session::report_progress(std::size_t done, std::size_t total, const std::st
 
 Status Session::write_output_text(const std::string& name, const std::string& text) {
     if (options_.out_dir.empty()) return {ErrorCode::state_error, "no output folder: run with --out DIR"};
-    if (name.empty() || name.find('/') != std::string::npos || name[0] == '.')
-        return {ErrorCode::invalid_argument, "output name '" + name + "' must be a plain file name (no '/', no leading '.')"};
-    if (name == "manifest.csv" || name == "dataset-info.csv" || name == "run-info.csv")
-        return {ErrorCode::invalid_argument, "'" + name + "' belongs to the dataset and cannot be written by a script"};
+    if (auto s = check_output_name(name, "rs.write_output"); !s.ok()) return s;
     return write_file_atomic(options_.out_dir / name, text);
+}
+
+Status Session::check_output_name(const std::string& name, const std::string& what) {
+    constexpr std::size_t kMaxName = 128;
+    const std::string shown = name.substr(0, 60) + (name.size() > 60 ? "..." : "");
+    const bool plain = !name.empty() && name.size() <= kMaxName && name[0] != '.' &&
+                       std::all_of(name.begin(), name.end(), [](char c) {
+                           return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+                       });
+    if (!plain)
+        return {ErrorCode::invalid_argument,
+                what + ": output name '" + shown + "' must be a plain file name of at most " +
+                    std::to_string(kMaxName) + " letters, digits, '.', '_' or '-' (no '/', no leading '.'); " +
+                    "it goes into the output folder"};
+    for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials"})
+        if (name == own)
+            return {ErrorCode::invalid_argument,
+                    what + ": '" + name + "' belongs to the dataset and cannot be written by a script; choose another name"};
+    return {};
 }
 
 }  // namespace rollsense::runtime

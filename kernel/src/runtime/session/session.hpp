@@ -101,11 +101,18 @@ public:
     bool has_trial(const std::string& id) { return recorder_->has_trial(id); }
     std::mt19937_64& trial_random() { return recorder_->trial_random(); }
 
-    // A concurrent task running the Lua function at `function_index` of L.
-    void spawn(lua_State* L, int function_index, std::string name);
+    // A concurrent task running the Lua function at `function_index` of L;
+    // refused past kMaxTasks tasks alive at once.
+    static constexpr std::size_t kMaxTasks = 1000;
+    Status spawn(lua_State* L, int function_index, std::string name);
     void add_cleanup(int function_ref) { cleanup_refs_.push_back(function_ref); }
     void report_progress(std::size_t done, std::size_t total, const std::string& label);
     Status write_output_text(const std::string& name, const std::string& text);
+    // A file name a script may write into the output folder: a plain name
+    // (letters, digits, '.', '_', '-'; no leading '.'; at most 128 bytes),
+    // not one of the dataset's own files (manifest.csv, dataset-info.csv,
+    // run-info.csv, features.csv, trials). `what` names the caller.
+    static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 
     // The error code of the last Status a binding raised as a Lua error, so a
@@ -126,6 +133,8 @@ private:
     Status open_dataset();
     void run_cleanup();
     void write_run_info(const Status& status, double wall_start);
+    // The cancel watchdog's way out (its own thread): safe state, run-info, exit 130.
+    [[noreturn]] void last_resort(const std::string& why, double wall_start);
 
     // Declared in the order they depend on each other: the scheduler (whose
     // Lua tasks hold references into the sandbox) goes first, the robot last.

@@ -1,0 +1,111 @@
+// Items 4, 5 and 11 of issue 22: a bounded task count, a clear error for any
+// error value, C++ copies made for a script charged to its memory cap, and
+// profiles run under the same hook and cap as scripts.
+#include <catch2/catch.hpp>
+
+#include "limited_child.hpp"
+#include "runtime/profile/profile.hpp"
+
+using namespace rollsense;
+
+TEST_CASE("two million rs.spawn calls end in a clear error naming the limit", "[sandbox][spawn]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+for i = 1, 2e6 do rs.spawn(function() rs.wait(1e6) end) end
+)");
+    INFO(r.text);
+    REQUIRE(r.exited);  // no Lua panic, no abort
+    CHECK_THAT(r.text, Catch::Contains("rs.spawn") && Catch::Contains("tasks at once"));
+    CHECK(kt::fs::exists(dir / "out" / "run-info.csv"));
+}
+
+TEST_CASE("tasks that have ended do not count against the spawn limit", "[sandbox][spawn]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+local done = 0
+for i = 1, 3000 do
+  rs.spawn(function() done = done + 1 end)
+  rs.wait(1)
+end
+assert(done == 3000, done)
+)");
+    INFO(r.text);
+    CHECK(r.text == "ok");
+}
+
+TEST_CASE("any error value thrown in a wait_until condition is reported clearly", "[sandbox][errors]") {
+    const char* values[] = {"nil", "{}", "setmetatable({}, {__tostring = function() return 'custom text' end})",
+                            "setmetatable({}, {__tostring = function() error('bad tostring') end})",
+                            "rs.joint('finger')", "42"};
+    for (const char* v : values) {
+        kt::TempDir dir;
+        auto r = sandbox_test::run_script_limited(dir, std::string("local rs = require 'rollsense'\n") +
+                                                           "rs.wait_until(function() error(" + v + ") end, 100)\n");
+        INFO(v << " -> " << r.text);
+        REQUIRE(r.exited);
+        CHECK_THAT(r.text, Catch::StartsWith("script error") && Catch::Contains("wait_until condition failed"));
+        CHECK(kt::fs::exists(dir / "out" / "run-info.csv"));
+    }
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(
+        dir, "local rs = require 'rollsense'\n"
+             "rs.wait_until(function() error(setmetatable({}, {__tostring = function() return 'custom text' end})) "
+             "end, 100)\n");
+    CHECK_THAT(r.text, Catch::Contains("custom text"));
+}
+
+TEST_CASE("a non-string error ending a task is described", "[sandbox][errors]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, "error(setmetatable({}, {__tostring = function() return 'mine' end}))\n");
+    INFO(r.text);
+    CHECK_THAT(r.text, Catch::Contains("mine"));
+}
+
+TEST_CASE("large trial extras are refused with a clear error", "[sandbox][memory]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+local blob = string.rep('x', 1 << 20)
+for i = 1, 20000 do
+  rs.trial{ object = 'a', speed = 1, repetition = i, extra = { blob = blob } }
+  rs.end_trial()
+end
+)");
+    INFO(r.text);
+    REQUIRE(r.exited);
+    CHECK_THAT(r.text, Catch::Contains("extra") && Catch::Contains("blob") && Catch::Contains("bytes"));
+}
+
+TEST_CASE("a text written by rs.write_output counts against the memory cap", "[sandbox][memory]") {
+    kt::TempDir dir;
+    // 32 MB built by doubling (at most 48 MB live at once), then copied for
+    // the file: 64 MB would be past the 56 MB cap.
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+local text = string.rep('x', 1 << 20)
+for i = 1, 5 do text = text .. text end
+rs.write_output('big.txt', text)
+)", 120, [](runtime::SessionOptions& o) { o.sandbox.memory_bytes = 56u << 20; });
+    INFO(r.text);
+    REQUIRE(r.exited);
+    CHECK_THAT(r.text, Catch::Contains("memory cap") && Catch::Contains("big.txt"));
+    CHECK_FALSE(kt::fs::exists(dir / "out" / "big.txt"));
+}
+
+TEST_CASE("a profile that loops or allocates without bound is stopped", "[sandbox][profile]") {
+    const char* bodies[] = {"while true do end\nreturn {}\n",
+                            "local t = {} for i = 1, 1e10 do t[i] = { i, i, i } end\nreturn {}\n"};
+    for (const char* body : bodies) {
+        kt::TempDir dir;
+        kt::write_file(dir / "p.lua", body);
+        auto r = sandbox_test::run_limited(sandbox_test::kTwoGiB, 120, [&] {
+            runtime::SandboxLimits limits;
+            limits.memory_bytes = 32u << 20;
+            limits.max_slice_ms = 300;
+            auto p = runtime::load_profile((dir / "p.lua").string(), ROLLSENSE_SHARE_DIR, {}, limits);
+            return p ? std::string("loaded") : p.status().message();
+        });
+        INFO(body << " -> " << r.text);
+        REQUIRE(r.exited);
+        CHECK_THAT(r.text, Catch::Contains("p.lua"));
+        CHECK_THAT(r.text, Catch::Contains("not enough memory") || Catch::Contains("without finishing"));
+    }
+}

@@ -1,0 +1,63 @@
+// Items 9 and 10 of issue 22: output names that would overwrite the dataset or
+// leave the output folder are refused before anything is written; modules
+// are plain dotted names found only under the allowed roots.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include "limited_child.hpp"
+
+using namespace rollsense;
+
+TEST_CASE("rs.write_output refuses the dataset's own files and unsafe names", "[sandbox][names]") {
+    const std::string names[] = {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials",
+                                 "..",           "a/b",              "../x",         ".hidden",      std::string(300, 'a'),
+                                 "x\\\\y",         ""};
+    for (const auto& name : names) {
+        kt::TempDir dir;
+        auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\nrs.write_output('" + name +
+                                                           "', 'x')\n");
+        INFO(name << " -> " << r.text);
+        CHECK_THAT(r.text, Catch::StartsWith("invalid argument"));
+    }
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\nrs.write_output('notes.txt', 'x')\n");
+    CHECK(r.text == "ok");
+}
+
+TEST_CASE("rs.analyse refuses a model name that is one of the dataset's files, before any work", "[sandbox][names]") {
+    for (const char* name : {"manifest.csv", "features.csv", "evaluation.json", "../model.rsm", "trials/x.rsm"}) {
+        kt::TempDir dir;
+        auto r = sandbox_test::run_script_limited(
+            dir, std::string("local rs = require 'rollsense'\nrs.analyse{ model = '") + name + "' }\n");
+        INFO(name << " -> " << r.text);
+        CHECK_THAT(r.text, Catch::Contains("model") && Catch::Contains(name));
+        CHECK_THAT(r.text, Catch::Contains("cannot") || Catch::Contains("must be"));
+        CHECK_FALSE(kt::fs::exists(dir / "out" / "features.csv"));
+    }
+}
+
+TEST_CASE("require finds only plain dotted module names under the allowed roots", "[sandbox][require]") {
+    // A module outside every root, at a path made only of identifier characters.
+    const auto outside = kt::fs::temp_directory_path() / ("rs_evil_" + std::to_string(::getpid()));
+    kt::fs::create_directories(outside);
+    kt::write_file(outside / "evil.lua", "return 'escaped'\n");
+    std::string dotted;
+    for (const auto& part : outside) {
+        if (part == "/") continue;
+        dotted += "." + part.string();
+    }
+    const std::string names[] = {dotted + ".evil", "..evil", "a..b", "a.", "1abc", "a-b", std::string(300, 'a')};
+    for (const auto& name : names) {
+        kt::TempDir dir;
+        auto r = sandbox_test::run_script_limited(dir, "return require('" + name + "')\n");
+        INFO(name << " -> " << r.text);
+        CHECK_THAT(r.text, Catch::Contains("module name"));
+    }
+    kt::fs::remove_all(outside);
+
+    kt::TempDir dir;
+    kt::write_file(dir / "lib" / "helper.lua", "return { x = 7 }\n");
+    auto r = sandbox_test::run_script_limited(dir, "assert(require('lib.helper').x == 7)\n");
+    CHECK(r.text == "ok");
+}
