@@ -33,6 +33,9 @@ std::map<std::string, ParamValue> etroll_raw(const std::string& device) {
         {"min", std::vector<double>{-90, -90, 30, -500}},
         {"max", std::vector<double>{90, 90, 100, 500}},
         {"timeout_ms", std::int64_t{100}},  // generous: the test machine is shared and loaded
+        // These tests advance the servos by seconds between packets; the Bus
+        // Watchdog (which would rightly stop them) has its own tests.
+        {"bus_watchdog_ms", std::int64_t{0}},
     };
 }
 
@@ -406,4 +409,31 @@ TEST_CASE("velocity mode clamps the goal to the servo's Velocity Limit") {
     REQUIRE(a.read(0, s).ok());
     CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::goal_velocity, 4); }) == 200);
     CHECK(s[0].mode == ControlMode::velocity);
+}
+
+TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one first; the watchdog verb sets it") {
+    auto emu = start_emulator(false);
+    // The previous run was killed: servo 2's watchdog tripped.
+    on_bus(*emu, [](BusEmulator& b) {
+        auto* s = b.servo(2);
+        Bytes one{1}, five{5};
+        REQUIRE(s->write(addr::torque_enable, one) == 0);
+        REQUIRE(s->write(addr::bus_watchdog, five) == 0);
+        s->step(0.2);
+        REQUIRE(s->watchdog_tripped());
+        return 0;
+    });
+    DynamixelActuator a;
+    auto raw = etroll_raw(emu->device());
+    raw["bus_watchdog_ms"] = std::int64_t{410};  // 21 units: rounded up, never shorter
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    for (std::uint8_t id : {1, 2, 3, 4})
+        CHECK(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->item(addr::bus_watchdog, 1); }) == 21);
+    auto off = a.invoke("watchdog", {{"ms", std::int64_t{0}}});
+    REQUIRE(off.ok());
+    for (std::uint8_t id : {1, 2, 3, 4})
+        CHECK(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->item(addr::bus_watchdog, 1); }) == 0);
+    CHECK_FALSE(a.invoke("watchdog", {{"ms", std::int64_t{5000}}}).ok());
+    REQUIRE(a.on_deactivate().ok());
 }

@@ -54,6 +54,9 @@ private:
     // Goal = present position (or zero current), then torque on.
     Status hold_here(std::size_t i);
     Status set_torque(std::size_t i, bool on);
+    // Bus Watchdog (98): clear a tripped one (it is logged: the last run ended
+    // without telling the servo), then set it to `ms` (0 = off).
+    Status set_watchdog(std::size_t i, int ms);
     Status reboot_joint(std::size_t i);
     Result<std::size_t> joint_index(const ValueMap& args) const;
 
