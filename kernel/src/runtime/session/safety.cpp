@@ -77,7 +77,7 @@ extern "C" void on_interrupt(int) {
 }  // namespace
 
 struct InterruptGuard::Saved {
-    struct sigaction old_int {}, old_term {};
+    struct sigaction old_int {}, old_term {}, old_hup {};
 };
 
 InterruptGuard::InterruptGuard(std::atomic<bool>& flag) : saved_(std::make_unique<Saved>()) {
@@ -88,11 +88,14 @@ InterruptGuard::InterruptGuard(std::atomic<bool>& flag) : saved_(std::make_uniqu
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &saved_->old_int);
     sigaction(SIGTERM, &sa, &saved_->old_term);
+    // A closed terminal (ssh dropped) ends the run the same way, hand made safe.
+    sigaction(SIGHUP, &sa, &saved_->old_hup);
 }
 
 InterruptGuard::~InterruptGuard() {
     sigaction(SIGINT, &saved_->old_int, nullptr);
     sigaction(SIGTERM, &saved_->old_term, nullptr);
+    sigaction(SIGHUP, &saved_->old_hup, nullptr);
     g_flag.store(nullptr);
 }
 

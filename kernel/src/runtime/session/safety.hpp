@@ -48,7 +48,7 @@ private:
     std::atomic<bool> interrupt_{false};
 };
 
-// SIGINT/SIGTERM for the lifetime of this object: the first asks the run to
+// SIGINT/SIGTERM/SIGHUP for the lifetime of this object: the first asks the run to
 // stop through `flag` (the script is cancelled, its cleanup runs, the hand is
 // made safe); the third exits at once. The previous handlers come back after.
 class InterruptGuard {
