@@ -1,6 +1,11 @@
 // The `dynamixel` actuator plugin against the emulator over a real pty.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
 #include <thread>
 
 #include "rollsense/testing/conformance.hpp"
@@ -436,4 +441,26 @@ TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one firs
         CHECK(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->item(addr::bus_watchdog, 1); }) == 0);
     CHECK_FALSE(a.invoke("watchdog", {{"ms", std::int64_t{5000}}}).ok());
     REQUIRE(a.on_deactivate().ok());
+}
+
+TEST_CASE("a crash (SIGABRT) with the hand active sends torque-off to every servo from the signal handler") {
+    auto emu = start_emulator(false);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {  // the crashing "rollsense": activate (torque on everywhere), then abort
+        std::signal(SIGABRT, SIG_DFL);  // not the test framework's report: a plain crash
+        DynamixelActuator a;
+        if (!a.on_configure(validated(etroll_raw(emu->device())), {}).ok() || !a.on_activate().ok()) ::_exit(3);
+        std::abort();
+    }
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    REQUIRE(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == SIGABRT);  // the signal still takes its course
+    // The serving thread takes what the child wrote before it died.
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    for (std::uint8_t id : {1, 2, 3, 4}) {
+        INFO("servo " << int(id));
+        CHECK_FALSE(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->torque_enabled(); }));
+    }
 }

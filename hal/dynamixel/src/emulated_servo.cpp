@@ -206,6 +206,7 @@ bool EmulatedServo::blocked_toward(double direction) const {
 
 void EmulatedServo::trip_watchdog() {
     table_[addr::bus_watchdog] = 0xFF;  // -1
+    ++watchdog_trips_;
     // "Stop", per mode (our assumption beyond the e-manual's velocity example).
     switch (mode()) {
         case OperatingMode::velocity: set(addr::goal_velocity, 4, 0); break;

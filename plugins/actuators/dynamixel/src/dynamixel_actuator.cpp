@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "rollsense/hal/dynamixel/last_resort.hpp"
 #include "rollsense/log.hpp"
 
 namespace rollsense::dynamixel {
@@ -28,6 +29,29 @@ bool is_position_mode(ControlMode m) {
 }
 
 }  // namespace
+
+DynamixelActuator::~DynamixelActuator() { disarm_last_resort(); }
+
+void DynamixelActuator::arm_last_resort() {
+    disarm_last_resort();
+    Bytes params;
+    put_le(params, addr::torque_enable, 2);
+    put_le(params, 1, 2);
+    for (auto id : ids_) {
+        params.push_back(id);
+        params.push_back(0);
+    }
+    const Bytes packet = build_instruction(kBroadcastId, Instruction::sync_write, params);
+    last_resort_slot_ = register_last_resort(bus_->port().fd(), packet);
+    if (last_resort_slot_ < 0)
+        log_warning(kLog, "no crash-time torque-off for this bus (too many buses or servos); the Bus Watchdog "
+                          "still stops the servos");
+}
+
+void DynamixelActuator::disarm_last_resort() {
+    unregister_last_resort(last_resort_slot_);
+    last_resort_slot_ = -1;
+}
 
 std::string DynamixelActuator::who(std::size_t i) const {
     return "joint '" + config_.joints[i].name + "' (servo " + std::to_string(config_.joints[i].id) + ")";
@@ -63,6 +87,7 @@ Status DynamixelActuator::on_configure(const ParamSet& params, const PluginConte
     }
 
     std::string device = config_.device;
+    disarm_last_resort();
     bus_.reset();
     emulator_.reset();
     if (config_.device == "emulator") {
@@ -207,6 +232,7 @@ Status DynamixelActuator::on_activate() {
         if (auto st = hold_here(i); !st.ok()) return st;
         if (auto st = set_watchdog(i, config_.bus_watchdog_ms); !st.ok()) return st;
     }
+    arm_last_resort();
     return {};
 }
 
@@ -222,12 +248,14 @@ Status DynamixelActuator::on_deactivate() {
 }
 
 Status DynamixelActuator::on_cleanup() {
+    disarm_last_resort();
     bus_.reset();
     emulator_.reset();
     return {};
 }
 
 Status DynamixelActuator::on_recover() {
+    disarm_last_resort();
     bus_.reset();
     rt_.assign(config_.joints.size(), Runtime{});
     return {};

@@ -57,6 +57,8 @@ public:
     // the Bus Watchdog starts counting again.
     void heard_instruction() { since_instruction_ = 0.0; }
     bool watchdog_tripped() const { return static_cast<std::int8_t>(table_[addr::bus_watchdog]) == -1; }
+    // How often it tripped since power-up (for tests: a cleared trip leaves no other trace).
+    int watchdog_trips() const { return watchdog_trips_; }
 
     // Advance the motion model by `seconds`.
     void step(double seconds);
@@ -99,6 +101,7 @@ private:
     double current_ma_ = 0.0;
     double clock_ = 0.0;
     double since_instruction_ = 0.0;  // s, for the Bus Watchdog
+    int watchdog_trips_ = 0;
     void trip_watchdog();
     bool profile_running_ = false;
     std::optional<double> contact_ticks_;
