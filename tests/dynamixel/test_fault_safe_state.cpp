@@ -126,15 +126,21 @@ std::map<int, ReadBack> clamp_roll_and_fail_servo_1(bool pusher_torque_off, Faul
         failure = robot.control_tick(t, 0.01);
         REQUIRE_FALSE(failure.ok());
         robot.safe_state(t);  // as Scheduler::run does, in the same period
+        robot.shutdown(t);    // and Session::run at the end (the safe state once more)
         // A SYNC_WRITE has no reply: let the serving thread take the last bytes
         // before the servos move on, as a wire would deliver them.
-        for (int quiet = 0; quiet < 4;) {
-            const auto before = (*emu)->bytes_handled();
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-            quiet = (*emu)->bytes_handled() == before ? quiet + 1 : 0;
-        }
-        step(0.5);
-        robot.shutdown(t + 0.5);
+        auto* handle = dynamic_cast<ActuatorHandle*>(robot.find_device("hand"));
+        REQUIRE(handle);
+        auto stats = handle->plugin().invoke("statistics", {});
+        REQUIRE(stats.ok());
+        const auto sent = static_cast<std::uint64_t>(std::get<std::int64_t>(stats->at("bytes_sent")));
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while ((*emu)->bytes_handled() < sent && std::chrono::steady_clock::now() < give_up)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        REQUIRE((*emu)->bytes_handled() >= sent);
+        // Less than the Bus Watchdog's 500 ms: this test is about the kernel's
+        // safe state, not the servos' own (test_bus_watchdog.cpp).
+        step(0.3);
     }  // the robot and its port are gone
 
     auto port = hal::SerialPort::open((*emu)->device(), 57600);

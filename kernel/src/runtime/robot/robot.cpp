@@ -266,11 +266,17 @@ void Robot::safe_state(double time) noexcept {
         const auto state = a.handle->state();
         if (state != LifecycleState::active && state != LifecycleState::error) continue;
         try {
-            // Fresh positions where the bus still answers; the last known otherwise.
-            const auto read =
-                a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); }, true);
-            if (!read.ok()) log_warning("kernel", "safe state: " + read.message() + " (last known positions used)");
-            for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
+            // Fresh positions where the bus still answers; the last known where
+            // it just failed (reading it again would spend its timeouts first,
+            // and the write must go out within this control period).
+            if (state == LifecycleState::active) {
+                const auto read =
+                    a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); }, true);
+                if (read.ok())
+                    for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
+                else
+                    log_warning("kernel", "safe state: " + read.message() + " (last known positions used)");
+            }
             safe_commands(*a.handle, a.commands);
             for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = a.commands[i];
             auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, a.commands); }, true);
