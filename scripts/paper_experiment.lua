@@ -42,6 +42,7 @@ end
 rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))
 
 if rs.setting("analyse", true) then
+  etroll.rest()  -- parked, Bus Watchdog off: no control period runs while the analysis works
   local result = rs.analyse{ folds = 5, optimize = rs.setting("optimize", false) }
   rs.log(string.format("%d trials, %d clean; 5-fold CV accuracy %.1f %% (95 %% interval %.1f-%.1f %%)",
     result.trials, result.clean, 100 * result.accuracy, 100 * result.interval_low, 100 * result.interval_high))

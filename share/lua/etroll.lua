@@ -160,4 +160,17 @@ function M.park()
   sensing:move(M.config.sensing_start, { velocity = M.config.move_velocity, timeout_ms = 10000 })
 end
 
+-- Before long work on the script thread (rs.analyse: seconds, minutes with
+-- optimisation), when no control period runs and the servos hear nothing:
+-- park the hand and turn its servos' Bus Watchdog off, so a healthy run never
+-- trips it. A hand without one (the mock, the simulation) has nothing to turn off.
+function M.rest()
+  M.park()
+  local ok, err = pcall(function() return rs.device("hand"):call("watchdog", { ms = 0 }) end)
+  if not ok and not tostring(err):find("no operation 'watchdog'", 1, true)
+     and not tostring(err):find("no device 'hand'", 1, true) then
+    error(err, 0)
+  end
+end
+
 return M

@@ -1,6 +1,11 @@
 // The `dynamixel` actuator plugin against the emulator over a real pty.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
 #include <thread>
 
 #include "rollsense/testing/conformance.hpp"
@@ -33,6 +38,9 @@ std::map<std::string, ParamValue> etroll_raw(const std::string& device) {
         {"min", std::vector<double>{-90, -90, 30, -500}},
         {"max", std::vector<double>{90, 90, 100, 500}},
         {"timeout_ms", std::int64_t{100}},  // generous: the test machine is shared and loaded
+        // These tests advance the servos by seconds between packets; the Bus
+        // Watchdog (which would rightly stop them) has its own tests.
+        {"bus_watchdog_ms", std::int64_t{0}},
     };
 }
 
@@ -406,4 +414,53 @@ TEST_CASE("velocity mode clamps the goal to the servo's Velocity Limit") {
     REQUIRE(a.read(0, s).ok());
     CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::goal_velocity, 4); }) == 200);
     CHECK(s[0].mode == ControlMode::velocity);
+}
+
+TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one first; the watchdog verb sets it") {
+    auto emu = start_emulator(false);
+    // The previous run was killed: servo 2's watchdog tripped.
+    on_bus(*emu, [](BusEmulator& b) {
+        auto* s = b.servo(2);
+        Bytes one{1}, five{5};
+        REQUIRE(s->write(addr::torque_enable, one) == 0);
+        REQUIRE(s->write(addr::bus_watchdog, five) == 0);
+        s->step(0.2);
+        REQUIRE(s->watchdog_tripped());
+        return 0;
+    });
+    DynamixelActuator a;
+    auto raw = etroll_raw(emu->device());
+    raw["bus_watchdog_ms"] = std::int64_t{410};  // 21 units: rounded up, never shorter
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    for (std::uint8_t id : {1, 2, 3, 4})
+        CHECK(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->item(addr::bus_watchdog, 1); }) == 21);
+    auto off = a.invoke("watchdog", {{"ms", std::int64_t{0}}});
+    REQUIRE(off.ok());
+    for (std::uint8_t id : {1, 2, 3, 4})
+        CHECK(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->item(addr::bus_watchdog, 1); }) == 0);
+    CHECK_FALSE(a.invoke("watchdog", {{"ms", std::int64_t{5000}}}).ok());
+    REQUIRE(a.on_deactivate().ok());
+}
+
+TEST_CASE("a crash (SIGABRT) with the hand active sends torque-off to every servo from the signal handler") {
+    auto emu = start_emulator(false);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {  // the crashing "rollsense": activate (torque on everywhere), then abort
+        std::signal(SIGABRT, SIG_DFL);  // not the test framework's report: a plain crash
+        DynamixelActuator a;
+        if (!a.on_configure(validated(etroll_raw(emu->device())), {}).ok() || !a.on_activate().ok()) ::_exit(3);
+        std::abort();
+    }
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    REQUIRE(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == SIGABRT);  // the signal still takes its course
+    // The serving thread takes what the child wrote before it died.
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    for (std::uint8_t id : {1, 2, 3, 4}) {
+        INFO("servo " << int(id));
+        CHECK_FALSE(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->torque_enabled(); }));
+    }
 }

@@ -156,3 +156,37 @@ TEST_CASE("the emulated and the simulated hand take their geometry from the same
     for (const auto& d : changed->devices)
         CHECK(number(d.params.at("array_distance")) == (d.name == "tactile" ? 72.0 : calibrated.array_distance));
 }
+
+TEST_CASE("long work on the script thread: etroll.rest() parks the hand and keeps the Bus Watchdog from tripping") {
+    // The script thread blocks (as rs.analyse does, here a 1.2 s busy loop)
+    // and no control period runs; the servos hear nothing for longer than
+    // their 500 ms watchdog. Parked and disarmed first, none trips; without
+    // rest() they would (the second run shows the test can tell).
+    for (bool rest : {true, false}) {
+        INFO((rest ? "with etroll.rest()" : "without"));
+        auto emu = start_etroll_bus();
+        const testing::TempDir tmp("rollsense-rest");
+        std::ofstream(tmp.path() / "script.lua") << "local rs = require 'rollsense'\n"
+                                                    "local etroll = require 'etroll'\n"
+                                                    "etroll.open()\n"
+                                                 << (rest ? "etroll.rest()\n" : "") <<
+                                                    "local t = os.clock()\n"
+                                                    "while os.clock() - t < 1.2 do end\n"
+                                                    "rs.wait(100)\n";
+        const std::string device = "dxl_device=" + emu->device();
+        const auto o = options_for(tmp.path() / "script.lua", "etroll-emulated", tmp.path() / "out", {device.c_str()});
+        runtime::Session session(o);
+        const auto summary = session.run();
+        INFO(summary.status.message());
+        CHECK(summary.status.ok());
+        const auto tripped = emu->with_bus([](BusEmulator& b) {
+            int n = 0;
+            for (auto id : b.ids()) n += b.servo(id)->watchdog_trips();
+            return n;
+        });
+        if (rest)
+            CHECK(tripped == 0);
+        else
+            CHECK(tripped > 0);
+    }
+}

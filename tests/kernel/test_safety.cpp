@@ -155,3 +155,31 @@ end
     CHECK_THAT(s.status.message(), Catch::Contains("interrupted"));
     CHECK(kt::read_file(o.out_dir / "cleanup.txt") == "false");
 }
+
+TEST_CASE("SIGHUP and SIGTERM end the run like Ctrl-C: cleanup runs, the hand is safe", "[safety]") {
+    for (int sig : {SIGHUP, SIGTERM}) {
+        INFO("signal " << sig);
+        kt::TempDir dir;
+        auto o = kt::options_for(dir, R"(local rs = require 'rollsense'
+local f = rs.joint("finger")
+rs.on_cleanup(function()
+  rs.wait(500)
+  rs.write_output("cleanup.txt", string.format("%s", tostring(f:moving())))
+end)
+while true do
+  f:move(40, { velocity = 20 }); f:move(-40, { velocity = 20 })
+end
+)");
+        rollsense::runtime::Session session(o);
+        std::thread signaller([sig] {
+            std::this_thread::sleep_for(std::chrono::milliseconds(300));
+            std::raise(sig);
+        });
+        auto s = session.run();
+        signaller.join();
+        REQUIRE_FALSE(s.status.ok());
+        CHECK(s.status.code() == ErrorCode::cancelled);
+        CHECK(kt::read_file(o.out_dir / "cleanup.txt") == "false");
+        CHECK_THAT(kt::read_file(o.out_dir / "run-info.csv"), Catch::Contains("cancelled"));
+    }
+}

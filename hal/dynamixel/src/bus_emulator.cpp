@@ -38,7 +38,28 @@ std::vector<std::uint8_t> BusEmulator::ids() const {
     return out;
 }
 
+std::chrono::microseconds BusEmulator::late_by(std::uint8_t id) const {
+    const auto it = faults_.find(id);
+    return it == faults_.end() ? std::chrono::microseconds{0} : it->second.late;
+}
+
+void BusEmulator::apply_due_faults() {
+    for (auto& s : scheduled_) {
+        if (s.applied || elapsed_ + 1e-9 < s.fault.after_s) continue;
+        s.applied = true;
+        auto& plan = faults_[s.fault.id];
+        switch (s.fault.kind) {
+            case FaultKind::silent: plan.drop_replies = -1; break;
+            case FaultKind::corrupt: plan.corrupt_replies = -1; break;
+            case FaultKind::slow: plan.late = kLateBy; break;
+            case FaultKind::hardware_error: raise_hardware_error(s.fault.id, hw_error::overload); break;
+        }
+    }
+}
+
 void BusEmulator::advance(double seconds) {
+    elapsed_ += seconds;
+    apply_due_faults();
     if (!coupling_) {
         for (auto& s : servos_) s.step(seconds);
         return;
@@ -100,6 +121,13 @@ std::vector<Bytes> BusEmulator::handle(const Packet& in) {
     std::vector<Bytes> out;
     const bool broadcast = in.id == kBroadcastId;
     const auto& prm = in.params;
+    // Every servo the packet reaches restarts its Bus Watchdog count.
+    if (broadcast) {
+        for (auto& s : servos_)
+            if (hears(s)) s.heard_instruction();
+    } else if (auto* s = listener(in.id)) {
+        s->heard_instruction();
+    }
     auto targets = [&]() {
         std::vector<EmulatedServo*> t;
         if (broadcast) {

@@ -122,6 +122,7 @@ std::uint8_t EmulatedServo::validate(const Table& next, std::uint16_t first, std
     for (auto a : {addr::max_position_limit, addr::min_position_limit})
         if (touched(a, 4) && uvalue(a, 4) > 4095) return E_RANGE;
     if (touched(addr::torque_enable, 1) && uvalue(addr::torque_enable, 1) > 1) return E_RANGE;
+    if (touched(addr::bus_watchdog, 1) && uvalue(addr::bus_watchdog, 1) > 127) return E_RANGE;
     if (touched(addr::goal_current, 2) && std::abs(value(addr::goal_current, 2)) > value(addr::current_limit, 2))
         return E_LIMIT;
     if (touched(addr::goal_velocity, 4) &&
@@ -149,6 +150,8 @@ std::uint8_t EmulatedServo::write(std::uint16_t address, std::span<const std::ui
     for (std::uint16_t a = first; a <= last; ++a) {
         if (read_only(a)) return E_ACCESS;
         if (a < addr::torque_enable && torque_enabled()) return E_ACCESS;  // EEPROM needs torque off
+        // A tripped Bus Watchdog makes the goals read-only until 98 is cleared.
+        if (watchdog_tripped() && a >= addr::goal_pwm && a < addr::goal_position + 4) return E_ACCESS;
     }
     Table next = table_;
     std::copy(data.begin(), data.end(), next.begin() + address);
@@ -201,9 +204,26 @@ bool EmulatedServo::blocked_toward(double direction) const {
     return std::abs(position_ - *contact_ticks_) < 1e-6 && direction * contact_side_ > 0;
 }
 
+void EmulatedServo::trip_watchdog() {
+    table_[addr::bus_watchdog] = 0xFF;  // -1
+    ++watchdog_trips_;
+    // "Stop", per mode (our assumption beyond the e-manual's velocity example).
+    switch (mode()) {
+        case OperatingMode::velocity: set(addr::goal_velocity, 4, 0); break;
+        case OperatingMode::current: set(addr::goal_current, 2, 0); break;
+        case OperatingMode::pwm: set(addr::goal_pwm, 2, 0); break;
+        default:  // position modes: hold where it is now
+            set(addr::goal_position, 4, std::lround(position_));
+            break;
+    }
+}
+
 void EmulatedServo::step(double seconds) {
     while (seconds > 1e-12) {
         const double dt = std::min(seconds, kSubstep);
+        since_instruction_ += dt;
+        const auto watchdog = static_cast<std::int8_t>(table_[addr::bus_watchdog]);
+        if (watchdog > 0 && torque_enabled() && since_instruction_ > watchdog * 0.020) trip_watchdog();
         substep(dt);
         seconds -= dt;
         clock_ += dt;

@@ -3,6 +3,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 
 #include "rollsense/hal/baud_rate.hpp"
@@ -67,6 +68,17 @@ void PtyBusEmulator::serve() {
                     }
                     replies = bus_.receive(std::span<const std::uint8_t>(buf.data(), static_cast<std::size_t>(n)));
                     bytes_handled_ += static_cast<std::uint64_t>(n);
+                    // A `slow` servo's reply goes to the late queue; the
+                    // thread keeps serving the others meanwhile.
+                    for (auto it = replies.begin(); it != replies.end();) {
+                        const auto late = it->size() > 4 ? bus_.late_by((*it)[4]) : std::chrono::microseconds{0};
+                        if (late.count() > 0) {
+                            late_.push_back({now + late, std::move(*it)});
+                            it = replies.erase(it);
+                        } else {
+                            ++it;
+                        }
+                    }
                     if (wire_baud > 0) {
                         // Instruction on the wire, then each servo's return delay and reply.
                         const auto byte_ns = 10'000'000'000LL / wire_baud;
@@ -84,6 +96,10 @@ void PtyBusEmulator::serve() {
         for (std::size_t i = 0; i < replies.size(); ++i) {
             if (!delays.empty()) std::this_thread::sleep_until(now + delays[i]);
             send(replies[i]);
+        }
+        while (!late_.empty() && late_.front().due <= Clock::now()) {
+            send(late_.front().bytes);
+            late_.pop_front();
         }
     }
 }

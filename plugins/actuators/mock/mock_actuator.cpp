@@ -3,8 +3,10 @@
 // entry per joint, like a real servo bus in a profile.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mock_servo.hpp"
@@ -30,6 +32,10 @@ ParamSchema mock_schema() {
                      "unit/s/mA"),
         param_string_list("extended", std::vector<std::string>{"winch"},
                           "joints driven in extended position mode (multi-turn), like the winch"),
+        param_string_list("inject", std::vector<std::string>{},
+                          "faults to inject, each 'JOINT:KIND:AFTER_S' (run-clock seconds); KIND silent (the joint "
+                          "stops answering: its reads fail, its commands are lost) or hardware-error (overload: "
+                          "torque off, reported in the joint's fault)"),
     };
 }
 
@@ -90,6 +96,30 @@ public:
                 servos_.emplace_back(m, init[i]);
             }
         }
+        std::vector<Injection> injections;
+        for (const auto& spec : p.get_string_list("inject")) {
+            const auto a = spec.find(':'), b = spec.rfind(':');
+            const std::string where = "inject '" + spec + "'";
+            if (a == std::string::npos || a == b)
+                return {ErrorCode::invalid_argument, where + ": expected JOINT:KIND:AFTER_S, e.g. finger:silent:1.5"};
+            Injection inj;
+            const std::string joint = spec.substr(0, a), kind = spec.substr(a + 1, b - a - 1);
+            const auto it = std::find(names.begin(), names.end(), joint);
+            if (it == names.end()) return {ErrorCode::invalid_argument, where + ": no joint '" + joint + "'"};
+            inj.joint = static_cast<std::size_t>(it - names.begin());
+            if (kind != "silent" && kind != "hardware-error")
+                return {ErrorCode::invalid_argument, where + ": unknown kind '" + kind +
+                                                         "' (the mock knows silent and hardware-error)"};
+            inj.silent = kind == "silent";
+            char* end = nullptr;
+            const std::string after = spec.substr(b + 1);
+            inj.after = std::strtod(after.c_str(), &end);
+            if (after.empty() || *end != '\0' || !std::isfinite(inj.after) || inj.after < 0)
+                return {ErrorCode::invalid_argument, where + ": AFTER_S must be a number of seconds >= 0"};
+            injections.push_back(inj);
+        }
+        injections_ = std::move(injections);
+        silent_.assign(n, false);
         infos_ = std::move(infos);
         return {};
     }
@@ -118,10 +148,14 @@ public:
         return {};
     }
 
+    // A silent joint is left out: the others are read (and written) as on a
+    // bus where one servo stopped answering, and the call fails naming it.
     Status read(double time, std::span<JointState> states) override {
         last_time_ = time;
-        for (std::size_t i = 0; i < servos_.size() && i < states.size(); ++i) states[i] = servos_[i].state(time);
-        return {};
+        apply_injections(time);
+        for (std::size_t i = 0; i < servos_.size() && i < states.size(); ++i)
+            if (!silent_[i]) states[i] = servos_[i].state(time);
+        return silence();
     }
 
     Status write(double time, std::span<const JointCommand> commands) override {
@@ -129,8 +163,10 @@ public:
         if (commands.size() != servos_.size())
             return {ErrorCode::invalid_argument, "write: " + std::to_string(commands.size()) + " commands for " +
                                                      std::to_string(servos_.size()) + " joints"};
-        for (std::size_t i = 0; i < servos_.size(); ++i) servos_[i].command(time, commands[i]);
-        return {};
+        apply_injections(time);
+        for (std::size_t i = 0; i < servos_.size(); ++i)
+            if (!silent_[i]) servos_[i].command(time, commands[i]);
+        return silence();
     }
 
     // set_contact {joint=, position=}; inject_fault {joint=, fault=}; clear_fault {joint=}
@@ -176,6 +212,32 @@ public:
     }
 
 private:
+    struct Injection {
+        std::size_t joint = 0;
+        bool silent = false;  // false: hardware error
+        double after = 0;
+        bool done = false;
+    };
+    void apply_injections(double time) {
+        for (auto& inj : injections_) {
+            if (inj.done || time < inj.after) continue;
+            inj.done = true;
+            if (inj.silent)
+                silent_[inj.joint] = true;
+            else
+                servos_[inj.joint].inject_fault(time, "overload (injected)");
+        }
+    }
+    Status silence() const {
+        for (std::size_t i = 0; i < silent_.size(); ++i)
+            if (silent_[i])
+                return {ErrorCode::timeout, "joint '" + infos_[i].name +
+                                                "' does not answer (injected fault: silent); the others were served"};
+        return {};
+    }
+
+    std::vector<Injection> injections_;
+    std::vector<bool> silent_;
     std::vector<JointInfo> infos_;
     std::vector<MockServo> servos_;
     double last_time_ = 0;

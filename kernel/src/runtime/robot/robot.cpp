@@ -238,28 +238,53 @@ Status Robot::control_tick(double time, double dt) {
     return write_actuators(time);
 }
 
-std::vector<JointCommand> Robot::safe_commands(const ActuatorHandle& actuator) const {
-    std::vector<JointCommand> out;
+void Robot::safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out) const {
+    std::size_t k = 0;
     for (const auto& j : joints_) {
         if (j.actuator != &actuator) continue;
         JointCommand c = hold_command(j);
         c.torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty();
-        out.push_back(c);
+        if (k < out.size()) out[k] = c;  // sized at create(): no allocation on the way to safety
+        ++k;
     }
-    return out;
 }
 
+// Every actuator that may still drive a joint gets the safe commands: active
+// ones, and those in the error state, which is where one silent servo puts
+// the whole bus's device while the other servos on it still answer (and still
+// push). A plugin applies what it can and reports what it could not; its
+// failure here keeps the handle's state (it is logged, not escalated), so a
+// second safe_state() tries again. Inactive and unconfigured devices are not
+// driving anything.
 void Robot::safe_state(double time) noexcept {
-    disable_all_controllers(time);
+    try {
+        disable_all_controllers(time);
+    } catch (...) {
+        log_error("kernel", "safe state: a controller threw while being disabled; going on with the devices");
+    }
     for (auto& a : actuators_) {
-        if (a.handle->state() != LifecycleState::active) continue;
-        // Fresh positions where the bus still answers; the last known otherwise.
-        (void)a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); }, true);
-        for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
-        auto cmds = safe_commands(*a.handle);
-        for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = cmds[i];
-        auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, cmds); }, true);
-        if (!st.ok()) log_error("kernel", "safe state: " + st.message());
+        const auto state = a.handle->state();
+        if (state != LifecycleState::active && state != LifecycleState::error) continue;
+        try {
+            // Fresh positions where the bus still answers; the last known where
+            // it just failed (reading it again would spend its timeouts first,
+            // and the write must go out within this control period).
+            if (state == LifecycleState::active) {
+                const auto read =
+                    a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); }, true);
+                if (read.ok())
+                    for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
+                else
+                    log_warning("kernel", "safe state: " + read.message() + " (last known positions used)");
+            }
+            safe_commands(*a.handle, a.commands);
+            for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = a.commands[i];
+            auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, a.commands); }, true);
+            if (!st.ok()) log_error("kernel", "safe state: " + st.message());
+        } catch (...) {
+            // std::bad_alloc in a message: the next device must still be tried.
+            log_error("kernel", "safe state: out of memory or an exception while stopping a device");
+        }
     }
 }
 

@@ -45,7 +45,10 @@ public:
     // Best effort, never throws: stop every joint (hold, or torque off where the
     // profile says so), then deactivate and clean up every device.
     void shutdown(double time) noexcept;
-    // Stop every joint now. Used on script failure, cancellation and e-stop.
+    // Stop every joint now: the profile's safe action (hold here, or torque
+    // off) to every actuator that is active or failed, so the servos that
+    // still answer stop even when another one on their bus does not. Used on
+    // any failure (device, sensor, script, scheduler), cancellation and e-stop.
     void safe_state(double time) noexcept;
     // Refuse every command until released (emergency stop).
     void set_commands_locked(bool locked, std::string reason = {});
@@ -93,7 +96,8 @@ private:
     Robot() = default;
     Status read_actuators(double time);
     Status write_actuators(double time);
-    std::vector<JointCommand> safe_commands(const ActuatorHandle& actuator) const;
+    // The profile's safe action for each joint of `actuator`, into `out` (one per joint).
+    void safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out) const;
     SampleInput sample_input(double time);
 
     struct ActuatorSlot {

@@ -81,7 +81,7 @@ int interrupts_received() { return g_count.load(); }
 void set_hard_interrupt_handled(bool handled) { g_hard_handled.store(handled); }
 
 struct InterruptGuard::Saved {
-    struct sigaction old_int {}, old_term {};
+    struct sigaction old_int {}, old_term {}, old_hup {};
 };
 
 InterruptGuard::InterruptGuard(std::atomic<bool>& flag) : saved_(std::make_unique<Saved>()) {
@@ -92,11 +92,14 @@ InterruptGuard::InterruptGuard(std::atomic<bool>& flag) : saved_(std::make_uniqu
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, &saved_->old_int);
     sigaction(SIGTERM, &sa, &saved_->old_term);
+    // A closed terminal (ssh dropped) ends the run the same way, hand made safe.
+    sigaction(SIGHUP, &sa, &saved_->old_hup);
 }
 
 InterruptGuard::~InterruptGuard() {
     sigaction(SIGINT, &saved_->old_int, nullptr);
     sigaction(SIGTERM, &saved_->old_term, nullptr);
+    sigaction(SIGHUP, &saved_->old_hup, nullptr);
     g_flag.store(nullptr);
 }
 

@@ -48,7 +48,7 @@ private:
     std::atomic<bool> interrupt_{false};
 };
 
-// SIGINT/SIGTERM for the lifetime of this object: the first asks the run to
+// SIGINT/SIGTERM/SIGHUP for the lifetime of this object: the first asks the run to
 // stop through `flag` (the script is cancelled, its cleanup runs, the hand is
 // made safe); the third exits at once, unless a watchdog has taken it over
 // (set_hard_interrupt_handled: it makes the hand safe and writes run-info

@@ -4,7 +4,7 @@
 //                     [--object WIDTH_MM|none] [--finger-offset-sum MM] [--array-distance MM]
 //                     [--palm MM_PER_DEG:CENTRE_MM]
 //                     [--baud N] [--return-delay-us N] [--wire-baud N|line|0]
-//                     [--status-every SECONDS]
+//                     [--status-every SECONDS] [--inject ID:KIND:AFTER_S]...
 //
 // Without --servo it emulates the E-TRoll bus (ids 1-4) holding an object
 // between the fingers (plugins/common/etroll_hand: the E-TRoll hand's geometry,
@@ -52,7 +52,7 @@ int usage(const char* why) {
                  "                         [--object WIDTH_MM|none] [--finger-offset-sum MM] [--array-distance MM]\n"
                  "                         [--palm MM_PER_DEG:CENTRE_MM]\n"
                  "                         [--baud N] [--return-delay-us N] [--wire-baud N|line|0]\n"
-                 "                         [--status-every SECONDS]\n"
+                 "                         [--status-every SECONDS] [--inject ID:KIND:AFTER_S]...\n"
                  "  --servo         one emulated servo (repeatable); default: the E-TRoll bus,\n"
                  "                  1-3 XM430-W350 (position), 4 XL330-M288 (extended_position)\n"
                  "                  MODE: position|extended_position|current|current_based_position|velocity\n"
@@ -72,7 +72,11 @@ int usage(const char* why) {
                  "                  as configured at bring-up; 500, the factory value, with --servo)\n"
                  "  --wire-baud N   delay replies as a real bus at N baud would; 'line' (default): at the\n"
                  "                  rate the client set on the port; 0: answer instantly\n"
-                 "  --status-every  print every servo's state each SECONDS (default: off)\n",
+                 "  --status-every  print every servo's state each SECONDS (default: off)\n"
+                 "  --inject        a fault (repeatable): servo ID, AFTER_S seconds after the start, does\n"
+                 "                  KIND: silent (stops answering), hardware-error (overload: alert bit,\n"
+                 "                  Hardware Error Status, torque off), corrupt (bad CRC), slow (answers\n"
+                 "                  0.5 s late)\n",
                  d.object_width_mm, d.hand.finger_offset_sum, d.hand.array_distance, d.palm_mm_per_degree,
                  d.palm_centre_mm);
     return 2;
@@ -92,6 +96,7 @@ int main(int argc, char** argv) {
     double status_every = 0;
     std::optional<bool> object_wanted;  // default: an object on the E-TRoll bus only
     ClampedObject geometry;
+    std::vector<InjectedFault> faults;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
@@ -154,6 +159,12 @@ int main(int argc, char** argv) {
             const char* v = value();
             if (!v) return usage("--status-every needs seconds");
             status_every = std::strtod(v, nullptr);
+        } else if (a == "--inject") {
+            const char* v = value();
+            if (!v) return usage("--inject needs ID:KIND:AFTER_S, e.g. 2:silent:1.5");
+            auto f = parse_injected_fault(v);
+            if (!f.ok()) return usage(("--inject: " + f.error().message).c_str());
+            faults.push_back(*f);
         } else {
             return usage(("unknown argument '" + a + "'").c_str());
         }
@@ -171,6 +182,11 @@ int main(int argc, char** argv) {
     if (object_wanted.value_or(!any)) {
         if (auto st = rollsense::etroll::clamp_object(bus, geometry); !st.ok())
             return usage((st.message() + " (--object needs servos 1 sensing, 2 pushing and 3 palm)").c_str());
+    }
+
+    for (const auto& f : faults) {
+        if (!bus.servo(f.id)) return usage(("--inject: no servo " + std::to_string(f.id) + " on this bus").c_str());
+        bus.schedule(f);
     }
 
     auto emu = PtyBusEmulator::start(std::move(bus), options);

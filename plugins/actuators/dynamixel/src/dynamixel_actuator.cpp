@@ -4,6 +4,7 @@
 #include <cmath>
 #include <thread>
 
+#include "rollsense/hal/dynamixel/last_resort.hpp"
 #include "rollsense/log.hpp"
 
 namespace rollsense::dynamixel {
@@ -28,6 +29,29 @@ bool is_position_mode(ControlMode m) {
 }
 
 }  // namespace
+
+DynamixelActuator::~DynamixelActuator() { disarm_last_resort(); }
+
+void DynamixelActuator::arm_last_resort() {
+    disarm_last_resort();
+    Bytes params;
+    put_le(params, addr::torque_enable, 2);
+    put_le(params, 1, 2);
+    for (auto id : ids_) {
+        params.push_back(id);
+        params.push_back(0);
+    }
+    const Bytes packet = build_instruction(kBroadcastId, Instruction::sync_write, params);
+    last_resort_slot_ = register_last_resort(bus_->port().fd(), packet);
+    if (last_resort_slot_ < 0)
+        log_warning(kLog, "no crash-time torque-off for this bus (too many buses or servos); the Bus Watchdog "
+                          "still stops the servos");
+}
+
+void DynamixelActuator::disarm_last_resort() {
+    unregister_last_resort(last_resort_slot_);
+    last_resort_slot_ = -1;
+}
 
 std::string DynamixelActuator::who(std::size_t i) const {
     return "joint '" + config_.joints[i].name + "' (servo " + std::to_string(config_.joints[i].id) + ")";
@@ -63,6 +87,7 @@ Status DynamixelActuator::on_configure(const ParamSet& params, const PluginConte
     }
 
     std::string device = config_.device;
+    disarm_last_resort();
     bus_.reset();
     emulator_.reset();
     if (config_.device == "emulator") {
@@ -100,6 +125,19 @@ Status DynamixelActuator::set_torque(std::size_t i, bool on) {
     if (auto st = bus_->write_value(ids_[i], addr::torque_enable, 1, on ? 1 : 0); !st.ok()) return with_joint(i, st);
     rt_[i].torque = on;
     return {};
+}
+
+Status DynamixelActuator::set_watchdog(std::size_t i, int ms) {
+    auto now = bus_->read_value(ids_[i], addr::bus_watchdog, 1);
+    if (!now.ok()) return with_joint(i, now.status());
+    if (*now < 0) {
+        log_warning(kLog, who(i) + " had stopped by its Bus Watchdog (no instruction in time: the previous run "
+                                   "was killed, or the bus stalled); cleared");
+        if (auto st = bus_->write_value(ids_[i], addr::bus_watchdog, 1, 0); !st.ok()) return with_joint(i, st);
+    }
+    const int units = (ms + 19) / 20;  // round up: never shorter than asked
+    if (*now == units) return {};
+    return with_joint(i, bus_->write_value(ids_[i], addr::bus_watchdog, 1, units));
 }
 
 Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
@@ -188,9 +226,13 @@ Status DynamixelActuator::on_activate() {
                     who(i) + " reports a hardware error: " + describe_hardware_error(rt_[i].hardware_error) +
                         "; remove the cause, then reboot it (device:call('reboot', {joint='" +
                         config_.joints[i].name + "'}) or power-cycle)"};
+        // Cleared before the goals are written: a tripped watchdog makes them read-only.
+        if (auto st = set_watchdog(i, 0); !st.ok()) return st;
         if (auto st = prepare(i, config_.joints[i].default_mode); !st.ok()) return st;
         if (auto st = hold_here(i); !st.ok()) return st;
+        if (auto st = set_watchdog(i, config_.bus_watchdog_ms); !st.ok()) return st;
     }
+    arm_last_resort();
     return {};
 }
 
@@ -198,6 +240,7 @@ Status DynamixelActuator::on_deactivate() {
     if (!bus_ || !config_.torque_off_on_deactivate) return {};
     Status first;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
+        if (config_.bus_watchdog_ms > 0) (void)set_watchdog(i, 0);  // no trip while the bus is idle
         auto st = set_torque(i, false);  // keep going: release every servo we can
         if (!st.ok() && first.ok()) first = st;
     }
@@ -205,12 +248,14 @@ Status DynamixelActuator::on_deactivate() {
 }
 
 Status DynamixelActuator::on_cleanup() {
+    disarm_last_resort();
     bus_.reset();
     emulator_.reset();
     return {};
 }
 
 Status DynamixelActuator::on_recover() {
+    disarm_last_resort();
     bus_.reset();
     rt_.assign(config_.joints.size(), Runtime{});
     return {};
@@ -256,14 +301,18 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
     return {};
 }
 
+// Two phases. First every command is checked (a refused command moves
+// nothing at all). Then the bus work, servo by servo: a servo that fails to
+// answer (silent, corrupt replies, a hardware error) is left out and the
+// others still get their commands, so the safe state reaches every servo that
+// still answers; the first failure is returned, naming its joint.
 Status DynamixelActuator::write(double time, std::span<const JointCommand> commands) {
     (void)time;
     if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
     if (commands.size() != ids_.size())
         return {ErrorCode::invalid_argument, "write() got " + std::to_string(commands.size()) + " commands for " +
                                                  std::to_string(ids_.size()) + " joints"};
-    std::vector<SyncWriteEntry> entries;
-    std::vector<std::size_t> enable_after;
+    std::vector<std::int32_t> goal_ticks(ids_.size());
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         const auto& j = config_.joints[i];
         const auto& c = commands[i];
@@ -276,16 +325,53 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
             return {ErrorCode::limit_violation, who(i) + ": goal " + std::to_string(c.position) + " " + j.unit +
                                                     " is outside [" + std::to_string(j.min) + ", " +
                                                     std::to_string(j.max) + "]"};
+        goal_ticks[i] = is_position_mode(c.mode) ? j.joint_to_ticks(c.position) : rt_[i].present_ticks;
+        // The servo would silently drop a SYNC_WRITE entry outside its position limits.
+        if (c.mode == ControlMode::position && c.mode == rt_[i].mode &&
+            (goal_ticks[i] < rt_[i].min_ticks || goal_ticks[i] > rt_[i].max_ticks))
+            return {ErrorCode::limit_violation,
+                    who(i) + ": goal " + std::to_string(c.position) + " " + j.unit + " is tick " +
+                        std::to_string(goal_ticks[i]) + ", outside the servo's position limits " +
+                        std::to_string(rt_[i].min_ticks) + ".." + std::to_string(rt_[i].max_ticks) +
+                        " (check 'rollsense dxl info', or let the plugin write them: write_position_limits = true)"};
+    }
+
+    Status first;
+    auto failed = [&](Status st) {
+        if (first.ok()) first = std::move(st);
+    };
+    std::vector<SyncWriteEntry> entries;
+    std::vector<std::size_t> enable_after;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+        const auto& j = config_.joints[i];
+        const auto& c = commands[i];
         if (c.mode != rt_[i].mode) {
             // Operating Mode is EEPROM: torque off, switch, and torque comes
             // back only after this period's goals are in place.
-            if (auto st = prepare(i, c.mode); !st.ok()) return st;
+            if (auto st = prepare(i, c.mode); !st.ok()) {
+                failed(std::move(st));
+                continue;
+            }
             if (rt_[i].torque)
-                if (auto st = set_torque(i, false); !st.ok()) return st;
+                if (auto st = set_torque(i, false); !st.ok()) {
+                    failed(std::move(st));
+                    continue;
+                }
             log_debug(kLog, who(i) + ": now in " + std::string(to_string(c.mode)) + " mode");
+            if (c.mode == ControlMode::position &&
+                (goal_ticks[i] < rt_[i].min_ticks || goal_ticks[i] > rt_[i].max_ticks)) {
+                failed({ErrorCode::limit_violation, who(i) + ": goal tick " + std::to_string(goal_ticks[i]) +
+                                                        " is outside the servo's position limits " +
+                                                        std::to_string(rt_[i].min_ticks) + ".." +
+                                                        std::to_string(rt_[i].max_ticks)});
+                continue;
+            }
         }
         if (!c.torque_enabled && rt_[i].torque) {
-            if (auto st = set_torque(i, false); !st.ok()) return st;
+            if (auto st = set_torque(i, false); !st.ok()) {
+                failed(std::move(st));
+                continue;
+            }
         }
         if (c.torque_enabled && !rt_[i].torque) enable_after.push_back(i);
 
@@ -298,14 +384,6 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
         if (c.mode == ControlMode::velocity)
             goal_velocity = std::clamp(j.joint_to_velocity_units(c.velocity), -rt_[i].velocity_limit,
                                        rt_[i].velocity_limit);
-        const std::int32_t goal_ticks = is_position_mode(c.mode) ? j.joint_to_ticks(c.position) : rt_[i].present_ticks;
-        // The servo would silently drop a SYNC_WRITE entry outside its position limits.
-        if (c.mode == ControlMode::position && (goal_ticks < rt_[i].min_ticks || goal_ticks > rt_[i].max_ticks))
-            return {ErrorCode::limit_violation,
-                    who(i) + ": goal " + std::to_string(c.position) + " " + j.unit + " is tick " +
-                        std::to_string(goal_ticks) + ", outside the servo's position limits " +
-                        std::to_string(rt_[i].min_ticks) + ".." + std::to_string(rt_[i].max_ticks) +
-                        " (check 'rollsense dxl info', or let the plugin write them: write_position_limits = true)"};
 
         Bytes d;
         d.reserve(kCommandBlockLength);
@@ -313,13 +391,14 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
         put_le(d, goal_velocity, 4);                                         // 104 Goal Velocity
         put_le(d, j.joint_to_profile_acceleration(c.profile_acceleration), 4);  // 108 Profile Acceleration
         put_le(d, j.joint_to_profile_velocity(c.profile_velocity), 4);          // 112 Profile Velocity
-        put_le(d, goal_ticks, 4);                                            // 116 Goal Position
+        put_le(d, goal_ticks[i], 4);                                         // 116 Goal Position
         entries.push_back({ids_[i], std::move(d)});
     }
-    if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok()) return st;
+    if (!entries.empty())
+        if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok()) return st;
     for (auto i : enable_after)
-        if (auto st = set_torque(i, true); !st.ok()) return st;
-    return {};
+        if (auto st = set_torque(i, true); !st.ok()) failed(std::move(st));
+    return first;
 }
 
 Result<std::size_t> DynamixelActuator::joint_index(const ValueMap& args) const {
@@ -352,7 +431,8 @@ Status DynamixelActuator::reboot_joint(std::size_t i) {
     rt_[i].torque = false;
     const ControlMode mode = rt_[i].mode;
     if (auto st = prepare(i, mode); !st.ok()) return st;
-    return hold_here(i);
+    if (auto st = hold_here(i); !st.ok()) return st;
+    return set_watchdog(i, config_.bus_watchdog_ms);  // RAM: lost in the reboot
 }
 
 Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueMap& args) {
@@ -362,6 +442,18 @@ Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueM
         if (!i.ok()) return Error{i.error().code, "reboot: " + i.error().message};
         if (auto st = reboot_joint(*i); !st.ok()) return st;
         return ValueMap{{"joint", config_.joints[*i].name}, {"rebooted", true}};
+    }
+    if (verb == "watchdog") {
+        // {ms = N}: every servo's Bus Watchdog (0 = off), e.g. off before the
+        // script blocks for long (rs.analyse) and back on after.
+        if (!bus_) return Error{ErrorCode::state_error, "watchdog: the bus is not open (configure first)"};
+        auto it = args.find("ms");
+        const auto* ms = it == args.end() ? nullptr : std::get_if<std::int64_t>(&it->second);
+        if (!ms || *ms < 0 || *ms > 2540)
+            return Error{ErrorCode::invalid_argument, "watchdog: needs {ms = 0..2540} (0 = off)"};
+        for (std::size_t i = 0; i < ids_.size(); ++i)
+            if (auto st = set_watchdog(i, static_cast<int>(*ms)); !st.ok()) return st;
+        return ValueMap{{"ms", *ms}};
     }
     if (verb == "ping") {
         if (!bus_) return Error{ErrorCode::state_error, "ping: the bus is not open (configure first)"};
@@ -383,7 +475,7 @@ Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueM
                         {"bytes_sent", static_cast<std::int64_t>(s.bytes_sent)},
                         {"bytes_received", static_cast<std::int64_t>(s.bytes_received)}};
     }
-    return Error{ErrorCode::unsupported, "no operation '" + verb + "' (dynamixel knows: reboot, ping, statistics)"};
+    return Error{ErrorCode::unsupported, "no operation '" + verb + "' (dynamixel knows: reboot, ping, watchdog, statistics)"};
 }
 
 }  // namespace rollsense::dynamixel

@@ -19,6 +19,7 @@ namespace rollsense::dynamixel {
 
 class DynamixelActuator final : public Actuator {
 public:
+    ~DynamixelActuator() override;
     Status on_configure(const ParamSet& params, const PluginContext& context) override;
     Status on_activate() override;
     Status on_deactivate() override;
@@ -54,8 +55,16 @@ private:
     // Goal = present position (or zero current), then torque on.
     Status hold_here(std::size_t i);
     Status set_torque(std::size_t i, bool on);
+    // Bus Watchdog (98): clear a tripped one (it is logged: the last run ended
+    // without telling the servo), then set it to `ms` (0 = off).
+    Status set_watchdog(std::size_t i, int ms);
     Status reboot_joint(std::size_t i);
     Result<std::size_t> joint_index(const ValueMap& args) const;
+    // A torque-off SYNC_WRITE for every servo, written from the crash handler
+    // (hal/dynamixel/last_resort.hpp); registered while the bus is open and active.
+    void arm_last_resort();
+    void disarm_last_resort();
+    int last_resort_slot_ = -1;
 
     BusConfig config_;
     std::vector<JointInfo> infos_;

@@ -53,6 +53,14 @@ ParamSchema dynamixel_schema() {
                    "write min/max into the servos' Min/Max Position Limit (position modes only)"),
         param_bool("torque_off_on_deactivate", true,
                    "turn torque off on deactivate (false: servos keep holding, e.g. a loaded winch)"),
+        param_int("bus_watchdog_ms", 500,
+                  "Bus Watchdog armed on every servo at activation: a servo that hears no instruction for this "
+                  "long stops by itself (the process died, the cable was pulled); 0 = off. Well above the "
+                  "control period; rounded up to 20 ms steps",
+                  0, 2540, "ms"),
+        param_string_list("inject", std::vector<std::string>{},
+                          "device \"emulator\" only: faults to inject, each 'ID:KIND:AFTER_S' (run-clock seconds; "
+                          "KIND silent, hardware-error, corrupt or slow), as rollsense-dxl-emu --inject"),
     };
     // device "emulator" only: the hand the emulated object sits in.
     for (auto& spec : etroll::hand_geometry_params()) schema.push_back(std::move(spec));
@@ -69,6 +77,16 @@ Result<BusConfig> parse_config(const ParamSet& params) {
     c.torque_off_on_deactivate = params.get_bool("torque_off_on_deactivate");
     c.emulated_object_mm = params.get_number("emulated_object");
     c.hand = etroll::hand_geometry_from(params);
+    c.bus_watchdog_ms = static_cast<int>(params.get_int("bus_watchdog_ms"));
+    for (const auto& spec : params.get_string_list("inject")) {
+        auto f = hal::dxl::parse_injected_fault(spec);
+        if (!f.ok()) return Error{f.error().code, "inject: " + f.error().message};
+        c.inject.push_back(*f);
+    }
+    if (!c.inject.empty() && c.device != "emulator")
+        return Error{ErrorCode::invalid_argument,
+                     "inject needs device = \"emulator\" (the in-process emulator); for rollsense-dxl-emu "
+                     "give it --inject instead, a real bus cannot be told to fail"};
 
     const auto ids = params.get_int_list("ids");
     const auto names = params.get_string_list("names");

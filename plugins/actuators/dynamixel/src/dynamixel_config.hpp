@@ -8,6 +8,7 @@
 
 #include "joint_map.hpp"
 #include "rollsense/etroll_hand/hand_geometry.hpp"
+#include "rollsense/hal/dynamixel/injected_fault.hpp"
 #include "rollsense/params.hpp"
 #include "rollsense/status.hpp"
 
@@ -20,10 +21,12 @@ struct BusConfig {
     std::chrono::microseconds timeout{std::chrono::milliseconds(30)};
     bool write_position_limits = true;
     bool torque_off_on_deactivate = true;
+    int bus_watchdog_ms = 500;  // 0 = off; armed at activation, 20 ms steps
     // device "emulator" only: the object between the fingers (0: none) and the
     // hand it sits in (the profile's hand geometry, share/profiles/etroll-hand.lua).
     double emulated_object_mm = etroll::kDefaultEmulatedObjectWidth;
     etroll::HandGeometry hand;
+    std::vector<hal::dxl::InjectedFault> inject;  // device "emulator" only
     std::vector<JointMap> joints;
 };
 

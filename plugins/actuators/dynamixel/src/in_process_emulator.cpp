@@ -49,6 +49,12 @@ Result<std::unique_ptr<InProcessEmulator>> InProcessEmulator::start(const BusCon
         object.hand = config.hand;
         if (auto st = etroll::clamp_object(bus, object); !st.ok()) return Error{st.code(), "device 'emulator': " + st.message()};
     }
+    for (const auto& f : config.inject) {
+        if (!bus.servo(f.id))
+            return Error{ErrorCode::invalid_argument, "device 'emulator': inject names servo " + std::to_string(f.id) +
+                                                          ", which is not on this bus (ids: see 'ids')"};
+        bus.schedule(f);
+    }
     hal::dxl::PtyEmulatorOptions options;
     options.real_time = false;  // time moves only through advance_to()
     auto emulator = hal::dxl::PtyBusEmulator::start(std::move(bus), options);

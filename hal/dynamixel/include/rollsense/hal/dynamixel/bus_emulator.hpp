@@ -4,6 +4,7 @@
 // behind a pseudo-terminal in the `rollsense-dxl-emu` program.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "rollsense/hal/dynamixel/emulated_servo.hpp"
+#include "rollsense/hal/dynamixel/injected_fault.hpp"
 #include "rollsense/hal/dynamixel/protocol.hpp"
 
 namespace rollsense::hal::dxl {
@@ -20,6 +22,7 @@ namespace rollsense::hal::dxl {
 struct FaultPlan {
     int drop_replies = 0;     // answer nothing (the client times out)
     int corrupt_replies = 0;  // answer with a wrong CRC (the client sees a CRC error)
+    std::chrono::microseconds late{0};  // hold every reply back this long (a transport honours it)
 };
 
 class BusEmulator {
@@ -58,6 +61,12 @@ public:
     // ---- fault injection
     void set_faults(std::uint8_t id, FaultPlan plan) { faults_[id] = plan; }
     void raise_hardware_error(std::uint8_t id, std::uint8_t bits);
+    // A fault that starts once `after_s` of emulated time (advance()) has passed.
+    void schedule(const InjectedFault& fault) { scheduled_.push_back({fault, false}); }
+    // How long a reply from servo `id` is held back (a `slow` servo).
+    std::chrono::microseconds late_by(std::uint8_t id) const;
+    // Emulated time since the start (the sum of advance() steps).
+    double elapsed() const { return elapsed_; }
     // Bytes sent in front of the next status packet (line noise).
     void inject_garbage(Bytes bytes) { garbage_ = std::move(bytes); }
 
@@ -74,7 +83,15 @@ private:
     bool hears(const EmulatedServo& s) const;
     bool reply(EmulatedServo& s, std::uint8_t error, std::span<const std::uint8_t> params, std::vector<Bytes>& out);
 
+    void apply_due_faults();
+
+    struct Scheduled {
+        InjectedFault fault;
+        bool applied = false;
+    };
     std::vector<EmulatedServo> servos_;
+    std::vector<Scheduled> scheduled_;
+    double elapsed_ = 0;
     Coupling coupling_;
     std::map<std::uint8_t, FaultPlan> faults_;
     Bytes garbage_;

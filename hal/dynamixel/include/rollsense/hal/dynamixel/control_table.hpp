@@ -35,6 +35,7 @@ inline constexpr std::uint16_t led = 65;               // 1
 inline constexpr std::uint16_t status_return_level = 68;
 inline constexpr std::uint16_t registered_instruction = 69;  // RO
 inline constexpr std::uint16_t hardware_error_status = 70;   // RO
+inline constexpr std::uint16_t bus_watchdog = 98;      // 1, signed: 0 off, 1-127 x 20 ms, -1 tripped
 inline constexpr std::uint16_t goal_pwm = 100;         // 2
 inline constexpr std::uint16_t goal_current = 102;     // 2, signed
 inline constexpr std::uint16_t goal_velocity = 104;    // 4, signed

@@ -11,6 +11,12 @@
 // - Values outside an item's own range answer "data range error"; values
 //   outside a limit set in another item (position, current, velocity limits)
 //   answer "data limit error". A rejected write changes nothing.
+// - Bus Watchdog (98): armed (1-127, x 20 ms) with torque on, it trips when no
+//   instruction packet reached the servo for that long: the item reads -1,
+//   the servo stops (velocity/current/PWM goals to zero, a position mode holds
+//   where it is; torque stays on) and the goal items refuse writes (access
+//   error) until 0 is written to 98. The e-manual shows only velocity mode;
+//   the rest is our assumption, written down in docs/dynamixel.md.
 #pragma once
 
 #include <array>
@@ -46,6 +52,13 @@ public:
     std::uint8_t read(std::uint16_t address, std::uint16_t length, Bytes& out) const;
     std::uint8_t write(std::uint16_t address, std::span<const std::uint8_t> data);
     void reboot();
+
+    // An instruction packet reached this servo (addressed to it or broadcast):
+    // the Bus Watchdog starts counting again.
+    void heard_instruction() { since_instruction_ = 0.0; }
+    bool watchdog_tripped() const { return static_cast<std::int8_t>(table_[addr::bus_watchdog]) == -1; }
+    // How often it tripped since power-up (for tests: a cleared trip leaves no other trace).
+    int watchdog_trips() const { return watchdog_trips_; }
 
     // Advance the motion model by `seconds`.
     void step(double seconds);
@@ -87,6 +100,9 @@ private:
     double velocity_ = 0.0;          // ticks/s
     double current_ma_ = 0.0;
     double clock_ = 0.0;
+    double since_instruction_ = 0.0;  // s, for the Bus Watchdog
+    int watchdog_trips_ = 0;
+    void trip_watchdog();
     bool profile_running_ = false;
     std::optional<double> contact_ticks_;
     double contact_side_ = 1.0;  // +1: the obstacle blocks motion toward higher ticks

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -63,6 +64,11 @@ private:
     std::atomic<bool> running_{false};
     std::atomic<std::uint64_t> bytes_handled_{0};
     std::thread thread_;
+    struct LateReply {
+        std::chrono::steady_clock::time_point due;
+        Bytes bytes;
+    };
+    std::deque<LateReply> late_;  // a `slow` servo's replies, in order (serving thread only)
 };
 
 }  // namespace rollsense::hal::dxl

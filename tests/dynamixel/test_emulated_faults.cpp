@@ -1,0 +1,70 @@
+// Issue 22: every kind of injected servo fault, end to end through a Session
+// on etroll-virtual (the in-process emulator, virtual clock: fast and
+// deterministic). The run ends with a typed error naming the servo, the
+// dataset holds only complete trials, and run-info.csv says how the run
+// ended. (That the answering servos end in the safe state is read back over
+// the bus in test_fault_safe_state.cpp, where the test owns the bus.)
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "runtime/session/session.hpp"
+#include "temp_dir.hpp"
+
+using namespace rollsense;
+using rollsense::testing::read_file;
+namespace fs = std::filesystem;
+
+namespace {
+
+runtime::RunSummary run_with_fault(const fs::path& dir, const std::string& spec) {
+    std::ofstream(dir / "faulty.lua") << "local p = include('etroll-virtual')\n"
+                                         "p.devices.hand.params.inject = { '" << spec << "' }\n"
+                                         "return p\n";
+    runtime::SessionOptions o;
+    o.script = fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua";
+    o.profile = (dir / "faulty.lua").string();
+    for (const char* kv : {"runs=3", "objects=C1", "speeds=20", "analyse=false"}) REQUIRE(o.settings.add(kv).ok());
+    o.share_dir = ROLLSENSE_SHARE_DIR;
+    o.out_dir = dir / "out";
+    o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
+    o.progress = false;
+    runtime::Session session(o);
+    return session.run();
+}
+
+}  // namespace
+
+TEST_CASE("each injected servo fault ends the run with a typed error, complete trials only, and run-info",
+          "[fault]") {
+    for (auto [spec, code] : {std::pair{"1:silent:25", ErrorCode::timeout},
+                              std::pair{"1:hardware-error:25", ErrorCode::hardware_fault},
+                              std::pair{"2:corrupt:25", ErrorCode::protocol_error},
+                              std::pair{"1:slow:25", ErrorCode::timeout}}) {
+        INFO(spec);
+        const testing::TempDir tmp("rollsense-emulated-fault");
+        const auto summary = run_with_fault(tmp.path(), spec);
+        INFO(summary.status.message());
+        REQUIRE_FALSE(summary.status.ok());
+        CHECK(summary.status.code() == code);
+        const std::string servo = std::string("servo ") + spec[0];
+        CHECK_THAT(summary.status.message(), Catch::Contains("device 'hand'") && Catch::Contains(servo));
+        CHECK(summary.trials_saved < 3);  // the fault came before the end
+        // Only complete trials: every file in trials/ is in the manifest, and
+        // the manifest lists exactly the trials saved.
+        const fs::path out = tmp.path() / "out";
+        const std::string manifest = read_file(out / "manifest.csv");
+        std::size_t files = 0;
+        if (fs::exists(out / "trials"))
+            for (const auto& f : fs::directory_iterator(out / "trials")) {
+                ++files;
+                CHECK_THAT(manifest, Catch::Contains(f.path().stem().string()));
+            }
+        CHECK(files == summary.trials_saved);
+        const std::string info = read_file(out / "run-info.csv");
+        CHECK_THAT(info, Catch::Contains("status"));
+        CHECK_THAT(info, Catch::Contains(servo));
+    }
+}
