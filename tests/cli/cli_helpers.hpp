@@ -18,7 +18,7 @@ namespace rollsense::testing {
 
 inline std::string rollsense_bin() { return std::string(ROLLSENSE_BIN_DIR) + "/rollsense"; }
 
-inline std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 // Counts non-overlapping occurrences of `needle`.
 inline std::size_t count_of(const std::string& hay, const std::string& needle) {

@@ -61,17 +61,17 @@ TEST_CASE("a disk that refuses writes exits 5, not 4 (hardware)") {
     TempDir dir("rollsense-cli-io");
     // A file-size limit of 0 makes every write fail (EFBIG) the way a full
     // disk does (ENOSPC); SIGXFSZ is ignored so the write returns the error.
-    const auto r = run_command("trap '' XFSZ; ulimit -f 0; " + rollsense_bin() + " run demo_roll.lua --profile mock --out " +
-                               quoted(dir / "out") + " --no-progress");
+    const auto r = run_command("trap '' XFSZ; ulimit -f 0; " + rollsense_bin() + " run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile mock --out " +
+                               shell_quoted(dir / "out") + " --no-progress");
     INFO(r.output);
     CHECK(r.status == 5);
-    CHECK(r.output.find("io_error") != std::string::npos);
+    CHECK(r.output.find("I/O error") != std::string::npos);
 }
 
 TEST_CASE("an output folder under a regular file is an I/O error (5), named") {
     TempDir dir("rollsense-cli-io");
     write_file(dir / "file", "x");
-    const auto r = run_rollsense("run demo_roll.lua --profile mock --no-progress --out " + quoted(dir / "file" / "out"));
+    const auto r = run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile mock --no-progress --out " + shell_quoted(dir / "file" / "out"));
     INFO(r.output);
     CHECK(r.status == 5);
     CHECK(r.output.find((dir / "file").string()) != std::string::npos);
@@ -82,11 +82,11 @@ TEST_CASE("other failures keep their codes") {
     CHECK(run_rollsense("").status == 2);
     CHECK(run_rollsense("nosuch").status == 2);
     CHECK(run_rollsense("run").status == 2);
-    CHECK(run_rollsense("run demo_roll.lua --bogus").status == 2);
-    CHECK(run_rollsense("run demo_roll.lua --profile nosuch --out " + quoted(dir / "a")).status == 3);
+    CHECK(run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --bogus").status == 2);
+    CHECK(run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile nosuch --out " + shell_quoted(dir / "a")).status == 3);
     write_file(dir / "fail.lua", "error('the script gives up')\n");
-    CHECK(run_rollsense("run " + quoted(dir / "fail.lua") + " --profile mock --out " + quoted(dir / "b")).status == 1);
+    CHECK(run_rollsense("run " + shell_quoted(dir / "fail.lua") + " --profile mock --out " + shell_quoted(dir / "b")).status == 1);
     write_file(dir / "slow.lua", "local rs = require 'rollsense'\nrs.wait(60000)\n");
-    CHECK(run_rollsense("run " + quoted(dir / "slow.lua") + " --profile mock --time-limit 1 --out " + quoted(dir / "c"))
+    CHECK(run_rollsense("run " + shell_quoted(dir / "slow.lua") + " --profile mock --time-limit 1 --out " + shell_quoted(dir / "c"))
               .status == 130);
 }

@@ -22,12 +22,12 @@ fs::path fixture() {
     if (fs::exists(done / "trained.rsm", ec)) return done;
     TempDir work("rollsense-cli-predict");
     const fs::path run = work / "run";
-    const auto rec = run_rollsense("run paper_experiment.lua --set runs=1 --set analyse=false --seed 11 --no-progress -q --out " +
-                                   quoted(run));
+    const auto rec = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua") + " --set runs=1 --set analyse=false --seed 11 --no-progress -q --out " +
+                                   shell_quoted(run));
     INFO(rec.output);
     REQUIRE(rec.status == 0);
-    REQUIRE(run_rollsense("features " + quoted(run) + " -o " + quoted(run / "features.csv")).status == 0);
-    const auto train = run_rollsense("train " + quoted(run / "features.csv") + " -o " + quoted(run / "trained.rsm"));
+    REQUIRE(run_rollsense("features " + shell_quoted(run) + " -o " + shell_quoted(run / "features.csv")).status == 0);
+    const auto train = run_rollsense("train " + shell_quoted(run / "features.csv") + " -o " + shell_quoted(run / "trained.rsm"));
     INFO(train.output);
     REQUIRE(train.status == 0);
     fs::create_directories(done.parent_path());
@@ -76,7 +76,7 @@ std::size_t manifest_trials(const fs::path& dataset) {
 
 TEST_CASE("predict classifies every trial of a dataset with the trained model") {
     const fs::path run = fixture();
-    const auto r = run_rollsense("predict " + quoted(run / "trained.rsm") + " " + quoted(run));
+    const auto r = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run));
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK(r.output.find("trial") == 0);
@@ -85,7 +85,7 @@ TEST_CASE("predict classifies every trial of a dataset with the trained model") 
     CHECK(r.output.find("warning") == std::string::npos);
     CHECK(r.output.find("not checked") == std::string::npos);
 
-    const auto j = run_rollsense("predict --json " + quoted(run / "trained.rsm") + " " + quoted(run) + " 2>/dev/null");
+    const auto j = run_rollsense("predict --json " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run) + " 2>/dev/null");
     REQUIRE(j.status == 0);
     CHECK(j.output.front() == '[');
     CHECK(count_of(j.output, "\"trial_id\"") == manifest_trials(run));
@@ -94,19 +94,19 @@ TEST_CASE("predict classifies every trial of a dataset with the trained model") 
     CHECK(std::regex_search(j.output, std::regex(R"("scores": \{\s*"C1": )")));
 }
 
-TEST_CASE("predict takes one trial file; a trial without clean peaks gets no decision, with the reason") {
+TEST_CASE("predict takes one trial file, and a trial without clean peaks gets no decision with the reason") {
     const fs::path run = fixture();
     TempDir dir("rollsense-cli-predict");
     const fs::path ds = copy_dataset(run, dir / "ds");
-    const auto one = run_rollsense("predict " + quoted(run / "trained.rsm") + " " + quoted(ds / "trials" / "C2-v15-r001.csv"));
+    const auto one = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(ds / "trials" / "C2-v15-r001.csv"));
     INFO(one.output);
     REQUIRE(one.status == 0);
     CHECK(count_of(one.output, "-v") == 1);  // the one trial only
     CHECK(one.output.find("C2-v15-r001") != std::string::npos);
 
     scale_channels(ds / "trials" / "C2-v15-r001.csv", 0.0);
-    const auto flat = run_rollsense("predict --json " + quoted(run / "trained.rsm") + " " +
-                                    quoted(ds / "trials" / "C2-v15-r001.csv"));
+    const auto flat = run_rollsense("predict --json " + shell_quoted(run / "trained.rsm") + " " +
+                                    shell_quoted(ds / "trials" / "C2-v15-r001.csv"));
     INFO(flat.output);
     REQUIRE(flat.status == 0);
     CHECK(flat.output.find("\"class\": null") != std::string::npos);
@@ -123,7 +123,7 @@ TEST_CASE("predict warns when the input is unlike the training data") {
     write_file(ds / "dataset-info.csv", info);
     // ...and ten times the pressure: amplitude features far outside training's.
     scale_channels(ds / "trials" / "C1-v10-r001.csv", 10.0);
-    const auto r = run_rollsense("predict " + quoted(run / "trained.rsm") + " " + quoted(ds / "trials" / "C1-v10-r001.csv"));
+    const auto r = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(ds / "trials" / "C1-v10-r001.csv"));
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK(r.output.find("warning: sample rate 100 Hz differs from training's 31.1 Hz") != std::string::npos);
@@ -131,34 +131,34 @@ TEST_CASE("predict warns when the input is unlike the training data") {
 
     // Without the training run's files beside the model, what is not checked is said.
     fs::copy_file(run / "trained.rsm", dir / "alone.rsm");
-    const auto alone = run_rollsense("predict " + quoted(dir / "alone.rsm") + " " + quoted(run));
+    const auto alone = run_rollsense("predict " + shell_quoted(dir / "alone.rsm") + " " + shell_quoted(run));
     CHECK(alone.status == 0);
     CHECK(alone.output.find("not checked against the training data") != std::string::npos);
     CHECK(alone.output.find("feature ranges not checked") != std::string::npos);
     // --training names them.
-    const auto named = run_rollsense("predict --training " + quoted(run) + " " + quoted(dir / "alone.rsm") + " " + quoted(run));
+    const auto named = run_rollsense("predict --training " + shell_quoted(run) + " " + shell_quoted(dir / "alone.rsm") + " " + shell_quoted(run));
     CHECK(named.output.find("not checked") == std::string::npos);
 }
 
 TEST_CASE("predict's errors name the model, the plugin and the way out") {
     const fs::path run = fixture();
     TempDir dir("rollsense-cli-predict");
-    const auto missing = run_rollsense("predict " + quoted(dir / "none.rsm") + " " + quoted(run));
+    const auto missing = run_rollsense("predict " + shell_quoted(dir / "none.rsm") + " " + shell_quoted(run));
     CHECK(missing.status == 3);
     CHECK(missing.output.find("none.rsm: no such model file") != std::string::npos);
 
     write_file(dir / "odd.rsm", "something else\n");
-    const auto odd = run_rollsense("predict " + quoted(dir / "odd.rsm") + " " + quoted(run));
+    const auto odd = run_rollsense("predict " + shell_quoted(dir / "odd.rsm") + " " + shell_quoted(run));
     CHECK(odd.status == 3);
     CHECK(odd.output.find("--classifier") != std::string::npos);
 
-    const auto wrong = run_rollsense("predict --classifier no_such_plugin " + quoted(run / "trained.rsm") + " " + quoted(run));
+    const auto wrong = run_rollsense("predict --classifier no_such_plugin " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run));
     CHECK(wrong.status == 3);
     CHECK(wrong.output.find("no_such_plugin") != std::string::npos);
 
-    const auto not_trial = run_rollsense("predict " + quoted(run / "trained.rsm") + " " + quoted(run / "features.csv"));
+    const auto not_trial = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run / "features.csv"));
     CHECK(not_trial.status == 3);
     CHECK(not_trial.output.find("trials/ folder") != std::string::npos);
 
-    CHECK(run_rollsense("predict " + quoted(run / "trained.rsm")).status == 2);
+    CHECK(run_rollsense("predict " + shell_quoted(run / "trained.rsm")).status == 2);
 }

@@ -57,7 +57,7 @@ TEST_CASE("docs/scripting.md lists every rs.* call a script can make") {
                "for k in pairs(rs) do names[#names + 1] = k end\n"
                "table.sort(names)\n"
                "rs.write_output('rs-keys.txt', table.concat(names, '\\n') .. '\\n')\n");
-    const auto r = run_rollsense("run " + quoted(dir / "keys.lua") + " --profile mock --out " + quoted(dir / "out"));
+    const auto r = run_rollsense("run " + shell_quoted(dir / "keys.lua") + " --profile mock --out " + shell_quoted(dir / "out"));
     INFO(r.output);
     REQUIRE(r.status == 0);
     std::istringstream keys(read_file(dir / "out" / "rs-keys.txt"));
