@@ -100,7 +100,8 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
         &failed);
     if (!result) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, result.error().describe().c_str());
-        return failed == learn::PipelineStage::evaluation ? kExitFailure : kExitConfig;
+        return exit_code_for(result.error().code,
+                             failed == learn::PipelineStage::evaluation ? kExitFailure : kExitConfig);
     }
     out = std::move(result).value();
     return kExitOk;
@@ -117,12 +118,12 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
     auto prepared = learn::prepare_classifiers(registry, specs);
     if (!prepared) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, prepared.error().describe().c_str());
-        return kExitConfig;
+        return exit_code_for(prepared.error().code, kExitConfig);
     }
     auto loaded = learn::load_feature_rows(s.input, feature_settings_from_args(args));
     if (!loaded) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, loaded.error().describe().c_str());
-        return kExitConfig;
+        return exit_code_for(loaded.error().code, kExitConfig);
     }
     rows = std::move(loaded).value();
     std::printf("%s\n", learn::summarize_rejections(rows).c_str());
@@ -177,8 +178,8 @@ int run(const std::vector<std::string>& argv) {
     std::printf("\n%s", learn::format_evaluation(result.evaluation).c_str());
     if (auto out = args.option("--output", "-o"); !out.empty()) {
         if (auto st = learn::write_evaluation_files(result.evaluation, out); !st) {
-            std::fprintf(stderr, "rollsense evaluate: %s\n", st.message().c_str());
-            return kExitFailure;
+            std::fprintf(stderr, "rollsense evaluate: %s\n", st.error().describe().c_str());
+            return exit_code_for(st.code());
         }
     }
     return kExitOk;

@@ -114,16 +114,16 @@ int run(const std::vector<std::string>& argv) {
     auto ds = DatasetReader::open(pos[0]);
     if (!ds) {
         std::fprintf(stderr, "rollsense features: %s\n", ds.error().describe().c_str());
-        return kExitConfig;
+        return exit_code_for(ds.error().code, kExitConfig);
     }
     auto rows = features::extract_dataset(*ds, settings, threads);
     if (!rows) {
         std::fprintf(stderr, "rollsense features: %s\n", rows.error().describe().c_str());
-        return kExitConfig;
+        return exit_code_for(rows.error().code, kExitConfig);
     }
     if (auto s = features::write_features_csv(out, *rows); !s) {
         std::fprintf(stderr, "rollsense features: cannot write '%s': %s\n", out.c_str(), s.error().describe().c_str());
-        return kExitFailure;
+        return exit_code_for(s.code());
     }
     std::printf("%s\nwrote %s\n", learn::summarize_rejections(*rows).c_str(), out.c_str());
     return kExitOk;

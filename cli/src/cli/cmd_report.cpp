@@ -82,11 +82,11 @@ int run(const std::vector<std::string>& argv) {
     auto written = report::write_report(in);
     if (!written) {
         std::fprintf(stderr, "rollsense report: %s\n", written.error().describe().c_str());
-        return kExitFailure;
+        return exit_code_for(written.error().code);
     }
     if (auto st = learn::write_evaluation_files(in.evaluation, written->parent_path() / "evaluation.txt"); !st) {
-        std::fprintf(stderr, "rollsense report: %s\n", st.message().c_str());
-        return kExitFailure;
+        std::fprintf(stderr, "rollsense report: %s\n", st.error().describe().c_str());
+        return exit_code_for(st.code());
     }
     std::printf("\n%s", report::text_summary(in).c_str());
     return kExitOk;

@@ -37,25 +37,7 @@ options:
   --commit-every N      trials per durable group commit (default 1 on hardware,
                         64 in simulation)
   --no-progress         no progress bar (it is off anyway when stderr is not a terminal)
-  -v, --verbose         debug messages;   -q, --quiet   warnings and errors only
-
-exit codes: 0 ok, 1 script error, 2 bad command line, 3 bad profile/plugin/input,
-            4 hardware failure, 130 interrupted (Ctrl-C, emergency stop, time limit))";
-
-int exit_code_for(const Status& s) {
-    switch (s.code()) {
-        case ErrorCode::ok: return kExitOk;
-        case ErrorCode::cancelled: return kExitCancelled;
-        case ErrorCode::io_error:
-        case ErrorCode::timeout:
-        case ErrorCode::protocol_error:
-        case ErrorCode::hardware_fault: return kExitHardware;
-        case ErrorCode::not_found:
-        case ErrorCode::parse_error:
-        case ErrorCode::plugin_error: return kExitConfig;
-        default: return kExitFailure;
-    }
-}
+  -v, --verbose         debug messages;   -q, --quiet   warnings and errors only)";
 
 std::string default_out(const std::filesystem::path& script) {
     std::time_t t = std::time(nullptr);
@@ -112,7 +94,7 @@ int run(const std::vector<std::string>& argv) {
             std::fprintf(stderr, "continue with: rollsense run %s --out %s --resume%s\n", pos[0].c_str(),
                          o.out_dir.c_str(), args.option("--seed").empty() ? "" : (" --seed " + args.option("--seed")).c_str());
     }
-    return exit_code_for(summary.status);
+    return exit_code_for(summary.status.code());
 }
 
 const Registration reg{{"run", "run a Lua roll procedure on a robot profile", kHelp, &run}};

@@ -65,11 +65,11 @@ int run(const std::vector<std::string>& argv) {
     auto model = learn::fit_final(rows, factory, o);
     if (!model) {
         std::fprintf(stderr, "rollsense train: %s\n", model.error().describe().c_str());
-        return kExitFailure;
+        return exit_code_for(model.error().code);
     }
     if (auto st = model->classifier->save(out); !st) {
         std::fprintf(stderr, "rollsense train: %s\n", st.error().describe().c_str());
-        return kExitFailure;
+        return exit_code_for(st.code());
     }
     std::string params;
     for (const auto& [k, v] : model->params.values()) params += " " + k + "=" + format_param_value(v);

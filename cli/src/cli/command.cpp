@@ -26,6 +26,31 @@ Registration::Registration(Command command) { registry().push_back(std::move(com
 
 const std::vector<Command>& commands() { return registry(); }
 
+int exit_code_for(ErrorCode code, int fallback) {
+    switch (code) {
+        case ErrorCode::ok: return kExitOk;
+        case ErrorCode::cancelled: return kExitCancelled;
+        case ErrorCode::io_error: return kExitIo;
+        case ErrorCode::timeout:
+        case ErrorCode::protocol_error:
+        case ErrorCode::hardware_fault: return kExitHardware;
+        case ErrorCode::not_found:
+        case ErrorCode::parse_error:
+        case ErrorCode::plugin_error: return kExitConfig;
+        default: return fallback;
+    }
+}
+
+std::string exit_code_table() {
+    return "  0    ok\n"
+           "  1    the job ran and failed (script error, failed evaluation)\n"
+           "  2    bad command line\n"
+           "  3    bad profile, plugin or input file\n"
+           "  4    a device failed or stopped answering\n"
+           "  5    a file could not be read or written (disk full, read-only, permission)\n"
+           "  130  interrupted (Ctrl-C, emergency stop, --time-limit)\n";
+}
+
 bool Args::wants_help() const {
     for (const auto& a : args_)
         if (a == "--help" || a == "-h") return true;

@@ -15,17 +15,31 @@
 #include <string_view>
 #include <vector>
 
+#include "rollsense/status.hpp"
+
 namespace rollsense::cli {
 
-// Exit codes shared by every subcommand (documented in `rollsense --help`).
+// Exit codes shared by every subcommand. exit_code_table() is the one text
+// of them, printed by `rollsense --help` and copied into README.md (a test
+// compares the two).
 enum ExitCode : int {
     kExitOk = 0,
     kExitFailure = 1,      // the job ran and failed (a script error, a failed test of the data)
     kExitUsage = 2,        // bad command line
     kExitConfig = 3,       // a profile, plugin or input file is wrong
     kExitHardware = 4,     // a device failed or stopped answering
-    kExitCancelled = 130,  // interrupted (Ctrl-C, emergency stop)
+    kExitIo = 5,           // a file could not be read or written (disk full, read-only, permission)
+    kExitCancelled = 130,  // interrupted (Ctrl-C, emergency stop, time limit)
 };
+
+// The exit code for a failed Status: io_error → kExitIo, device errors →
+// kExitHardware, not_found/parse_error/plugin_error → kExitConfig, cancelled →
+// kExitCancelled; any other code → `fallback` (the command knows best whether
+// e.g. an invalid_argument came from its input file or from the job).
+int exit_code_for(ErrorCode code, int fallback = kExitFailure);
+
+// "code  meaning" lines, one per ExitCode.
+std::string exit_code_table();
 
 struct Command {
     std::string name;

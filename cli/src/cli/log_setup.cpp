@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <string>
 
 #include "rollsense/log.hpp"
 
@@ -15,20 +16,19 @@ void setup_logging(const Args& args) {
         set_log_level(LogLevel::warning);
     else
         set_log_level(LogLevel::info);
-    const bool color = ::isatty(STDERR_FILENO) != 0;
-    set_log_sink([color](LogLevel level, std::string_view source, std::string_view message) {
+    // Decided once: colour only on a terminal that wants it, so pipes, log
+    // files and NO_COLOR users never see escape codes.
+    const bool colour = colour_allowed(STDERR_FILENO);
+    set_log_sink([colour](LogLevel level, std::string_view source, std::string_view message) {
         const char* tint = "";
-        if (color) tint = level == LogLevel::error ? "\033[31m" : level == LogLevel::warning ? "\033[33m" : "";
-        std::fprintf(stderr, "%s%-7.*s\033[0m %.*s: %.*s\n", tint, static_cast<int>(to_string(level).size()),
-                     to_string(level).data(), static_cast<int>(source.size()), source.data(),
-                     static_cast<int>(message.size()), message.data());
+        if (colour) tint = level == LogLevel::error ? "\033[31m" : level == LogLevel::warning ? "\033[33m" : "";
+        const char* reset = *tint ? "\033[0m" : "";
+        const std::string stamp = log_time() ? log_timestamp() + " " : std::string();
+        std::fprintf(stderr, "%s%s%-7.*s%s %.*s: %.*s\n", stamp.c_str(), tint,
+                     static_cast<int>(to_string(level).size()), to_string(level).data(), reset,
+                     static_cast<int>(source.size()), source.data(), static_cast<int>(message.size()),
+                     message.data());
     });
-    if (!color)  // no escape codes in logs and pipes
-        set_log_sink([](LogLevel level, std::string_view source, std::string_view message) {
-            std::fprintf(stderr, "%-7.*s %.*s: %.*s\n", static_cast<int>(to_string(level).size()),
-                         to_string(level).data(), static_cast<int>(source.size()), source.data(),
-                         static_cast<int>(message.size()), message.data());
-        });
 }
 
 }  // namespace rollsense::cli

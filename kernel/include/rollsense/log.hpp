@@ -22,6 +22,18 @@ ROLLSENSE_API LogSink set_log_sink(LogSink sink);
 ROLLSENSE_API void set_log_level(LogLevel level);
 ROLLSENSE_API LogLevel log_level();
 
+// Whether sinks start each line with the wall-clock time (`--log-time`); off
+// by default so that logs of deterministic runs compare equal.
+ROLLSENSE_API void set_log_time(bool on);
+ROLLSENSE_API bool log_time();
+// Now as "2026-11-24T23:59:01.123Z" (UTC, milliseconds): sortable, and
+// unambiguous across time zones and daylight saving.
+ROLLSENSE_API std::string log_timestamp();
+
+// Whether output to `fd` may carry ANSI colour: a terminal, NO_COLOR unset or
+// empty (https://no-color.org) and TERM not "dumb".
+ROLLSENSE_API bool colour_allowed(int fd);
+
 ROLLSENSE_API void log(LogLevel level, std::string_view source, std::string_view message);
 inline void log_debug(std::string_view src, std::string_view msg) { log(LogLevel::debug, src, msg); }
 inline void log_info(std::string_view src, std::string_view msg) { log(LogLevel::info, src, msg); }

@@ -173,11 +173,13 @@ Status Session::spawn(lua_State* L, int function_index, std::string name) {
 
 // However the script ended: stop the hand first if it failed, then let the
 // script's cleanup functions tidy up, on a fresh cancellation and time budget.
-// Their errors are logged; the run's status stays the script's.
+// Their errors are logged; the run's status stays the script's. The script's
+// own failure is not logged here: it is the run's status, which the caller
+// prints (once) with its exit code.
 void Session::run_cleanup() {
     if (!sandbox_) return;
     if (!scheduler_->failure().ok()) {
-        log_error("kernel", scheduler_->failure().message());
+        log_debug("kernel", "the script failed: hand to its safe state, then the cleanup functions");
         robot_->safe_state(now());
     }
     recorder_->abort_recording();

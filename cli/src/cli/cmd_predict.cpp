@@ -1,0 +1,388 @@
+// rollsense predict MODEL (TRIAL.csv | DATASET): classify recordings with a
+// saved model, computing each trial's input with the code training used, and
+// say when the input is unlike what the model was trained on.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/command.hpp"
+#include "cli/log_setup.hpp"
+#include "cli/paths.hpp"
+#include "analysis/learn/json_writer.hpp"
+#include "analysis/learn/plugin_factory.hpp"
+#include "analysis/series/series_table.hpp"
+#include "rollsense/csv.hpp"
+#include "rollsense/dataset.hpp"
+#include "rollsense/features.hpp"
+
+namespace rollsense::cli {
+
+features::FeatureSettings feature_settings_from_args(const Args& args);  // cmd_features.cpp
+const std::vector<std::string>& feature_option_names();
+const std::vector<std::string>& feature_flag_names();
+
+namespace {
+namespace fs = std::filesystem;
+
+const char* kHelp = R"(usage: rollsense predict MODEL (TRIAL.csv | DATASET) [options]
+
+Classify recordings with a saved model (model.rsm of a stock run, or the file
+of 'rollsense train'). Each trial's input is computed as in training: the 13
+features (the feature options below must be those of training; the defaults
+are), or the prepared series for a classifier that takes series. A trial whose
+peaks are not clean gets no decision, with the reason.
+
+TRIAL.csv must lie in a dataset's trials/ folder (its dataset-info.csv names
+the channels and the sample rate); DATASET classifies every trial of a dataset.
+
+Warnings say when a trial is unlike the training data: another channel set or
+sample rate than the training dataset's, a feature outside the range seen in
+training, or a recorded object that is not a class of the model. The model file
+holds none of these, so they come from the training run's dataset-info.csv and
+features.csv, looked for beside MODEL (a stock run's output folder) or in
+--training DIR; what cannot be checked is said once on stderr.
+
+options:
+  --classifier NAME  the plugin that reads MODEL; default: the one the model
+                     file names in its first word (rollsense-bagged-trees →
+                     bagged_trees)
+  --json             print a JSON array, one object per trial:
+                     {trial_id, object, class, scores, reason, warnings}
+  --training DIR     folder with the training run's dataset-info.csv and
+                     features.csv (default: MODEL's folder)
+  --plugin-path DIR  search classifier plugins here first (repeatable)
+  plus the feature options of 'rollsense features')";
+
+// A trial's outcome. `cls` empty = no decision (then `reason` says why).
+struct Outcome {
+    std::string trial_id, object, cls, reason;
+    std::vector<double> scores;
+    std::vector<std::string> warnings;
+};
+
+// What is known about the training data.
+struct TrainingDescription {
+    fs::path dir;
+    std::optional<DatasetInfo> info;  // dataset-info.csv
+    // Per feature, min and max over the clean training trials (features.csv).
+    std::optional<std::array<std::pair<double, double>, features::kFeatureCount>> range;
+    std::vector<std::string> missing;  // what could not be found, for the note on stderr
+};
+
+// The model file's own header: its first word and any "channel NAME" /
+// "series_length N" lines (series models record their input).
+struct ModelHeader {
+    std::string magic;
+    std::vector<std::string> channels;
+    std::size_t series_length = 0;
+};
+
+Result<ModelHeader> read_model_header(const fs::path& model) {
+    std::error_code ec;
+    if (!fs::exists(model, ec))
+        return Error{ErrorCode::not_found, model.string() + ": no such model file (write one with 'rollsense train ... "
+                                                            "-o MODEL' or a stock run's rs.analyse)"};
+    std::ifstream in(model, std::ios::binary);
+    if (!in) return Error{ErrorCode::io_error, model.string() + ": cannot be opened for reading (check permissions)"};
+    ModelHeader h;
+    std::string line;
+    std::getline(in, line);
+    h.magic = line.substr(0, line.find(' '));
+    // The header is short; stop before the numeric body of a large model.
+    for (int n = 0; n < 10000 && std::getline(in, line); ++n) {
+        if (line.rfind("channel ", 0) == 0) h.channels.push_back(line.substr(8));
+        if (line.rfind("series_length ", 0) == 0) {
+            auto v = csv::parse_unsigned(line.substr(14), 1u << 24, "series_length");
+            if (v) h.series_length = static_cast<std::size_t>(*v);
+        }
+    }
+    return h;
+}
+
+// "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names.
+Result<std::string> plugin_from_magic(const ModelHeader& h, const fs::path& model) {
+    const std::string prefix = "rollsense-";
+    if (h.magic.rfind(prefix, 0) != 0 || h.magic.size() == prefix.size())
+        return Error{ErrorCode::parse_error, model.string() + ":1: the file does not name its classifier (expected "
+                                                              "'rollsense-<plugin> <version>'); give --classifier NAME"};
+    std::string name = h.magic.substr(prefix.size());
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+}
+
+TrainingDescription describe_training(const fs::path& dir) {
+    TrainingDescription t;
+    t.dir = dir;
+    std::error_code ec;
+    if (fs::exists(dir / "dataset-info.csv", ec)) {
+        if (auto ds = DatasetReader::open(dir)) t.info = ds->info();
+        else t.missing.push_back("dataset-info.csv unreadable (" + ds.error().message + ")");
+    } else {
+        t.missing.push_back("no dataset-info.csv (channel set and sample rate not checked)");
+    }
+    if (fs::exists(dir / "features.csv", ec)) {
+        auto rows = features::read_features_csv(dir / "features.csv");
+        if (rows) {
+            std::array<std::pair<double, double>, features::kFeatureCount> r;
+            r.fill({INFINITY, -INFINITY});
+            bool any = false;
+            for (const auto& row : *rows) {
+                if (!row.clean) continue;
+                any = true;
+                for (std::size_t f = 0; f < features::kFeatureCount; ++f) {
+                    r[f].first = std::min(r[f].first, row.values[f]);
+                    r[f].second = std::max(r[f].second, row.values[f]);
+                }
+            }
+            if (any) t.range = r;
+            else t.missing.push_back("features.csv has no clean trial (feature ranges not checked)");
+        } else {
+            t.missing.push_back("features.csv unreadable (" + rows.error().message + ")");
+        }
+    } else {
+        t.missing.push_back("no features.csv (feature ranges not checked)");
+    }
+    return t;
+}
+
+std::string join(const std::vector<std::string>& v, const char* sep) {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
+    return out;
+}
+
+// Warnings that hold for every trial of the input: channels and sample rate.
+std::vector<std::string> dataset_warnings(const DatasetInfo& input, const TrainingDescription& t,
+                                          const ModelHeader& h) {
+    std::vector<std::string> w;
+    const std::vector<std::string>* trained = t.info ? &t.info->channels : (h.channels.empty() ? nullptr : &h.channels);
+    if (trained && *trained != input.channels)
+        w.push_back("channel set " + join(input.channels, ",") + " differs from training's " + join(*trained, ","));
+    if (t.info && std::abs(input.sample_rate_hz - t.info->sample_rate_hz) > 0.01 * t.info->sample_rate_hz)
+        w.push_back("sample rate " + csv::format_number(input.sample_rate_hz) + " Hz differs from training's " +
+                    csv::format_number(t.info->sample_rate_hz) + " Hz");
+    return w;
+}
+
+void range_warnings(const std::array<double, features::kFeatureCount>& x, const TrainingDescription& t,
+                    std::vector<std::string>& w) {
+    if (!t.range) return;
+    for (std::size_t f = 0; f < features::kFeatureCount; ++f) {
+        const auto [lo, hi] = (*t.range)[f];
+        if (x[f] < lo || x[f] > hi)
+            w.push_back(features::feature_names()[f] + " = " + csv::format_number(x[f]) +
+                        " outside the training range [" + csv::format_number(lo) + ", " + csv::format_number(hi) +
+                        "]");
+    }
+}
+
+void decide(const Classifier& clf, std::span<const double> input, Outcome& o) {
+    auto p = clf.predict(input);
+    if (!p) {
+        o.reason = "the classifier failed: " + p.error().describe();
+        return;
+    }
+    o.cls = p->class_name;
+    o.scores = p->scores;
+}
+
+// The trials to classify: a whole dataset, or one file of a dataset's trials/.
+struct Input {
+    DatasetReader dataset;
+    std::vector<TrialRecord> trials;
+};
+
+Result<Input> open_input(const fs::path& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+        auto ds = DatasetReader::open(path);
+        if (!ds) return ds.error();
+        std::vector<TrialRecord> trials = ds->trials();
+        return Input{std::move(ds).value(), std::move(trials)};
+    }
+    if (!fs::exists(path, ec)) return Error{ErrorCode::not_found, path.string() + ": no such trial file or dataset"};
+    const fs::path dir = fs::absolute(path).parent_path().parent_path();
+    if (fs::absolute(path).parent_path().filename() != "trials" || !fs::exists(dir / "dataset-info.csv", ec))
+        return Error{ErrorCode::not_found,
+                     path.string() + ": a trial file must lie in a dataset's trials/ folder (its dataset-info.csv "
+                                     "names the channels and the sample rate); copy the whole dataset folder"};
+    auto ds = DatasetReader::open(dir);
+    if (!ds) return ds.error();
+    const std::string rel = "trials/" + path.filename().string();
+    TrialRecord record;
+    record.file = rel;
+    record.info.id = path.stem().string();
+    for (const auto& t : ds->trials())
+        if (t.file == rel) record = t;  // listed in the manifest: its object is known
+    return Input{std::move(ds).value(), {record}};
+}
+
+std::vector<Outcome> predict_features(const Classifier& clf, const Input& in, const features::FeatureSettings& fs_,
+                                      const TrainingDescription& t) {
+    std::vector<Outcome> out;
+    features::FeatureExtractor extractor(fs_);
+    for (const auto& rec : in.trials) {
+        Outcome o{rec.info.id, rec.info.object, {}, {}, {}, {}};
+        auto data = in.dataset.load(rec);
+        if (!data) {
+            o.reason = data.error().describe();
+        } else if (data->channels.size() < features::kChannels) {
+            o.reason = "the trial has " + std::to_string(data->channels.size()) + " channels, the features need 3";
+        } else {
+            // The rule of features::extract_dataset: the first three sensor channels.
+            std::vector<std::vector<double>> ch(data->channels.begin(), data->channels.begin() + features::kChannels);
+            auto f = extractor.extract(ch, data->time);
+            if (!f) o.reason = f.error().describe();
+            else if (!f->clean) o.reason = "no clean peaks: " + f->reason;
+            else {
+                range_warnings(f->values, t, o.warnings);
+                decide(clf, f->values, o);
+            }
+        }
+        out.push_back(std::move(o));
+    }
+    return out;
+}
+
+Result<std::vector<Outcome>> predict_series(const Classifier& clf, const Input& in, const ModelHeader& h) {
+    series::SeriesSettings settings;
+    if (h.series_length > 0) settings.length = h.series_length;
+    const std::vector<std::string> channels = h.channels.empty() ? in.dataset.info().channels : h.channels;
+    auto table = series::series_table(in.dataset, in.trials, channels, settings, 1);
+    if (!table) return table.error();
+    std::vector<Outcome> out;
+    for (const auto& rec : in.trials) out.push_back({rec.info.id, rec.info.object, {}, {}, {}, {}});
+    auto find = [&out](const std::string& id) -> Outcome& {
+        return *std::find_if(out.begin(), out.end(), [&](const Outcome& o) { return o.trial_id == id; });
+    };
+    for (std::size_t r = 0; r < table->trial_ids.size(); ++r) decide(clf, table->table.row(r), find(table->trial_ids[r]));
+    for (const auto& refused : table->refused) find(refused.trial_id).reason = "series refused: " + refused.reason;
+    return out;
+}
+
+void print_text(const std::vector<Outcome>& outcomes, const std::vector<std::string>& classes) {
+    std::printf("%-22s %-10s %-10s %6s  %s\n", "trial", "recorded", "class", "score", "runner-up");
+    for (const auto& o : outcomes) {
+        if (o.cls.empty()) {
+            std::printf("%-22s %-10s %-10s %6s  %s\n", o.trial_id.c_str(), o.object.c_str(), "-", "-",
+                        ("no decision: " + o.reason).c_str());
+        } else {
+            std::vector<std::size_t> order(o.scores.size());
+            for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+            std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return o.scores[a] > o.scores[b]; });
+            const std::size_t top = order.empty() ? 0 : order[0];
+            std::string runner;
+            if (order.size() > 1 && order[1] < classes.size())
+                runner = classes[order[1]] + " " + csv::format_number(std::round(o.scores[order[1]] * 1000) / 1000);
+            std::printf("%-22s %-10s %-10s %6.3f  %s\n", o.trial_id.c_str(), o.object.c_str(), o.cls.c_str(),
+                        top < o.scores.size() ? o.scores[top] : 0.0, runner.c_str());
+        }
+        for (const auto& w : o.warnings) std::printf("  warning: %s\n", w.c_str());
+    }
+}
+
+void print_json(const std::vector<Outcome>& outcomes, const std::vector<std::string>& classes) {
+    learn::JsonWriter j;
+    j.begin_array();
+    for (const auto& o : outcomes) {
+        j.begin_object().key("trial_id").value(o.trial_id).key("object");
+        if (o.object.empty()) j.null(); else j.value(o.object);
+        j.key("class");
+        if (o.cls.empty()) j.null(); else j.value(o.cls);
+        j.key("scores").begin_object();
+        for (std::size_t i = 0; i < o.scores.size() && i < classes.size(); ++i) j.key(classes[i]).value(o.scores[i]);
+        j.end_object().key("reason");
+        if (o.reason.empty()) j.null(); else j.value(o.reason);
+        j.key("warnings").begin_array();
+        for (const auto& w : o.warnings) j.value(w);
+        j.end_array().end_object();
+    }
+    j.end_array();
+    std::printf("%s\n", j.str().c_str());
+}
+
+int run(const std::vector<std::string>& argv) {
+    Args args(argv);
+    std::vector<std::string> known = feature_option_names();
+    known.insert(known.end(), feature_flag_names().begin(), feature_flag_names().end());
+    for (const char* k : {"--classifier", "--json", "--training", "--plugin-path", "-v", "--verbose", "-q", "--quiet"})
+        known.emplace_back(k);
+    args.reject_unknown(known);
+    setup_logging(args);
+    std::vector<std::string> valued = feature_option_names();
+    valued.insert(valued.end(), {"--classifier", "--training", "--plugin-path"});
+    const auto pos = args.positionals(valued);
+    if (pos.size() != 2) throw UsageError("expects MODEL and a TRIAL.csv or DATASET (see rollsense predict --help)");
+    const fs::path model = pos[0];
+    const auto settings = feature_settings_from_args(args);
+    auto fail = [](const Error& e, int fallback) {
+        std::fprintf(stderr, "rollsense predict: %s\n", e.describe().c_str());
+        return exit_code_for(e.code, fallback);
+    };
+
+    auto header = read_model_header(model);
+    if (!header) return fail(header.error(), kExitConfig);
+    std::string plugin = args.option("--classifier");
+    const bool inferred = plugin.empty();
+    if (inferred) {
+        auto named = plugin_from_magic(*header, model);
+        if (!named) return fail(named.error(), kExitConfig);
+        plugin = *named;
+    }
+    std::vector<fs::path> extra;
+    for (const auto& p : args.options("--plugin-path")) extra.emplace_back(p);
+    runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(extra));
+    auto factory = learn::plugin_classifier_factory(registry, plugin);
+    if (!factory) {
+        Error e = factory.error();
+        if (inferred) e.message += " (the plugin named by " + model.string() + "'s first line; give --classifier NAME)";
+        return fail(e, kExitConfig);
+    }
+    auto clf = (*factory)(ParamSet{});
+    if (!clf) return fail(clf.error(), kExitConfig);
+    if (auto st = (*clf)->load(model); !st) return fail(Status(st).with_context("classifier '" + plugin + "'").error(), kExitConfig);
+    const auto classes = (*clf)->class_names();
+
+    auto input = open_input(pos[1]);
+    if (!input) return fail(input.error(), kExitConfig);
+
+    const fs::path training_dir = args.option("--training").empty() ? fs::absolute(model).parent_path()
+                                                                     : fs::path(args.option("--training"));
+    const TrainingDescription training = describe_training(training_dir);
+    if (!training.missing.empty())
+        std::fprintf(stderr, "rollsense predict: not checked against the training data, in %s: %s\n",
+                     training_dir.c_str(), join(training.missing, "; ").c_str());
+
+    std::vector<Outcome> outcomes;
+    if ((*clf)->input() == ClassifierInput::series) {
+        auto s = predict_series(**clf, *input, *header);
+        if (!s) return fail(s.error(), kExitConfig);
+        outcomes = std::move(s).value();
+        if (!header->channels.empty() || header->series_length)
+            std::fprintf(stderr, "rollsense predict: series prepared with the model's channels and length and the "
+                                 "default rule of docs/series-preparation.md (the model does not store other settings)\n");
+    } else {
+        outcomes = predict_features(**clf, *input, settings, training);
+    }
+    const auto common = dataset_warnings(input->dataset.info(), training, *header);
+    for (auto& o : outcomes) {
+        o.warnings.insert(o.warnings.begin(), common.begin(), common.end());
+        if (!o.object.empty() && std::find(classes.begin(), classes.end(), o.object) == classes.end())
+            o.warnings.push_back("recorded object '" + o.object + "' is not a class of the model (" +
+                                 join(classes, ", ") + "): the answer can only be one of those");
+    }
+    if (args.flag("--json")) print_json(outcomes, classes);
+    else print_text(outcomes, classes);
+    return kExitOk;
+}
+
+const Registration reg{{"predict", "classify a trial or a dataset with a saved model", kHelp, &run}};
+
+}  // namespace
+}  // namespace rollsense::cli

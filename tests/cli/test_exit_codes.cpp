@@ -1,0 +1,92 @@
+// Exit codes: one table, the same in README.md and `rollsense --help`, and the
+// codes the program really returns for each kind of failure.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "cli_helpers.hpp"
+
+namespace {
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+// (code, meaning) rows of the README's "### Exit codes" table.
+std::vector<std::pair<std::string, std::string>> readme_table() {
+    std::istringstream in(read_file(fs::path(ROLLSENSE_SOURCE_DIR) / "README.md"));
+    std::vector<std::pair<std::string, std::string>> rows;
+    bool inside = false;
+    const std::regex row(R"(^\| (\d+) \| (.+) \|$)");
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("### Exit codes", 0) == 0) inside = true;
+        else if (inside && line.rfind("#", 0) == 0) break;
+        std::smatch m;
+        if (inside && std::regex_match(line, m, row)) rows.emplace_back(m[1], m[2]);
+    }
+    return rows;
+}
+
+// (code, meaning) lines after "exit codes:" in `rollsense --help`.
+std::vector<std::pair<std::string, std::string>> help_table(const std::string& help) {
+    std::vector<std::pair<std::string, std::string>> rows;
+    const auto at = help.find("\nexit codes:\n");
+    REQUIRE(at != std::string::npos);
+    std::istringstream in(help.substr(at + 13));
+    const std::regex row(R"(^  (\d+) +(.+)$)");
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (!std::regex_match(line, m, row)) break;
+        rows.emplace_back(m[1], m[2]);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("the README's exit-code table is the one `rollsense --help` prints") {
+    const auto help = run_rollsense("--help");
+    REQUIRE(help.status == 0);
+    const auto printed = help_table(help.output);
+    const auto documented = readme_table();
+    REQUIRE(printed.size() >= 7);
+    CHECK(documented == printed);
+    // I/O errors have a code of their own, not "hardware".
+    bool io = false;
+    for (const auto& [code, meaning] : printed) io = io || (code == "5" && meaning.find("disk full") != std::string::npos);
+    CHECK(io);
+}
+
+TEST_CASE("a disk that refuses writes exits 5, not 4 (hardware)") {
+    TempDir dir("rollsense-cli-io");
+    // A file-size limit of 0 makes every write fail (EFBIG) the way a full
+    // disk does (ENOSPC); SIGXFSZ is ignored so the write returns the error.
+    const auto r = run_command("trap '' XFSZ; ulimit -f 0; " + rollsense_bin() + " run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile mock --out " +
+                               shell_quoted(dir / "out") + " --no-progress");
+    INFO(r.output);
+    CHECK(r.status == 5);
+    CHECK(r.output.find("I/O error") != std::string::npos);
+}
+
+TEST_CASE("an output folder under a regular file is an I/O error (5), named") {
+    TempDir dir("rollsense-cli-io");
+    write_file(dir / "file", "x");
+    const auto r = run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile mock --no-progress --out " + shell_quoted(dir / "file" / "out"));
+    INFO(r.output);
+    CHECK(r.status == 5);
+    CHECK(r.output.find((dir / "file").string()) != std::string::npos);
+}
+
+TEST_CASE("other failures keep their codes") {
+    TempDir dir("rollsense-cli-codes");
+    CHECK(run_rollsense("").status == 2);
+    CHECK(run_rollsense("nosuch").status == 2);
+    CHECK(run_rollsense("run").status == 2);
+    CHECK(run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --bogus").status == 2);
+    CHECK(run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile nosuch --out " + shell_quoted(dir / "a")).status == 3);
+    write_file(dir / "fail.lua", "error('the script gives up')\n");
+    CHECK(run_rollsense("run " + shell_quoted(dir / "fail.lua") + " --profile mock --out " + shell_quoted(dir / "b")).status == 1);
+    write_file(dir / "slow.lua", "local rs = require 'rollsense'\nrs.wait(60000)\n");
+    CHECK(run_rollsense("run " + shell_quoted(dir / "slow.lua") + " --profile mock --time-limit 1 --out " + shell_quoted(dir / "c"))
+              .status == 130);
+}

@@ -1,0 +1,94 @@
+// What the program prints: `help CMD`, each error once, colour only where
+// wanted, --log-time.
+#include <catch2/catch.hpp>
+
+#include <regex>
+
+#include "cli_helpers.hpp"
+
+using namespace rollsense::testing;
+
+TEST_CASE("`rollsense help CMD` prints what `rollsense CMD --help` prints") {
+    for (const char* cmd : {"run", "features", "train", "predict", "evaluate"}) {
+        INFO(cmd);
+        const auto a = run_rollsense(std::string("help ") + cmd);
+        const auto b = run_rollsense(std::string(cmd) + " --help");
+        CHECK(a.status == 0);
+        CHECK(b.status == 0);
+        CHECK(a.output == b.output);
+        CHECK(a.output.find(std::string("usage: rollsense ") + cmd) != std::string::npos);
+    }
+    const auto unknown = run_rollsense("help nosuch");
+    CHECK(unknown.status == 2);
+    CHECK(unknown.output.find("unknown command 'nosuch'") != std::string::npos);
+    CHECK(run_rollsense("help").status == 0);
+}
+
+TEST_CASE("a failed script's error is printed once") {
+    TempDir dir("rollsense-cli-once");
+    write_file(dir / "fail.lua", "error('unmistakable failure text')\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "fail.lua") + " --profile mock --out " + shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(count_of(r.output, "unmistakable failure text") == 1);
+    // ...with where it happened
+    CHECK(r.output.find("fail.lua:1:") != std::string::npos);
+}
+
+TEST_CASE("a failure inside a C++ call from the script is printed once") {
+    TempDir dir("rollsense-cli-once");
+    write_file(dir / "bad_joint.lua", "local rs = require 'rollsense'\nrs.joint('no_such_joint_here')\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "bad_joint.lua") + " --profile mock --out " + shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status != 0);
+    CHECK(count_of(r.output, "no_such_joint_here") == 1);
+}
+
+TEST_CASE("log lines are coloured on a terminal, and not with NO_COLOR or off a terminal") {
+    TempDir dir("rollsense-cli-colour");
+    write_file(dir / "warn.lua", "local rs = require 'rollsense'\nrs.warn('a warning line')\nerror('and an error')\n");
+    int n = 0;  // a fresh output folder for every run
+    auto args_for = [&] {
+        return std::vector<std::string>{"run",   (dir / "warn.lua").string(), "--profile", "mock", "--no-progress",
+                                        "--out", (dir / ("out" + std::to_string(n++))).string()};
+    };
+    auto args = args_for();
+    const auto coloured = run_on_terminal(args, {"NO_COLOR=", "TERM=xterm"});
+    INFO(coloured.output);
+    CHECK(coloured.output.find("a warning line") != std::string::npos);
+    CHECK(coloured.output.find("\033[") != std::string::npos);
+
+    args = args_for();
+    const auto plain = run_on_terminal(args, {"NO_COLOR=1", "TERM=xterm"});
+    INFO(plain.output);
+    CHECK(plain.output.find("a warning line") != std::string::npos);
+    CHECK(plain.output.find('\033') == std::string::npos);
+
+    args = args_for();
+    const auto dumb = run_on_terminal(args, {"NO_COLOR=", "TERM=dumb"});
+    CHECK(dumb.output.find('\033') == std::string::npos);
+
+    args = args_for();
+    std::string piped_cmd = "env -u NO_COLOR " + rollsense_bin();
+    for (std::size_t i = 0; i < args.size(); ++i) piped_cmd += " " + shell_quoted(args[i]);
+    const auto piped = run_command(piped_cmd);
+    CHECK(piped.output.find("a warning line") != std::string::npos);
+    CHECK(piped.output.find('\033') == std::string::npos);
+}
+
+TEST_CASE("the global option log-time starts every log line with the UTC time, before or after the command") {
+    TempDir dir("rollsense-cli-time");
+    write_file(dir / "warn.lua", "local rs = require 'rollsense'\nrs.warn('timed warning')\n");
+    const std::string script = shell_quoted(dir / "warn.lua");
+    const std::regex stamped(R"((^|\n)\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z warning +\S+: timed warning)");
+    for (const std::string& args :
+         {"--log-time run " + script + " --profile mock --out " + shell_quoted(dir / "a"),
+          "run " + script + " --profile mock --out " + shell_quoted(dir / "b") + " --log-time"}) {
+        const auto r = run_rollsense(args);
+        INFO(r.output);
+        CHECK(r.status == 0);
+        CHECK(std::regex_search(r.output, stamped));
+    }
+    const auto plain = run_rollsense("run " + script + " --profile mock --out " + shell_quoted(dir / "c"));
+    CHECK_FALSE(std::regex_search(plain.output, std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d)")));
+}

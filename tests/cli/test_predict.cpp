@@ -1,0 +1,164 @@
+// `rollsense predict` end to end on a tiny stock run (runs=1, seed 11):
+// record, extract features, train, then classify the recordings, a single
+// trial file, a trial without clean peaks and trials unlike the training data.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "cli_helpers.hpp"
+
+namespace {
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+// The run, its features.csv and model trained.rsm, made once for every test
+// case of this file (built in a temporary folder, then renamed into place, so
+// parallel test processes never see half of it).
+fs::path fixture() {
+    const fs::path done = fs::path(ROLLSENSE_BINARY_DIR) / "tests" / "cli-predict-run11";
+    std::error_code ec;
+    if (fs::exists(done / "trained.rsm", ec)) return done;
+    TempDir work("rollsense-cli-predict");
+    const fs::path run = work / "run";
+    const auto rec = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua") + " --set runs=1 --set analyse=false --seed 11 --no-progress -q --out " +
+                                   shell_quoted(run));
+    INFO(rec.output);
+    REQUIRE(rec.status == 0);
+    REQUIRE(run_rollsense("features " + shell_quoted(run) + " -o " + shell_quoted(run / "features.csv")).status == 0);
+    const auto train = run_rollsense("train " + shell_quoted(run / "features.csv") + " -o " + shell_quoted(run / "trained.rsm"));
+    INFO(train.output);
+    REQUIRE(train.status == 0);
+    fs::create_directories(done.parent_path());
+    fs::rename(run, done, ec);  // another process may have won the race: either copy is the same
+    return done;
+}
+
+// A copy of the run's dataset (no model, no features) to alter.
+fs::path copy_dataset(const fs::path& from, const fs::path& to) {
+    fs::create_directories(to / "trials");
+    for (const char* f : {"dataset-info.csv", "manifest.csv"}) fs::copy_file(from / f, to / f);
+    for (const auto& e : fs::directory_iterator(from / "trials")) fs::copy_file(e.path(), to / "trials" / e.path().filename());
+    return to;
+}
+
+// Multiplies the channel columns (1..3) of a trial file by `factor`.
+void scale_channels(const fs::path& trial, double factor) {
+    std::istringstream in(read_file(trial));
+    std::string out, line;
+    std::getline(in, line);
+    out += line + "\n";
+    while (std::getline(in, line)) {
+        std::vector<std::string> f;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, ',');) f.push_back(c);
+        for (std::size_t c = 1; c <= 3 && c < f.size(); ++c) {
+            std::ostringstream v;
+            v.precision(9);
+            v << std::stod(f[c]) * factor;
+            f[c] = v.str();
+        }
+        for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + f[i];
+        out += "\n";
+    }
+    write_file(trial, out);
+}
+
+std::size_t manifest_trials(const fs::path& dataset) {
+    std::istringstream in(read_file(dataset / "manifest.csv"));
+    std::size_t n = 0;
+    for (std::string l; std::getline(in, l);) n += !l.empty();
+    return n - 1;
+}
+
+}  // namespace
+
+TEST_CASE("predict classifies every trial of a dataset with the trained model") {
+    const fs::path run = fixture();
+    const auto r = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("trial") == 0);
+    CHECK(r.output.find("C1-v10-r001") != std::string::npos);
+    // Trained on these very trials and checked against them: no warning.
+    CHECK(r.output.find("warning") == std::string::npos);
+    CHECK(r.output.find("not checked") == std::string::npos);
+
+    const auto j = run_rollsense("predict --json " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run) + " 2>/dev/null");
+    REQUIRE(j.status == 0);
+    CHECK(j.output.front() == '[');
+    CHECK(count_of(j.output, "\"trial_id\"") == manifest_trials(run));
+    CHECK(count_of(j.output, "\"warnings\": []") == manifest_trials(run));
+    // Scores name the model's classes.
+    CHECK(std::regex_search(j.output, std::regex(R"("scores": \{\s*"C1": )")));
+}
+
+TEST_CASE("predict takes one trial file, and a trial without clean peaks gets no decision with the reason") {
+    const fs::path run = fixture();
+    TempDir dir("rollsense-cli-predict");
+    const fs::path ds = copy_dataset(run, dir / "ds");
+    const auto one = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(ds / "trials" / "C2-v15-r001.csv"));
+    INFO(one.output);
+    REQUIRE(one.status == 0);
+    CHECK(count_of(one.output, "-v") == 1);  // the one trial only
+    CHECK(one.output.find("C2-v15-r001") != std::string::npos);
+
+    scale_channels(ds / "trials" / "C2-v15-r001.csv", 0.0);
+    const auto flat = run_rollsense("predict --json " + shell_quoted(run / "trained.rsm") + " " +
+                                    shell_quoted(ds / "trials" / "C2-v15-r001.csv"));
+    INFO(flat.output);
+    REQUIRE(flat.status == 0);
+    CHECK(flat.output.find("\"class\": null") != std::string::npos);
+    CHECK(flat.output.find("low_amplitude") != std::string::npos);
+}
+
+TEST_CASE("predict warns when the input is unlike the training data") {
+    const fs::path run = fixture();
+    TempDir dir("rollsense-cli-predict");
+    const fs::path ds = copy_dataset(run, dir / "ds");
+    // Another sample rate...
+    std::string info = read_file(ds / "dataset-info.csv");
+    info = std::regex_replace(info, std::regex("sample_rate_hz,[0-9.]+"), "sample_rate_hz,100");
+    write_file(ds / "dataset-info.csv", info);
+    // ...and ten times the pressure: amplitude features far outside training's.
+    scale_channels(ds / "trials" / "C1-v10-r001.csv", 10.0);
+    const auto r = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(ds / "trials" / "C1-v10-r001.csv"));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(r.output.find("warning: sample rate 100 Hz differs from training's 31.1 Hz") != std::string::npos);
+    CHECK(r.output.find("outside the training range") != std::string::npos);
+
+    // Without the training run's files beside the model, what is not checked is said.
+    fs::copy_file(run / "trained.rsm", dir / "alone.rsm");
+    const auto alone = run_rollsense("predict " + shell_quoted(dir / "alone.rsm") + " " + shell_quoted(run));
+    CHECK(alone.status == 0);
+    CHECK(alone.output.find("not checked against the training data") != std::string::npos);
+    CHECK(alone.output.find("feature ranges not checked") != std::string::npos);
+    // --training names them.
+    const auto named = run_rollsense("predict --training " + shell_quoted(run) + " " + shell_quoted(dir / "alone.rsm") + " " + shell_quoted(run));
+    CHECK(named.output.find("not checked") == std::string::npos);
+}
+
+TEST_CASE("predict's errors name the model, the plugin and the way out") {
+    const fs::path run = fixture();
+    TempDir dir("rollsense-cli-predict");
+    const auto missing = run_rollsense("predict " + shell_quoted(dir / "none.rsm") + " " + shell_quoted(run));
+    CHECK(missing.status == 3);
+    CHECK(missing.output.find("none.rsm: no such model file") != std::string::npos);
+
+    write_file(dir / "odd.rsm", "something else\n");
+    const auto odd = run_rollsense("predict " + shell_quoted(dir / "odd.rsm") + " " + shell_quoted(run));
+    CHECK(odd.status == 3);
+    CHECK(odd.output.find("--classifier") != std::string::npos);
+
+    const auto wrong = run_rollsense("predict --classifier no_such_plugin " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run));
+    CHECK(wrong.status == 3);
+    CHECK(wrong.output.find("no_such_plugin") != std::string::npos);
+
+    const auto not_trial = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run / "features.csv"));
+    CHECK(not_trial.status == 3);
+    CHECK(not_trial.output.find("trials/ folder") != std::string::npos);
+
+    CHECK(run_rollsense("predict " + shell_quoted(run / "trained.rsm")).status == 2);
+}
