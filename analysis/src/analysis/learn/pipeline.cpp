@@ -312,7 +312,7 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     if (request.prefixes) {
         PrefixOptions po = *request.prefixes;
         if (!po.progress) po.progress = request.options.progress;
-        auto curves = prefix_curves(dataset_dir, out.rows, out.evaluation, out.classifiers, request.features,
+        auto curves = prefix_curves(dataset_dir, out.evaluation, out.classifiers, request.features,
                                     request.inputs, po);
         if (!curves) return fail(PipelineStage::evaluation, curves.error());
         out.evaluation.prefixes = std::move(curves).value();

@@ -63,8 +63,7 @@ std::vector<NominalLength> nominal_lengths(const std::vector<TrialRecord>& recor
     return out;
 }
 
-Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir,
-                                   const std::vector<features::FeatureRow>& rows, const Evaluation& ev,
+Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, const Evaluation& ev,
                                    const std::vector<PreparedClassifier>& classifiers,
                                    const features::FeatureSettings& feature_settings, const InputOptions& inputs,
                                    const PrefixOptions& options) {
@@ -107,7 +106,6 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir,
     });
     for (const auto& st : load_errors)
         if (!st) return st.error();
-    (void)rows;
 
     PrefixCurves out;
     out.fractions = options.fractions;

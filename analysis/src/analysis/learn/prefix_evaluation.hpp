@@ -21,9 +21,8 @@ std::vector<NominalLength> nominal_lengths(const std::vector<TrialRecord>& recor
                                            const std::vector<TrialData>& data);
 
 // The curves of every classifier of `evaluation` (made by evaluate_prepared
-// from `rows` of the dataset at `dataset_dir`, with `inputs`).
-Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir,
-                                   const std::vector<features::FeatureRow>& rows, const Evaluation& evaluation,
+// on the dataset at `dataset_dir`, with `inputs`): its trials, its partitions.
+Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, const Evaluation& evaluation,
                                    const std::vector<PreparedClassifier>& classifiers,
                                    const features::FeatureSettings& feature_settings, const InputOptions& inputs,
                                    const PrefixOptions& options);
