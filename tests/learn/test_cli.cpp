@@ -191,5 +191,5 @@ TEST_CASE("rollsense evaluate: bad input-step words, and train refuses them", "[
     CHECK_THAT(r.output, Catch::Contains("z_per_channel"));
     r = rollsense_cli("train /tmp -o /tmp/m.rbt --trials all");
     CHECK(r.status == 2);
-    CHECK_THAT(r.output, Catch::Contains("applies to 'rollsense evaluate' only"));
+    CHECK_THAT(r.output, Catch::Contains("applies to 'rollsense evaluate' and 'rollsense report' only"));
 }

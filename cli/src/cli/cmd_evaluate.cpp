@@ -47,7 +47,7 @@ namespace {
 const std::vector<std::string> kLearnOptions = {"--folds",      "--repeats",     "--seed",   "--evaluations",
                                                 "--classifier", "--set",         "--plugin-path", "-o",
                                                 "--output",     "--trials",      "--series-amplitude"};
-// Options of the input step that only `evaluate` (the pipeline) honours.
+// Options of the input step that only the pipeline (evaluate, report) honours.
 const std::vector<std::string> kPipelineOnly = {"--trials", "--series-amplitude"};
 }  // namespace
 
@@ -139,7 +139,8 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
             std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory) {
     for (const auto& o : kPipelineOnly)
         if (!args.option(o).empty())
-            throw UsageError(o + " applies to 'rollsense evaluate' only; " + command + " trains on the paper's clean trials");
+            throw UsageError(o + " applies to 'rollsense evaluate' and 'rollsense report' only; " + command +
+                             " trains on the paper's clean trials");
     const auto specs = classifier_specs(s);
     if (specs.size() != 1)
         throw UsageError(std::string(command) + " takes one classifier, got '" + s.classifier + "'");
