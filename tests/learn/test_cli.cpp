@@ -140,3 +140,56 @@ TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][c
     CHECK(r.status == 2);
     CHECK_THAT(r.output, Catch::Contains("takes one classifier"));
 }
+
+TEST_CASE("rollsense evaluate: a feature and a series classifier side by side, with prefixes", "[learn][cli][series]") {
+    const auto dir = make_dataset();
+    const auto out = dir / "eval" / "evaluation.txt";
+    fs::create_directories(out.parent_path());
+    auto r = rollsense_cli("evaluate " + (dir / "dataset").string() +
+                           " --classifier bagged_trees:learners=5,minirocket:num_features=168 --folds 2 --repeats 1 "
+                           "--prefixes -o " + out.string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("input: features") && Catch::Contains("input: series") &&
+                             Catch::Contains("before the roll ends") && Catch::Contains("outside the paper's timing rule"));
+    const auto j = rollsense::testing::JsonReader::parse([&] {
+        std::ifstream in(dir / "eval" / "evaluation.json");
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }());
+    CHECK(j["input"].str() == "features+series");
+    const auto& cs = j["classifiers"].arr();
+    REQUIRE(cs.size() == 2);
+    // Same trials, same folds: the out-of-fold predictions of both name the same trial in the same fold.
+    const auto& a = cs[0]["first_repeat_predictions"].arr();
+    const auto& b = cs[1]["first_repeat_predictions"].arr();
+    REQUIRE(a.size() == b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        CHECK(a[i]["trial"].str() == b[i]["trial"].str());
+        CHECK(a[i]["fold"].num() == b[i]["fold"].num());
+    }
+    const auto& pc = j["prefixes"];
+    CHECK(pc["fractions"].arr().size() == 10);
+    REQUIRE(pc["classifiers"].arr().size() == 2);
+    for (const auto& c : pc["classifiers"].arr()) {
+        REQUIRE(c["points"].arr().size() == 10);
+        for (const auto& p : c["points"].arr())
+            CHECK(p["correct"].num() + p["no_decision"].num() <= p["total"].num());
+        CHECK(c["by_speed"].arr().size() == 1);
+    }
+    // Early on nothing has crossed all three sensors: bagged trees has no decision for any trial.
+    const auto& early = pc["classifiers"][std::size_t{0}]["points"][std::size_t{0}];
+    CHECK(early["no_decision"].num() == early["total"].num());
+    fs::remove_all(dir);
+}
+
+TEST_CASE("rollsense evaluate: bad input-step words, and train refuses them", "[learn][cli][series]") {
+    auto r = rollsense_cli("evaluate /tmp --trials some");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("--trials") && Catch::Contains("'clean'") && Catch::Contains("'all'"));
+    r = rollsense_cli("evaluate /tmp --series-amplitude loud");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("z_per_channel"));
+    r = rollsense_cli("train /tmp -o /tmp/m.rbt --trials all");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("applies to 'rollsense evaluate' and 'rollsense report' only"));
+}

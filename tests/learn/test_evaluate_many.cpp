@@ -194,15 +194,17 @@ TEST_CASE("classifier lists: names, per-entry parameters, errors", "[learn][many
     CHECK_THAT(parse_classifier_list(":x=1").error().message, Catch::Contains("no plugin name"));
 }
 
-TEST_CASE("series classifiers: the input step says it is not available yet", "[learn][many]") {
-    auto t = make_input_table(synthetic_rows(3, 0.1, 1), ClassifierInput::series);
+TEST_CASE("the input step: features from rows alone, series only from a dataset folder", "[learn][many]") {
+    const auto rows = synthetic_rows(3, 0.1, 1);
+    auto t = make_input_tables(rows, {}, {ClassifierInput::series}, {});
     REQUIRE_FALSE(t.ok());
-    CHECK(t.error().code == ErrorCode::unsupported);
-    CHECK_THAT(t.error().message, Catch::Contains("series preparation is not available"));
-    auto f = make_input_table(synthetic_rows(3, 0.1, 1), ClassifierInput::features);
+    CHECK(t.error().code == ErrorCode::invalid_argument);
+    CHECK_THAT(t.error().message, Catch::Contains("not a dataset folder"));
+    auto f = make_input_tables(rows, {}, {ClassifierInput::features}, {});
     REQUIRE(f.ok());
-    CHECK(f->kind == "features");
-    CHECK(f->table.rows == f->row_of.size());
+    REQUIRE(f->kinds == std::vector<std::string>{"features"});
+    CHECK(f->tables.front().rows == f->row_of.size());
+    CHECK(f->selection == "paper_clean");
 }
 
 TEST_CASE("JsonWriter: escapes, round-trip numbers, null for non-finite, misuse throws", "[learn][json]") {

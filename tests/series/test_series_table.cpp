@@ -8,8 +8,7 @@
 #include <filesystem>
 
 #include "analysis/series/series_table.hpp"
-#include "run_command.hpp"
-#include "temp_dir.hpp"
+#include "stock_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace rollsense;
@@ -17,21 +16,7 @@ using namespace rollsense::series;
 
 namespace {
 
-// One run per object and speed, made once per test process.
-const DatasetReader& stock_run() {
-    static rollsense::testing::TempDir dir("rollsense-series");
-    static const DatasetReader reader = [] {
-        const auto run = rollsense::testing::run_rollsense(
-            "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --profile sim --set runs=1 "
-            "--set analyse=false --seed 11 -q --out " + (dir.path() / "run").string());
-        INFO(run.output);
-        REQUIRE(run.status == 0);
-        auto r = DatasetReader::open(dir.path() / "run");
-        REQUIRE(r.ok());
-        return *r;
-    }();
-    return reader;
-}
+using rollsense::testing::stock_run;
 
 const std::vector<std::string> kChannels{"ch1", "ch2", "ch3"};
 

@@ -22,6 +22,12 @@ using LearnSetup = learn::CommandSetup;
 
 namespace {
 
+template <typename T>
+T value_or_throw_usage(Result<T> r, const std::string& option) {
+    if (!r) throw UsageError(option + ": " + r.error().message);
+    return std::move(r).value();
+}
+
 int integer_option(const Args& args, std::string_view name, int fallback, int min) {
     const std::string v = args.option(name);
     if (v.empty()) return fallback;
@@ -38,8 +44,11 @@ int integer_option(const Args& args, std::string_view name, int fallback, int mi
 }  // namespace
 
 namespace {
-const std::vector<std::string> kLearnOptions = {"--folds", "--repeats", "--seed", "--evaluations", "--classifier",
-                                                "--set", "--plugin-path", "-o", "--output"};
+const std::vector<std::string> kLearnOptions = {"--folds",      "--repeats",     "--seed",   "--evaluations",
+                                                "--classifier", "--set",         "--plugin-path", "-o",
+                                                "--output",     "--trials",      "--series-amplitude"};
+// Options of the input step that only the pipeline (evaluate, report) honours.
+const std::vector<std::string> kPipelineOnly = {"--trials", "--series-amplitude"};
 }  // namespace
 
 // Shared by evaluate and train (declared again in cmd_train.cpp).
@@ -79,6 +88,17 @@ std::vector<learn::ClassifierSpec> classifier_specs(const LearnSetup& s) {
     return std::move(specs).value();
 }
 
+// --trials and --series-amplitude: the input step's trial selection and the
+// series rule's amplitude mode (docs/series-preparation.md).
+learn::InputOptions input_options_from_args(const Args& args) {
+    learn::InputOptions in;
+    if (const auto t = args.option("--trials"); !t.empty())
+        in.trials = value_or_throw_usage(learn::parse_trial_selection(t), "--trials");
+    if (const auto a = args.option("--series-amplitude"); !a.empty())
+        in.series.amplitude = value_or_throw_usage(learn::parse_amplitude(a), "--series-amplitude");
+    return in;
+}
+
 // The learning pipeline for evaluate and report, with the command's exit codes:
 // a wrong INPUT or plugin is a configuration error, a failed evaluation a failure.
 int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
@@ -88,6 +108,13 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     request.features = feature_settings_from_args(args);
     request.classifiers = classifier_specs(s);
     request.options = s.options;
+    request.inputs = input_options_from_args(args);
+    if (args.flag("--prefixes")) {
+        learn::PrefixOptions po;
+        // One k-fold per fraction unless --repeats asks for more.
+        if (!args.option("--repeats").empty()) po.repeats = s.options.repeats;
+        request.prefixes = po;
+    }
     request.options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     learn::PipelineStage failed = learn::PipelineStage::evaluation;
     auto result = learn::run_pipeline(
@@ -111,6 +138,10 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
 // classifier (rollsense train).
 int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
             std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory) {
+    for (const auto& o : kPipelineOnly)
+        if (!args.option(o).empty())
+            throw UsageError(o + " applies to 'rollsense evaluate' and 'rollsense report' only; " + command +
+                             " trains on the paper's clean trials");
     const auto specs = classifier_specs(s);
     if (specs.size() != 1)
         throw UsageError(std::string(command) + " takes one classifier, got '" + s.classifier + "'");
@@ -138,6 +169,10 @@ const char* kHelp = R"(usage: rollsense evaluate INPUT [options]
 INPUT is a dataset folder (features are extracted with the paper's settings or
 the feature options of 'rollsense features') or a features CSV.
 
+A classifier that takes the prepared series (minirocket) reads the dataset's
+three sensor channels through the series rule (docs/series-preparation.md);
+it needs a dataset folder, and may be listed beside feature classifiers.
+
 Reports, for the clean trials:
   * the classifier preset under repeated stratified k-fold CV: accuracy mean ±
     sd over repetitions, a 95 % Wilson interval on the pooled out-of-fold
@@ -160,6 +195,24 @@ options:
   --folds K           k of the k-fold CV (5)
   --repeats R         repetitions of the CV with different partitions (10)
   --seed S            partition and optimiser seed (1)
+  --trials SET        clean (default): the paper's clean trials, and with a
+                      series classifier only those the series rule accepts
+                      too (every classifier sees the same trials and folds);
+                      all: every trial the series rule accepts, including
+                      those the paper's peak rule refuses (series classifiers
+                      only). Left-out trials and why: evaluation.json
+  --series-amplitude MODE
+                      series rule amplitude: global_scale or z_per_channel
+                      (default: docs/series-preparation.md)
+  --prefixes          also identify before the roll ends: for f = 10 %, 20 %,
+                      ... 100 % of the nominal recording length at the
+                      trial's speed (median over the dataset), train on the
+                      training folds' prefixes and test on the test fold's
+                      (one k-fold per fraction unless --repeats is given);
+                      a prefix without input (bagged trees: < 3 valid peaks)
+                      counts as wrong, shown as "no decision". Curves per
+                      classifier and speed in the report and evaluation.json
+                      (docs/identification.md)
   --optimize          also run the Bayesian optimisation (classifier.md §3 search space)
   --evaluations N     optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV (much faster, no honest tuned figure)
@@ -170,7 +223,7 @@ options:
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested"});
+    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--prefixes"});
     setup_logging(args);
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;

@@ -9,6 +9,8 @@ namespace rollsense::learn {
 FeatureTable subset(const FeatureTable& table, std::span<const std::size_t> rows) {
     FeatureTable t;
     t.feature_names = table.feature_names;
+    t.channel_names = table.channel_names;  // a series table stays one (series_length > 0)
+    t.series_length = table.series_length;
     t.class_names = table.class_names;
     t.rows = rows.size();
     t.x.reserve(rows.size() * table.cols());

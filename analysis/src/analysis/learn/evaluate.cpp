@@ -183,8 +183,24 @@ Result<Evaluation> evaluate_table(const std::vector<features::FeatureRow>& rows,
                                   const std::vector<std::size_t>& row_of,
                                   const std::vector<ClassifierRequest>& classifiers,
                                   const EvaluationOptions& options) {
+    InputTables input;
+    input.tables.push_back(table);
+    input.kinds.push_back(table.series_length > 0 ? "series" : "features");
+    input.row_of = row_of;
+    std::vector<ClassifierRequest> requests = classifiers;
+    for (auto& r : requests) r.table = 0;
+    return evaluate_tables(rows, input, requests, options);
+}
+
+Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows, const InputTables& input,
+                                   const std::vector<ClassifierRequest>& classifiers,
+                                   const EvaluationOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     if (classifiers.empty()) return Error{ErrorCode::invalid_argument, "no classifier to evaluate"};
+    if (input.tables.empty() || input.kinds.size() != input.tables.size())
+        return Error{ErrorCode::invalid_argument, "evaluation: no input table (or tables and kinds differ in number)"};
+    const FeatureTable& table = input.tables.front();
+    const auto& row_of = input.row_of;
     if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to evaluate"};
     if (table.class_names.size() < 2)
         return Error{ErrorCode::invalid_argument, "evaluation needs at least two classes among the clean trials"};
@@ -192,19 +208,43 @@ Result<Evaluation> evaluate_table(const std::vector<features::FeatureRow>& rows,
         return Error{ErrorCode::invalid_argument, "the input table has " + std::to_string(table.rows) +
                                                       " rows but " + std::to_string(row_of.size()) +
                                                       " trial references"};
+    for (std::size_t t = 1; t < input.tables.size(); ++t)
+        if (input.tables[t].y != table.y || input.tables[t].class_names != table.class_names)
+            return Error{ErrorCode::invalid_argument,
+                         "the " + input.kinds[t] + " table holds other trials or labels than the " + input.kinds[0] +
+                             " table; classifiers compared on the same folds need the same trials in the same order"};
+    for (const auto& c : classifiers)
+        if (c.table >= input.tables.size())
+            return Error{ErrorCode::invalid_argument, "classifier '" + c.name + "' asks for input table " +
+                                                          std::to_string(c.table) + " of " +
+                                                          std::to_string(input.tables.size())};
 
     Evaluation ev;
     ev.trials = rows.size();
     ev.clean = table.rows;
     ev.classes = table.class_names;
     ev.truth = table.y;
+    ev.selection = input.selection;
+    {
+        std::vector<bool> kind_used(input.tables.size(), false);
+        for (const auto& c : classifiers) kind_used[c.table] = true;
+        ev.input.clear();
+        for (std::size_t t = 0; t < input.tables.size(); ++t)
+            if (kind_used[t]) ev.input += (ev.input.empty() ? "" : "+") + input.kinds[t];
+    }
     std::vector<bool> used(rows.size(), false);
     for (std::size_t r : row_of) {
         ev.trial_ids.push_back(rows[r].trial_id);
+        ev.peak_clean.push_back(rows[r].clean ? 1 : 0);
         used[r] = true;
     }
-    for (std::size_t r = 0; r < rows.size(); ++r)
-        if (!used[r]) ev.refused.push_back({rows[r].trial_id, rows[r].reason.empty() ? "not clean" : rows[r].reason});
+    if (!input.refused.empty()) {
+        ev.refused = input.refused;
+    } else {
+        for (std::size_t r = 0; r < rows.size(); ++r)
+            if (!used[r])
+                ev.refused.push_back({rows[r].trial_id, rows[r].reason.empty() ? "not clean" : rows[r].reason});
+    }
 
     std::vector<std::string> groups;
     const std::vector<std::string>* group_ptr = nullptr;
@@ -219,8 +259,10 @@ Result<Evaluation> evaluate_table(const std::vector<features::FeatureRow>& rows,
 
     for (const auto& request : classifiers) {
         const auto one_started = std::chrono::steady_clock::now();
-        auto one = evaluate_one(rows, table, row_of, group_ptr, ev.plan, request, options, classifiers.size() > 1);
+        auto one = evaluate_one(rows, input.tables[request.table], row_of, group_ptr, ev.plan, request, options,
+                                classifiers.size() > 1);
         if (!one) return Status(one.error()).with_context("classifier '" + request.name + "'");
+        one->input = input.kinds[request.table];
         one->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - one_started).count();
         ev.classifiers.push_back(std::move(one).value());
     }
@@ -349,8 +391,46 @@ std::string format_report(const EvaluationReport& r, bool with_timing) {
     return out;
 }
 
+SubsetScore paper_refused_first_repeat(const Evaluation& ev, const EvaluationReport& c) {
+    SubsetScore s;
+    const auto& p = c.baseline.first_predicted;
+    for (std::size_t i = 0; i < ev.peak_clean.size() && i < p.size(); ++i)
+        if (!ev.peak_clean[i]) {
+            ++s.total;
+            s.correct += p[i] == ev.truth[i];
+        }
+    return s;
+}
+
+namespace {
+// With a series classifier, which trials were used (features alone: the
+// paper's clean trials, as the report always said).
+std::string selection_line(const Evaluation& ev) {
+    if (ev.input.find("series") == std::string::npos) return {};
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "trials: %s (%zu used, %zu left out; reasons in evaluation.json)\n",
+                  ev.selection == "paper_clean"
+                      ? "the paper's clean trials that the series rule also accepts"
+                      : "every trial the series rule accepts, the paper's refused ones included",
+                  ev.clean, ev.refused.size());
+    std::string out = buf;
+    for (const auto& c : ev.classifiers) {
+        const auto k = paper_refused_first_repeat(ev, c);
+        if (k.total == 0) continue;
+        std::snprintf(buf, sizeof buf,
+                      "  %s on the %zu trials the paper's peak rule refuses: %zu right (%.1f %%, out-of-fold, first "
+                      "repetition)\n",
+                      c.name.c_str(), k.total, k.correct, 100.0 * static_cast<double>(k.correct) / static_cast<double>(k.total));
+        out += buf;
+    }
+    return out;
+}
+}  // namespace
+
 std::string format_evaluation(const Evaluation& ev) {
-    if (ev.classifiers.size() == 1) return format_report(ev.primary());
+    if (ev.classifiers.size() == 1)
+        return format_report(ev.primary()) + selection_line(ev) +
+               (ev.prefixes ? format_prefix_curves(*ev.prefixes) : std::string());
     std::string out;
     char buf[256];
     std::snprintf(buf, sizeof buf, "trials %zu, clean %zu, classes %zu\n\n", ev.trials, ev.clean, ev.classes.size());
@@ -364,10 +444,12 @@ std::string format_evaluation(const Evaluation& ev) {
                   static_cast<unsigned long long>(ev.plan.seeds.back()));
     out += buf;
     for (const auto& c : ev.classifiers) {
-        std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %% ± %.1f (sd over repetitions)\n", w, c.name.c_str(),
-                      100.0 * c.baseline.mean, 100.0 * c.baseline.sd);
+        std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %% ± %.1f (sd over repetitions)%s\n", w, c.name.c_str(),
+                      100.0 * c.baseline.mean, 100.0 * c.baseline.sd,
+                      ev.input.find('+') != std::string::npos ? ("   input: " + c.input).c_str() : "");
         out += buf;
     }
+    out += selection_line(ev);
     out += "\npaired per-fold accuracy differences (a − b, every fold of every repetition; t: paired t, df = n − 1;\n"
            "t corrected: Nadeau-Bengio, which allows for folds sharing training trials; a/b/ties: sign counts):\n";
     for (const auto& p : ev.paired) {
@@ -379,6 +461,7 @@ std::string format_evaluation(const Evaluation& ev) {
         out += buf;
     }
     for (const auto& c : ev.classifiers) out += "\n==== " + c.name + " ====\n" + format_report(c, false);
+    if (ev.prefixes) out += format_prefix_curves(*ev.prefixes);
     std::snprintf(buf, sizeof buf, "\nevaluation took %.1f s\n", ev.seconds);
     out += buf;
     return out;

@@ -16,6 +16,7 @@
 #include "analysis/learn/folds.hpp"
 #include "analysis/learn/metrics.hpp"
 #include "analysis/learn/paper_analysis.hpp"
+#include "analysis/learn/prefix_curves.hpp"
 
 namespace rollsense::learn {
 
@@ -67,6 +68,7 @@ struct NestedCv {
 // plugin, with its parameters when the same plugin is compared with itself).
 struct EvaluationReport {
     std::string name;
+    std::string input = "features";  // the input kind it was evaluated on (features | series)
     std::size_t trials = 0;
     std::size_t clean = 0;
     std::vector<std::string> classes;
@@ -84,6 +86,7 @@ struct ClassifierRequest {
     std::string name;
     ClassifierFactory factory;
     ParamSet params;
+    std::size_t table = 0;  // which of InputTables::tables it takes (evaluate_tables)
 };
 
 // A trial the input step left out, and why (features: the rejection reason).
@@ -102,15 +105,18 @@ struct PairedComparison {
 // Several classifiers evaluated on the same input table and the same folds.
 // With one classifier this is exactly the single evaluation of the past.
 struct Evaluation {
-    std::string input = "features";  // the input step that made the table (features | series)
+    std::string input = "features";  // the input steps that made the tables: features | series | features+series
+    std::string selection = "paper_clean";  // which trials: paper_clean | series_accepted (InputTables)
     std::size_t trials = 0, clean = 0;
     std::vector<std::string> classes;
     std::vector<std::string> trial_ids;  // the table's rows: the trials used, in fold-assignment order
     std::vector<int> truth;              // their true labels (indices into classes)
+    std::vector<char> peak_clean;        // per used trial: does the paper's peak rule keep it?
     std::vector<RefusedTrial> refused;   // trials the input step left out
     FoldPlan plan;                       // the partitions every classifier was scored on
     std::vector<EvaluationReport> classifiers;
     std::vector<PairedComparison> paired;  // every pair (i < j), i − j
+    std::optional<PrefixCurves> prefixes;  // identification before the roll ends (--prefixes)
     double seconds = 0.0;
     const EvaluationReport& primary() const { return classifiers.front(); }
 };
@@ -121,8 +127,25 @@ Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactor
                                int folds, int repeats, std::uint64_t seed,
                                const std::vector<std::string>* groups = nullptr);
 
-// Every classifier on `table` (its rows are rows[row_of[i]]), all on one fold
-// plan made from options.folds / repeats / seed / group_of.
+// The input of one evaluation: one table per input kind, all holding the SAME
+// trials in the SAME order with the SAME labels (so one fold plan, made from
+// those labels, is every classifier's), table row i being rows[row_of[i]].
+struct InputTables {
+    std::vector<FeatureTable> tables;
+    std::vector<std::string> kinds;      // per table: "features" | "series"
+    std::vector<std::size_t> row_of;     // table row → index into rows
+    std::vector<RefusedTrial> refused;   // trials left out, with why; empty = rows' rejection reasons
+    std::string selection = "paper_clean";
+};
+
+// Every classifier on its table (ClassifierRequest::table), all on one fold
+// plan made from options.folds / repeats / seed / group_of. Tables that differ
+// in rows or labels are an error: a paired comparison needs the same trials.
+Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows, const InputTables& input,
+                                   const std::vector<ClassifierRequest>& classifiers,
+                                   const EvaluationOptions& options);
+
+// One table for every classifier (its rows are rows[row_of[i]]).
 Result<Evaluation> evaluate_table(const std::vector<features::FeatureRow>& rows, const FeatureTable& table,
                                   const std::vector<std::size_t>& row_of,
                                   const std::vector<ClassifierRequest>& classifiers,
@@ -148,6 +171,13 @@ struct FinalModel {
 };
 Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                              const EvaluationOptions& options);
+
+// How a classifier did, out of fold in the first repetition, on the used
+// trials that the paper's peak rule refuses (with trials=all; 0 otherwise).
+struct SubsetScore {
+    std::size_t total = 0, correct = 0;
+};
+SubsetScore paper_refused_first_repeat(const Evaluation& evaluation, const EvaluationReport& classifier);
 
 // Human-readable report: every figure labelled with how it was obtained.
 // `with_timing` = false leaves out the final "evaluation took" line.

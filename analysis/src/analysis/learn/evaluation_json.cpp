@@ -60,6 +60,7 @@ void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationRepor
     const auto& b = c.baseline;
     w.begin_object();
     w.key("name").value(c.name);
+    w.key("input").value(c.input);
     w.key("parameters");
     write_params(w, c.params);
     w.key("accuracy").begin_object();
@@ -93,6 +94,13 @@ void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationRepor
     for (const auto& r : ev.refused)
         w.begin_object().key("trial").value(r.trial_id).key("reason").value(r.reason).end_object();
     w.end_array();
+    if (const auto k = paper_refused_first_repeat(ev, c); k.total > 0) {
+        w.key("paper_refused_trials").begin_object();
+        w.key("total").value(static_cast<std::uint64_t>(k.total));
+        w.key("correct_first_repeat").value(static_cast<std::uint64_t>(k.correct));
+        w.key("accuracy_first_repeat").value(static_cast<double>(k.correct) / static_cast<double>(k.total));
+        w.end_object();
+    }
     w.key("first_repeat_predictions").begin_array();
     for (std::size_t i = 0; i < ev.trial_ids.size() && i < b.first_predicted.size(); ++i) {
         w.begin_object();
@@ -134,6 +142,57 @@ void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationRepor
     w.end_object();
 }
 
+void write_point(JsonWriter& w, const PrefixPoint& p, bool with_seconds) {
+    w.begin_object();
+    w.key("fraction").value(p.fraction);
+    if (with_seconds) w.key("seconds").value(p.seconds);
+    w.key("accuracy").value(p.accuracy());
+    w.key("correct").value(static_cast<std::uint64_t>(p.correct));
+    w.key("no_decision").value(static_cast<std::uint64_t>(p.no_decision));
+    w.key("total").value(static_cast<std::uint64_t>(p.total));
+    w.end_object();
+}
+
+void write_prefixes(JsonWriter& w, const PrefixCurves& pc) {
+    w.key("prefixes").begin_object();
+    w.key("note").value(kPrefixTimingNote);
+    w.key("fractions");
+    write_numbers(w, pc.fractions);
+    w.key("folds").value(pc.folds);
+    w.key("repeats").value(pc.repeats);
+    w.key("nominal").begin_array();
+    for (const auto& n : pc.nominal)
+        w.begin_object()
+            .key("speed").value(n.speed)
+            .key("samples").value(n.samples)
+            .key("seconds").value(n.seconds)
+            .key("trials").value(static_cast<std::uint64_t>(n.trials))
+            .end_object();
+    w.end_array();
+    w.key("classifiers").begin_array();
+    for (const auto& c : pc.classifiers) {
+        w.begin_object();
+        w.key("name").value(c.classifier);
+        w.key("input").value(c.input);
+        w.key("points").begin_array();
+        for (const auto& p : c.points) write_point(w, p, false);
+        w.end_array();
+        w.key("by_speed").begin_array();
+        for (const auto& s : c.by_speed) {
+            w.begin_object().key("speed").value(s.speed).key("points").begin_array();
+            for (const auto& p : s.points) write_point(w, p, true);
+            w.end_array().end_object();
+        }
+        w.end_array();
+        w.key("fraction_95");
+        if (c.fraction_95) w.value(*c.fraction_95);
+        else w.null();
+        w.end_object();
+    }
+    w.end_array();
+    w.end_object();
+}
+
 }  // namespace
 
 std::string evaluation_json(const Evaluation& ev) {
@@ -142,6 +201,7 @@ std::string evaluation_json(const Evaluation& ev) {
     w.key("format").value("rollsense-evaluation");
     w.key("version").value(kEvaluationJsonVersion);
     w.key("input").value(ev.input);
+    w.key("selection").value(ev.selection);
     w.key("trials").value(static_cast<std::uint64_t>(ev.trials));
     w.key("clean").value(static_cast<std::uint64_t>(ev.clean));
     w.key("classes").begin_array();
@@ -191,6 +251,7 @@ std::string evaluation_json(const Evaluation& ev) {
         w.end_object();
     }
     w.end_array();
+    if (ev.prefixes) write_prefixes(w, *ev.prefixes);
     w.key("seconds").value(ev.seconds);
     w.end_object();
     return w.str() + "\n";

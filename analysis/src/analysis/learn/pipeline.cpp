@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "rollsense/atomic_file.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/plugin_factory.hpp"
+#include "analysis/learn/prefix_evaluation.hpp"
+#include "analysis/series/series_table.hpp"
 
 namespace rollsense::learn {
 
@@ -94,41 +97,194 @@ Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegis
     return out;
 }
 
-Result<InputTable> make_input_table(const std::vector<features::FeatureRow>& rows, ClassifierInput kind) {
-    InputTable in;
-    switch (kind) {
-        case ClassifierInput::features:
-            in.kind = "features";
-            in.table = features::to_feature_table(rows, &in.row_of);
-            return in;
-        case ClassifierInput::series:
-            // The one place the prepared-series step will be plugged in.
-            return Error{ErrorCode::unsupported,
-                         "classifiers that take the prepared series (input() = series) cannot be evaluated yet: "
-                         "series preparation is not available in this version; use a feature-vector classifier"};
-    }
-    return Error{ErrorCode::invalid_argument, "unknown classifier input kind"};
+std::string_view to_string(TrialSelection t) noexcept {
+    return t == TrialSelection::paper_clean ? "clean" : "all";
 }
 
-Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& rows,
-                                     const std::vector<PreparedClassifier>& classifiers,
-                                     const EvaluationOptions& options) {
-    if (classifiers.empty()) return Error{ErrorCode::invalid_argument, "no classifier to evaluate"};
-    const ClassifierInput kind = classifiers.front().input;
-    for (const auto& c : classifiers)
-        if (c.input != kind)
+Result<TrialSelection> parse_trial_selection(std::string_view text) {
+    if (text == "clean" || text == "paper_clean") return TrialSelection::paper_clean;
+    if (text == "all" || text == "series_accepted") return TrialSelection::series_accepted;
+    return Error{ErrorCode::invalid_argument,
+                 "trials '" + std::string(text) +
+                     "' is not a trial selection: write 'clean' (the paper's clean trials, default) or 'all' "
+                     "(every trial the series rule accepts; series classifiers only)"};
+}
+
+Result<series::Amplitude> parse_amplitude(std::string_view text) {
+    if (text == "global_scale") return series::Amplitude::global_scale;
+    if (text == "z_per_channel") return series::Amplitude::z_per_channel;
+    return Error{ErrorCode::invalid_argument, "series amplitude '" + std::string(text) +
+                                                  "' is not a mode: write 'global_scale' or 'z_per_channel' "
+                                                  "(docs/series-preparation.md)"};
+}
+
+Result<std::vector<std::string>> series_channels(const DatasetInfo& info) {
+    if (info.channels.size() < features::kChannels)
+        return Error{ErrorCode::invalid_argument,
+                     "the dataset records " + std::to_string(info.channels.size()) +
+                         " channels; a series classifier reads the three sensor channels the features use"};
+    return std::vector<std::string>(info.channels.begin(), info.channels.begin() + features::kChannels);
+}
+
+namespace {
+
+// The series rule's verdict on every trial of the dataset, by trial id.
+struct SeriesVerdicts {
+    series::SeriesTable table;
+    std::map<std::string, std::size_t> row_of_trial;  // accepted: row in table
+    std::map<std::string, std::string> refused;       // refused: reason
+};
+
+Result<SeriesVerdicts> prepare_all_series(const std::filesystem::path& dataset_dir, const InputOptions& options) {
+    auto ds = DatasetReader::open(dataset_dir);
+    if (!ds) return ds.error();
+    auto channels = series_channels(ds->info());
+    if (!channels) return Status(channels.error()).with_context("dataset '" + dataset_dir.string() + "'");
+    auto st = series::series_table(*ds, ds->trials(), *channels, options.series, options.threads);
+    if (!st) return st.error();
+    SeriesVerdicts v;
+    v.table = std::move(st).value();
+    for (std::size_t i = 0; i < v.table.trial_ids.size(); ++i) v.row_of_trial[v.table.trial_ids[i]] = i;
+    for (const auto& r : v.table.refused) v.refused[r.trial_id] = r.reason;
+    return v;
+}
+
+}  // namespace
+
+Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& rows,
+                                      const std::filesystem::path& dataset_dir,
+                                      const std::vector<ClassifierInput>& kinds, const InputOptions& options) {
+    const bool need_features =
+        std::find(kinds.begin(), kinds.end(), ClassifierInput::features) != kinds.end();
+    const bool need_series = std::find(kinds.begin(), kinds.end(), ClassifierInput::series) != kinds.end();
+    if (!need_features && !need_series) return Error{ErrorCode::invalid_argument, "no classifier input kind given"};
+    if (options.trials == TrialSelection::series_accepted && need_features)
+        return Error{ErrorCode::invalid_argument,
+                     "trials=all takes every trial the series rule accepts, but a feature classifier has no "
+                     "features for the trials the paper's peak rule refuses: evaluate it with trials=clean, or "
+                     "list only series classifiers"};
+    std::optional<SeriesVerdicts> sv;
+    if (need_series) {
+        std::error_code ec;
+        if (dataset_dir.empty() || !std::filesystem::is_directory(dataset_dir, ec))
             return Error{ErrorCode::invalid_argument,
-                         "classifiers '" + classifiers.front().spec.name + "' and '" + c.spec.name +
-                             "' take different inputs (features and series); a paired comparison needs one input "
-                             "table: evaluate them separately"};
-    auto input = make_input_table(rows, kind);
+                         "a series classifier (input() = series) needs the recorded trials, but the input '" +
+                             dataset_dir.string() +
+                             "' is not a dataset folder (a features CSV has no series): pass the dataset folder"};
+        auto v = prepare_all_series(dataset_dir, options);
+        if (!v) return v.error();
+        sv = std::move(v).value();
+    }
+
+    InputTables in;
+    in.selection = options.trials == TrialSelection::paper_clean ? "paper_clean" : "series_accepted";
+    std::map<std::string, int> classes;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const auto& row = rows[r];
+        const bool peak_ok = options.trials == TrialSelection::series_accepted || row.clean;
+        bool series_ok = true;
+        std::string why;
+        // With features only the reason reads as it always did; beside the
+        // series rule each reason says which rule gave it.
+        if (!peak_ok) why = (sv ? "peak rule: " : "") + (row.reason.empty() ? std::string("not clean") : row.reason);
+        if (sv) {
+            if (auto it = sv->refused.find(row.trial_id); it != sv->refused.end()) {
+                series_ok = false;
+                why += (why.empty() ? "" : "; ") + std::string("series rule: ") + it->second;
+            } else if (!sv->row_of_trial.count(row.trial_id)) {
+                return Error{ErrorCode::invalid_argument, "trial '" + row.trial_id +
+                                                              "' has features but is not in the dataset's manifest "
+                                                              "(features and dataset out of step?)"};
+            }
+        }
+        if (peak_ok && series_ok) {
+            in.row_of.push_back(r);
+            classes.emplace(row.object, 0);
+        } else {
+            in.refused.push_back({row.trial_id, why});
+        }
+    }
+    std::vector<std::string> class_names;
+    for (auto& [name, label] : classes) {
+        label = static_cast<int>(class_names.size());
+        class_names.push_back(name);
+    }
+    if (need_features) {
+        FeatureTable t;
+        t.feature_names.assign(features::feature_names().begin(), features::feature_names().end());
+        t.class_names = class_names;
+        for (std::size_t r : in.row_of) {
+            t.x.insert(t.x.end(), rows[r].values.begin(), rows[r].values.end());
+            t.y.push_back(classes[rows[r].object]);
+            ++t.rows;
+        }
+        in.tables.push_back(std::move(t));
+        in.kinds.push_back("features");
+    }
+    if (need_series) {
+        const FeatureTable& src = sv->table.table;
+        const std::size_t width = src.cols();
+        FeatureTable t;
+        t.channel_names = src.channel_names;
+        t.series_length = src.series_length;
+        t.class_names = class_names;
+        t.x.reserve(in.row_of.size() * width);
+        for (std::size_t r : in.row_of) {
+            const std::size_t i = sv->row_of_trial.at(rows[r].trial_id);
+            t.x.insert(t.x.end(), src.x.begin() + static_cast<std::ptrdiff_t>(i * width),
+                       src.x.begin() + static_cast<std::ptrdiff_t>((i + 1) * width));
+            t.y.push_back(classes[rows[r].object]);
+            ++t.rows;
+        }
+        in.tables.push_back(std::move(t));
+        in.kinds.push_back("series");
+    }
+    return in;
+}
+
+namespace {
+std::size_t table_of(const InputTables& in, ClassifierInput kind) {
+    const std::string want = kind == ClassifierInput::series ? "series" : "features";
+    return static_cast<std::size_t>(std::find(in.kinds.begin(), in.kinds.end(), want) - in.kinds.begin());
+}
+}  // namespace
+
+Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& rows,
+                                     const std::filesystem::path& dataset_dir,
+                                     const std::vector<PreparedClassifier>& classifiers,
+                                     const EvaluationOptions& options, const InputOptions& inputs) {
+    if (classifiers.empty()) return Error{ErrorCode::invalid_argument, "no classifier to evaluate"};
+    std::vector<ClassifierInput> kinds;
+    for (const auto& c : classifiers) kinds.push_back(c.input);
+    auto input = make_input_tables(rows, dataset_dir, kinds, inputs);
     if (!input) return input.error();
     std::vector<ClassifierRequest> requests;
-    for (const auto& c : classifiers) requests.push_back({c.spec.name, c.factory, c.spec.params});
-    auto ev = evaluate_table(rows, input->table, input->row_of, requests, options);
-    if (!ev) return ev.error();
-    ev->input = input->kind;
-    return ev;
+    for (const auto& c : classifiers)
+        requests.push_back({c.spec.name, c.factory, c.spec.params, table_of(*input, c.input)});
+    return evaluate_tables(rows, *input, requests, options);
+}
+
+Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& rows,
+                                      const std::filesystem::path& dataset_dir, const PreparedClassifier& classifier,
+                                      const EvaluationOptions& options, const InputOptions& inputs) {
+    EvaluationOptions o = options;
+    o.params = classifier.spec.params;
+    if (classifier.input == ClassifierInput::features && inputs.trials == TrialSelection::paper_clean)
+        return fit_final(rows, classifier.factory, o);  // the paper's model, exactly as before
+    auto input = make_input_tables(rows, dataset_dir, {classifier.input}, inputs);
+    if (!input) return input.error();
+    const FeatureTable& table = input->tables.front();
+    if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no trials to train on"};
+    if (o.optimize)
+        return Error{ErrorCode::unsupported, "classifier '" + classifier.spec.name +
+                                                 "': tuning the deployed model is implemented for feature "
+                                                 "classifiers only; train it with its preset (no optimize)"};
+    auto model = train_classifier(table, classifier.factory, o.params);
+    if (!model) return model.error();
+    FinalModel out;
+    out.params = o.params;
+    out.classifier = std::move(model).value();
+    return out;
 }
 
 Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const PipelineRequest& request,
@@ -147,9 +303,20 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     out.rows = std::move(rows).value();
     if (on_rows)
         if (auto st = on_rows(out.rows); !st) return fail(PipelineStage::rows, st.error());
-    auto ev = evaluate_prepared(out.rows, out.classifiers, request.options);
+    std::error_code ec;
+    const auto dataset_dir =
+        std::filesystem::is_directory(request.input, ec) ? request.input : std::filesystem::path{};
+    auto ev = evaluate_prepared(out.rows, dataset_dir, out.classifiers, request.options, request.inputs);
     if (!ev) return fail(PipelineStage::evaluation, ev.error());
     out.evaluation = std::move(ev).value();
+    if (request.prefixes) {
+        PrefixOptions po = *request.prefixes;
+        if (!po.progress) po.progress = request.options.progress;
+        auto curves = prefix_curves(dataset_dir, out.evaluation, out.classifiers, request.features,
+                                    request.inputs, po);
+        if (!curves) return fail(PipelineStage::evaluation, curves.error());
+        out.evaluation.prefixes = std::move(curves).value();
+    }
     return out;
 }
 

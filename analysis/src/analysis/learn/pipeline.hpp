@@ -5,19 +5,25 @@
 //                ask which input it takes, before any work
 //   rows         the dataset's trials with the feature-extraction step's
 //                settings (or a features CSV as it was written)
-//   input table  the step the classifiers' input() picks: features → the
-//                clean trials' feature vectors; series → not available yet
+//   input tables the steps the classifiers' input() picks: features → the
+//                trials' 13 features; series → prepare_series() on the
+//                dataset's three sensor channels (docs/series-preparation.md).
+//                One trial selection for all (default: the paper's clean
+//                trials that the series rule also accepts), so every
+//                classifier sees the same trials, labels and folds
 //   evaluation   every classifier on the same folds, paired differences
 //   outputs      evaluation.txt and evaluation.json from the one Evaluation
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rollsense/features.hpp"
 #include "analysis/learn/evaluate.hpp"
+#include "analysis/series/prepare.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
 
 namespace rollsense::learn {
@@ -54,24 +60,58 @@ std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry
 Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegistry& registry,
                                                             const std::vector<ClassifierSpec>& specs);
 
-// The input step for `kind`: the table, and which row each table row came from.
-struct InputTable {
-    FeatureTable table;
-    std::vector<std::size_t> row_of;
-    std::string kind;  // "features" | "series"
+// Which trials an evaluation uses.
+enum class TrialSelection {
+    paper_clean,      // the paper's clean trials (peak rule), and with a series classifier
+                      // only those the series rule accepts as well (default)
+    series_accepted,  // every trial the series rule accepts, including those the peak
+                      // rule refuses: series classifiers only
 };
-Result<InputTable> make_input_table(const std::vector<features::FeatureRow>& rows, ClassifierInput kind);
+std::string_view to_string(TrialSelection t) noexcept;
+// "clean" | "all" (also the names to_string gives); the error lists both.
+Result<TrialSelection> parse_trial_selection(std::string_view text);
+// "global_scale" | "z_per_channel"; the error lists both.
+Result<series::Amplitude> parse_amplitude(std::string_view text);
+
+// How the input step prepares the trials.
+struct InputOptions {
+    series::SeriesSettings series;  // the series rule's settings (docs/series-preparation.md)
+    TrialSelection trials = TrialSelection::paper_clean;
+    unsigned threads = 0;           // series preparation threads (0 = all cores)
+};
+
+// The channels a series classifier reads: the dataset's three sensor
+// channels, as the 13 features do (its first three channel columns).
+Result<std::vector<std::string>> series_channels(const DatasetInfo& info);
+
+// The input step for the classifiers' kinds: one table per kind present
+// (features first), the same trials in the same order. `dataset_dir` is the
+// dataset folder (empty when rows came from a features CSV, which has no
+// series to prepare: asking for series then is an error saying so). Trials
+// left out carry every reason (peak rule and series rule).
+Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& rows,
+                                      const std::filesystem::path& dataset_dir,
+                                      const std::vector<ClassifierInput>& kinds, const InputOptions& options);
 
 // Input step, then every classifier on the same folds.
 Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& rows,
+                                     const std::filesystem::path& dataset_dir,
                                      const std::vector<PreparedClassifier>& classifiers,
-                                     const EvaluationOptions& options);
+                                     const EvaluationOptions& options, const InputOptions& input = {});
+
+// The model to deploy for one prepared classifier, trained on every trial the
+// input step selects (features: fit_final's rules, with options.optimize).
+Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& rows,
+                                      const std::filesystem::path& dataset_dir, const PreparedClassifier& classifier,
+                                      const EvaluationOptions& options, const InputOptions& input = {});
 
 struct PipelineRequest {
     std::filesystem::path input;          // dataset folder or features CSV
     features::FeatureSettings features;   // the feature-extraction step's settings
     std::vector<ClassifierSpec> classifiers;
     EvaluationOptions options;            // options.params is ignored: each spec has its own
+    InputOptions inputs;                  // series preparation and trial selection
+    std::optional<PrefixOptions> prefixes;  // also: accuracy before the roll ends (needs a dataset folder)
 };
 
 struct PipelineResult {

@@ -16,6 +16,7 @@
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
 #include "analysis/report/report.hpp"
+#include "analysis/series/prepare.hpp"
 
 namespace rollsense::runtime::lua_api {
 namespace {
@@ -75,7 +76,11 @@ std::vector<learn::ClassifierSpec> classifier_specs_from(lua_State* L, int opts,
 }
 
 // rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier=<share/analysis/defaults.csv>,
-//             classifiers={"a","b"}, params={...}, model="model.rsm" } → summary table
+//             classifiers={"a","b"}, params={...}, model="model.rsm",
+//             trials="clean"|"all", series_amplitude="global_scale"|"z_per_channel",
+//             dataset=DIR (default: this run's), tag="NAME" (outputs evaluation-NAME.*, report-NAME.html),
+//             prefixes=false (identification before the roll ends), prefix_repeats=1 }
+//             → summary table
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
@@ -90,8 +95,18 @@ int l_analyse(lua_State* L) {
                                  "name (e.g. model.rsm)", own, own);
     check(L, s.flush_dataset());
 
+    // dataset = DIR analyses a dataset recorded earlier (outputs still go to --out);
+    // tag = "NAME" names the outputs evaluation-NAME.txt/.json and report-NAME.html,
+    // so that one script can write several analyses side by side.
+    const std::string dataset = opt_field_string(L, opts, "dataset", "");
+    const std::string tag = opt_field_string(L, opts, "tag", "");
+    if (tag.find('/') != std::string::npos || (!tag.empty() && tag[0] == '.'))
+        return luaL_error(L, "rs.analyse: tag '%s' must be a plain name (no '/', no leading '.')", tag.c_str());
+    const std::string suffix = tag.empty() ? "" : "-" + tag;
+    const std::filesystem::path dataset_dir = dataset.empty() ? s.output_dir() : std::filesystem::path(dataset);
+
     learn::PipelineRequest request;
-    request.input = s.output_dir();
+    request.input = dataset_dir;
     request.features = features::FeatureSettings{};
     learn::EvaluationOptions& eo = request.options;
     eo.folds = static_cast<int>(opt_field_number(L, opts, "folds", 5));
@@ -103,21 +118,42 @@ int l_analyse(lua_State* L) {
     eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
     request.classifiers = classifier_specs_from(L, opts, eo.params);
+    // The input step: trials = "clean" (the paper's, default) | "all" (every trial the
+    // series rule accepts; series classifiers only), series_amplitude = the series rule's mode.
+    if (const auto t = opt_field_string(L, opts, "trials", ""); !t.empty()) {
+        auto sel = learn::parse_trial_selection(t);
+        if (!sel) raise_status(L, Status(sel.error()).with_context("rs.analyse"));
+        request.inputs.trials = *sel;
+    }
+    if (opt_field_bool(L, opts, "prefixes", false)) {  // accuracy before the roll ends
+        learn::PrefixOptions po;
+        po.repeats = static_cast<int>(opt_field_number(L, opts, "prefix_repeats", 1));
+        request.prefixes = po;
+    }
+    if (const auto a = opt_field_string(L, opts, "series_amplitude", ""); !a.empty()) {
+        auto amp = learn::parse_amplitude(a);
+        if (!amp) raise_status(L, Status(amp.error()).with_context("rs.analyse"));
+        request.inputs.series.amplitude = *amp;
+    }
 
-    auto result = learn::run_pipeline(s.registry(), request, [&s](const std::vector<features::FeatureRow>& rows) {
-        if (auto st = features::write_features_csv(s.output_dir() / "features.csv", rows); !st) return st;
+    auto result = learn::run_pipeline(s.registry(), request, [&s, &dataset](const std::vector<features::FeatureRow>& rows) {
+        // The features belong beside the dataset they were made from; a dataset
+        // recorded earlier is left as it is.
+        if (dataset.empty())
+            if (auto st = features::write_features_csv(s.output_dir() / "features.csv", rows); !st) return st;
         log_info("analysis", learn::summarize_rejections(rows));
         return Status{};
     });
     check(L, result.status());
     const learn::Evaluation& evaluation = result->evaluation;
     const learn::EvaluationReport& primary = evaluation.primary();
-    check(L, s.write_output_text("evaluation.txt", learn::format_evaluation(evaluation)));
-    check(L, s.write_output_text("evaluation.json", learn::evaluation_json(evaluation)));
+    check(L, s.write_output_text("evaluation" + suffix + ".txt", learn::format_evaluation(evaluation)));
+    check(L, s.write_output_text("evaluation" + suffix + ".json", learn::evaluation_json(evaluation)));
 
     // report.html: the paper's figures and tables for this dataset, and the terminal summary.
     report::ReportInputs ri;
-    ri.dataset_dir = s.output_dir();
+    ri.dataset_dir = dataset_dir;
+    ri.output = s.output_dir() / ("report" + suffix + ".html");
     ri.rows = result->rows;
     ri.evaluation = evaluation;
     ri.command_line = s.options().command_line;
@@ -125,13 +161,14 @@ int l_analyse(lua_State* L) {
     check(L, page.status());
     std::fprintf(stderr, "\n%s", report::text_summary(ri).c_str());
     log_info("analysis", "report written to " + page->string() +
-                             "; the full evaluation is in evaluation.txt and evaluation.json");
+                             "; the full evaluation is in evaluation" + suffix + ".txt and evaluation" + suffix +
+                             ".json");
 
     // The model to deploy is the first classifier's.
     const auto& first = result->classifiers.front();
     eo.params = first.spec.params;
     const auto& rows = result->rows;
-    auto final_model = learn::fit_final(rows, first.factory, eo);
+    auto final_model = learn::fit_final_prepared(rows, dataset_dir, first, eo, request.inputs);
     check(L, final_model.status());
     const auto model_path = s.output_dir() / model_name;
     check(L, final_model->classifier->save(model_path));
@@ -166,15 +203,24 @@ int l_analyse(lua_State* L) {
         lua_setfield(L, -2, "accuracy");
         lua_pushnumber(L, c.baseline.sd);
         lua_setfield(L, -2, "accuracy_sd");
+        // With trials = "all": how it did on the trials the paper's peak rule refuses.
+        if (const auto k = learn::paper_refused_first_repeat(evaluation, c); k.total > 0) {
+            lua_pushinteger(L, static_cast<lua_Integer>(k.total));
+            lua_setfield(L, -2, "paper_refused");
+            lua_pushinteger(L, static_cast<lua_Integer>(k.correct));
+            lua_setfield(L, -2, "paper_refused_correct");
+        }
         lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
     }
     lua_setfield(L, -2, "classifiers");
     lua_pushstring(L, model_path.c_str());
     lua_setfield(L, -2, "model");
-    lua_pushstring(L, (s.output_dir() / "evaluation.json").c_str());
+    lua_pushstring(L, (s.output_dir() / ("evaluation" + suffix + ".json")).c_str());
     lua_setfield(L, -2, "evaluation");
-    lua_pushstring(L, (s.output_dir() / "features.csv").c_str());
-    lua_setfield(L, -2, "features");
+    if (dataset.empty()) {  // written only beside this run's own dataset
+        lua_pushstring(L, (s.output_dir() / "features.csv").c_str());
+        lua_setfield(L, -2, "features");
+    }
     lua_pushstring(L, page->c_str());
     lua_setfield(L, -2, "report");
     return 1;
@@ -227,8 +273,36 @@ void push_prediction(lua_State* L, const Classifier& clf, const Prediction& p) {
     lua_setfield(L, -2, "scores");
 }
 
+// A series model (minirocket) identifies from the recording prepared by the
+// one series rule, with the settings it was trained with: the documented
+// defaults, or clf:identify{series_amplitude = "z_per_channel"}.
+int identify_series(lua_State* L, const Classifier& clf, const TrialData& data) {
+    series::SeriesSettings settings;
+    if (lua_istable(L, 2)) {
+        const std::string amplitude = opt_field_string(L, 2, "series_amplitude", "");
+        if (!amplitude.empty()) {
+            auto a = learn::parse_amplitude(amplitude);
+            if (!a) raise_status(L, Status(a.error()).with_context("identify"));
+            settings.amplitude = *a;
+        }
+    }
+    static constexpr std::size_t kSensorChannels[] = {0, 1, 2};  // the three sensor channels, as the features
+    auto prepared = series::prepare_series(data, kSensorChannels, settings);
+    check(L, prepared.status());
+    if (!prepared->ok) {
+        lua_pushnil(L);
+        lua_pushstring(L, ("series rule: " + prepared->reason).c_str());
+        return 2;
+    }
+    auto p = clf.predict(prepared->values);
+    check(L, p.status());
+    push_prediction(L, clf, *p);
+    return 1;
+}
+
 // clf:identify() → prediction table, or nil and the rejection reason when the
-// recording has no clean peaks (e.g. the object did not cross all three sensors).
+// recording has no clean peaks (e.g. the object did not cross all three sensors)
+// or, for a series model, when the series rule refuses it.
 int l_identify(lua_State* L) {
     auto& clf = check_classifier(L, 1);
     Session& s = Session::of(L);
@@ -236,6 +310,7 @@ int l_identify(lua_State* L) {
     if (data.samples() == 0) return luaL_error(L, "identify: nothing recorded (rs.record_start/stop first)");
     if (data.channels.size() < features::kChannels)
         return luaL_error(L, "identify: the recording has %d channels, the features need 3", static_cast<int>(data.channels.size()));
+    if (clf->input() == ClassifierInput::series) return identify_series(L, *clf, data);
     std::vector<std::vector<double>> channels(data.channels.begin(), data.channels.begin() + features::kChannels);
     features::FeatureExtractor extractor;
     auto f = extractor.extract(channels, data.time);

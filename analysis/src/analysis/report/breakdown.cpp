@@ -21,7 +21,7 @@ double BreakdownRow::accuracy() const {
 }
 
 Breakdown breakdown(const std::vector<features::FeatureRow>& rows, const learn::EvaluationReport& report,
-                    const std::vector<learn::ObjectShape>& catalogue) {
+                    const std::vector<learn::ObjectShape>& catalogue, const std::vector<std::string>& trial_ids) {
     std::map<std::string, BreakdownRow> speeds, objects;
     std::vector<std::string> speed_labels, object_labels;
     for (const auto& r : rows) {
@@ -36,14 +36,19 @@ Breakdown breakdown(const std::vector<features::FeatureRow>& rows, const learn::
             it->second.clean += r.clean;
         }
     }
-    // Table row i of the evaluation is the i-th clean row, classes by name:
-    // the same mapping learn::evaluate() used.
-    std::vector<std::size_t> row_of;
-    const FeatureTable table = features::to_feature_table(rows, &row_of);
+    // The evaluation's rows are its trials (Evaluation::trial_ids), not
+    // necessarily every clean row: beside a series classifier the trials the
+    // series rule refuses are left out too.
+    std::map<std::string, std::size_t> row_of_trial;
+    for (std::size_t i = 0; i < rows.size(); ++i) row_of_trial.emplace(rows[i].trial_id, i);
     const auto& predicted = report.baseline.first_predicted;
-    for (std::size_t i = 0; i < row_of.size() && i < predicted.size(); ++i) {
-        const auto& r = rows[row_of[i]];
-        const bool right = predicted[i] == table.y[i];
+    for (std::size_t i = 0; i < trial_ids.size() && i < predicted.size(); ++i) {
+        const auto it = row_of_trial.find(trial_ids[i]);
+        if (it == row_of_trial.end()) continue;
+        const auto& r = rows[it->second];
+        const int p = predicted[i];
+        const bool right = p >= 0 && static_cast<std::size_t>(p) < report.classes.size() &&
+                           report.classes[static_cast<std::size_t>(p)] == r.object;
         for (auto* b : {&speeds.at(r.speed), &objects.at(r.object)}) {
             ++b->evaluated;
             b->correct += right;

@@ -24,7 +24,9 @@ struct Breakdown {
     std::vector<BreakdownRow> by_object;  // display order (the confusion matrix's)
 };
 
+// `trial_ids` are the evaluation's trials (Evaluation::trial_ids), in the
+// order of report.baseline.first_predicted.
 Breakdown breakdown(const std::vector<features::FeatureRow>& rows, const learn::EvaluationReport& report,
-                    const std::vector<learn::ObjectShape>& catalogue);
+                    const std::vector<learn::ObjectShape>& catalogue, const std::vector<std::string>& trial_ids);
 
 }  // namespace rollsense::report

@@ -12,6 +12,7 @@
 #include "analysis/report/page_style.hpp"
 #include "analysis/report/peak_grid.hpp"
 #include "analysis/report/provenance.hpp"
+#include "analysis/report/prefix_figure.hpp"
 #include "analysis/report/report.hpp"
 #include "analysis/report/svg.hpp"
 #include "analysis/report/tables.hpp"
@@ -84,7 +85,7 @@ Result<std::string> render_report(const ReportInputs& in) {
             " \u00d7 " + std::to_string(b.folds) + "-fold CV), 95\u00a0% interval " + fixed(100.0 * b.wilson.low, 1) +
             "\u2013" + fixed(100.0 * b.wilson.high, 1) + "\u00a0%; the paper: 90.5\u00a0%.</p>\n</header>\n";
     body += "<nav><ol><li><a href=\"#sec-accuracy\">Accuracy</a></li>" +
-            std::string(several ? "<li><a href=\"#sec-compare\">Classifiers compared</a></li>" : "") + "<li><a href=\"#sec-confusion\">Confusion "
+            std::string(several ? "<li><a href=\"#sec-compare\">Classifiers compared</a></li>" : "") + std::string(in.evaluation.prefixes ? "<li><a href=\"#sec-prefixes\">Before the roll ends</a></li>" : "") + "<li><a href=\"#sec-confusion\">Confusion "
             "matrix</a></li><li><a href=\"#sec-breakdown\">By speed and object</a></li><li><a "
             "href=\"#sec-paper\">The paper's analyses</a></li><li><a href=\"#sec-peaks\">Peak plots</a></li><li><a "
             "href=\"#sec-features\">Features</a></li><li><a href=\"#sec-tuning\">Tuning</a></li><li><a "
@@ -107,7 +108,7 @@ Result<std::string> render_report(const ReportInputs& in) {
                                "columns: predicted; shading: share of the row. TPR: true-positive rate per object. "
                                "Thick lines separate cylinders, large and small polygonal prisms."));
 
-    const Breakdown split = breakdown(in.rows, ev, in.catalogue);
+    const Breakdown split = breakdown(in.rows, ev, in.catalogue, in.evaluation.trial_ids);
     body += section("sec-breakdown", "Clean rate and accuracy by speed and by object",
                     breakdown_table(split.by_speed, "speed", nullptr) +
                         breakdown_table(split.by_object, "object", &b.confusion) +
@@ -142,6 +143,9 @@ Result<std::string> render_report(const ReportInputs& in) {
         features_body = "<p class=\"note\">No clean trial to draw the features on.</p>\n";
     }
     body += section("sec-features", "Features on one trial (cf. the paper's Fig. 8)", features_body);
+
+    if (in.evaluation.prefixes)
+        body += section("sec-prefixes", "Identification before the roll ends", prefix_section(*in.evaluation.prefixes));
 
     std::string tuning = protocol_table(ev) + hyperparameter_table(ev);
     if (ev.tuned)

@@ -60,7 +60,7 @@ std::string text_summary(const ReportInputs& in) {
         out += "\n";
     }
     // The objects most often confused: the ones a reader looks for first.
-    const Breakdown split = breakdown(in.rows, ev, in.catalogue);
+    const Breakdown split = breakdown(in.rows, ev, in.catalogue, in.evaluation.trial_ids);
     const std::vector<double> tpr = b.confusion.true_positive_rates();
     std::vector<std::size_t> idx(tpr.size());
     for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;

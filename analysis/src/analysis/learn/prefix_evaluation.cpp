@@ -1,0 +1,314 @@
+#include "analysis/learn/prefix_evaluation.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "analysis/learn/cross_validation.hpp"
+#include "analysis/series/series_table.hpp"
+
+namespace rollsense::learn {
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// Runs work(i) for i in [0, n) on `threads` threads; results go to slots by index.
+template <typename F>
+void parallel_for(std::size_t n, unsigned threads, F&& work) {
+    unsigned t = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    t = static_cast<unsigned>(std::min<std::size_t>(t, std::max<std::size_t>(n, 1)));
+    std::atomic<std::size_t> next{0};
+    auto loop = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < n;) work(i);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned k = 1; k < t; ++k) pool.emplace_back(loop);
+    loop();
+    for (auto& th : pool) th.join();
+}
+
+// The samples a prefix keeps: fraction × the speed's nominal length, never
+// more than the trial has; f ≥ 1 keeps the whole recording.
+std::size_t prefix_samples(double fraction, double nominal, std::size_t samples) {
+    if (fraction >= 1.0) return samples;
+    const auto n = static_cast<std::size_t>(std::llround(fraction * nominal));
+    return std::min(n, samples);
+}
+
+}  // namespace
+
+std::vector<NominalLength> nominal_lengths(const std::vector<TrialRecord>& records,
+                                           const std::vector<TrialData>& data) {
+    std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by_speed;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        auto& [samples, seconds] = by_speed[records[i].info.speed];
+        samples.push_back(static_cast<double>(data[i].samples()));
+        seconds.push_back(data[i].time.size() > 1 ? data[i].time.back() - data[i].time.front() : 0.0);
+    }
+    std::vector<NominalLength> out;
+    for (auto& [speed, v] : by_speed) out.push_back({speed, median(v.first), median(v.second), v.first.size()});
+    // Numeric speed labels in ascending order ("10" < "15" < "20" < "100").
+    std::stable_sort(out.begin(), out.end(), [](const NominalLength& a, const NominalLength& b) {
+        return a.speed.size() != b.speed.size() ? a.speed.size() < b.speed.size() : a.speed < b.speed;
+    });
+    return out;
+}
+
+Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, const Evaluation& ev,
+                                   const std::vector<PreparedClassifier>& classifiers,
+                                   const features::FeatureSettings& feature_settings, const InputOptions& inputs,
+                                   const PrefixOptions& options) {
+    if (options.fractions.empty()) return Error{ErrorCode::invalid_argument, "prefixes: no fraction given"};
+    for (double f : options.fractions)
+        if (!(f > 0.0 && f <= 1.0))
+            return Error{ErrorCode::invalid_argument,
+                         "prefixes: fraction " + std::to_string(f) + " is outside (0, 1] (1 = the whole roll)"};
+    if (classifiers.size() != ev.classifiers.size())
+        return Error{ErrorCode::invalid_argument, "prefixes: the classifiers are not the evaluation's"};
+    std::error_code ec;
+    if (dataset_dir.empty() || !std::filesystem::is_directory(dataset_dir, ec))
+        return Error{ErrorCode::invalid_argument, "prefixes need the recorded trials, but '" + dataset_dir.string() +
+                                                      "' is not a dataset folder (a features CSV has no prefixes)"};
+    auto ds = DatasetReader::open(dataset_dir);
+    if (!ds) return ds.error();
+    auto channels = series_channels(ds->info());
+    if (!channels) return channels.error();
+    auto channel_idx = series::channel_indices(ds->info(), *channels);
+    if (!channel_idx) return channel_idx.error();
+
+    // The evaluation's trials, loaded once.
+    std::map<std::string, const TrialRecord*> record_of;
+    for (const auto& r : ds->trials()) record_of[r.info.id] = &r;
+    const std::size_t n = ev.trial_ids.size();
+    std::vector<TrialRecord> records;
+    for (const auto& id : ev.trial_ids) {
+        const auto it = record_of.find(id);
+        if (it == record_of.end())
+            return Error{ErrorCode::not_found, "prefixes: trial '" + id + "' is not in " + dataset_dir.string() +
+                                                   "/manifest.csv (evaluation and dataset out of step?)"};
+        records.push_back(*it->second);
+    }
+    std::vector<TrialData> data(n);
+    std::vector<Status> load_errors(n);
+    parallel_for(n, options.threads, [&](std::size_t i) {
+        auto d = ds->load(records[i]);
+        if (!d) load_errors[i] = Status(d.error()).with_context((dataset_dir / records[i].file).string());
+        else data[i] = std::move(d).value();
+    });
+    for (const auto& st : load_errors)
+        if (!st) return st.error();
+
+    PrefixCurves out;
+    out.fractions = options.fractions;
+    out.folds = ev.plan.folds;
+    out.repeats = std::clamp(options.repeats, 1, static_cast<int>(ev.plan.repeats()));
+    out.nominal = nominal_lengths(records, data);
+    std::map<std::string, const NominalLength*> nominal_of;
+    for (const auto& nl : out.nominal) nominal_of[nl.speed] = &nl;
+
+    const bool need_features = std::any_of(classifiers.begin(), classifiers.end(),
+                                           [](const auto& c) { return c.input == ClassifierInput::features; });
+    const bool need_series = std::any_of(classifiers.begin(), classifiers.end(),
+                                         [](const auto& c) { return c.input == ClassifierInput::series; });
+    for (std::size_t c = 0; c < classifiers.size(); ++c) {
+        PrefixCurve curve;
+        curve.classifier = ev.classifiers[c].name;
+        curve.input = classifiers[c].input == ClassifierInput::series ? "series" : "features";
+        for (const auto& nl : out.nominal) curve.by_speed.push_back({nl.speed, {}});
+        out.classifiers.push_back(std::move(curve));
+    }
+
+    for (double f : options.fractions) {
+        if (options.progress) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "prefixes: %.0f %% of the nominal roll", 100.0 * f);
+            options.progress(buf);
+        }
+        // Each trial's prefix through both input steps (the same rules as the full trials).
+        FeatureTable ftab, stab;
+        std::vector<char> f_ok(n, 0), s_ok(n, 0);
+        std::vector<std::array<double, features::kFeatureCount>> fvals(n);
+        std::vector<std::vector<double>> svals(n);
+        std::vector<Status> errors(n);
+        parallel_for(n, options.threads, [&](std::size_t i) {
+            const TrialData& d = data[i];
+            const std::size_t keep =
+                prefix_samples(f, nominal_of.at(records[i].info.speed)->samples, d.samples());
+            if (need_features && keep > 0) {
+                features::FeatureExtractor extractor(feature_settings);
+                std::array<std::span<const double>, features::kChannels> ch;
+                for (std::size_t k = 0; k < features::kChannels; ++k)
+                    ch[k] = std::span<const double>(d.channels[(*channel_idx)[k]]).first(keep);
+                const std::span<const double> time =
+                    d.time.size() >= keep ? std::span<const double>(d.time).first(keep) : std::span<const double>{};
+                auto tf = extractor.extract(std::span<const std::span<const double>>(ch), time);
+                if (!tf) {
+                    errors[i] = Status(tf.error()).with_context("trial " + records[i].info.id);
+                    return;
+                }
+                if (tf->clean) {
+                    f_ok[i] = 1;
+                    fvals[i] = tf->values;
+                }
+            }
+            if (need_series) {
+                series::SeriesSettings s = inputs.series;
+                s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
+                auto p = series::prepare_series(d, *channel_idx, s);
+                if (!p) {
+                    errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
+                    return;
+                }
+                if (p->ok) {
+                    s_ok[i] = 1;
+                    svals[i] = std::move(p->values);
+                }
+            }
+        });
+        for (const auto& st : errors)
+            if (!st) return st.error();
+        // Full tables (every trial; rows without a decision hold zeros and are never used).
+        ftab.feature_names.assign(features::feature_names().begin(), features::feature_names().end());
+        stab.channel_names = *channels;
+        stab.series_length = inputs.series.length;
+        for (auto* t : {&ftab, &stab}) {
+            t->class_names = ev.classes;
+            t->y = ev.truth;
+            t->rows = n;
+        }
+        if (need_features)
+            for (std::size_t i = 0; i < n; ++i) ftab.x.insert(ftab.x.end(), fvals[i].begin(), fvals[i].end());
+        if (need_series)
+            for (std::size_t i = 0; i < n; ++i) {
+                if (s_ok[i]) stab.x.insert(stab.x.end(), svals[i].begin(), svals[i].end());
+                else stab.x.resize(stab.x.size() + stab.cols(), 0.0);
+            }
+
+        for (std::size_t c = 0; c < classifiers.size(); ++c) {
+            const bool series_kind = classifiers[c].input == ClassifierInput::series;
+            const FeatureTable& table = series_kind ? stab : ftab;
+            const std::vector<char>& ok = series_kind ? s_ok : f_ok;
+            PrefixPoint all{f};
+            std::map<std::string, PrefixPoint> per_speed;
+            for (int r = 0; r < out.repeats; ++r) {
+                const auto& assignment = ev.plan.assignment[static_cast<std::size_t>(r)];
+                for (int k = 0; k < ev.plan.folds; ++k) {
+                    std::vector<std::size_t> train, test_ok;
+                    std::vector<std::size_t> test_all;
+                    for (std::size_t i = 0; i < n; ++i) {
+                        if (assignment[i] == k) {
+                            test_all.push_back(i);
+                            if (ok[i]) test_ok.push_back(i);
+                        } else if (ok[i]) {
+                            train.push_back(i);
+                        }
+                    }
+                    std::vector<int> predicted(n, -1);
+                    std::set<int> train_classes;
+                    for (std::size_t i : train) train_classes.insert(table.y[i]);
+                    if (!test_ok.empty() && train_classes.size() >= 2) {
+                        auto model = train_classifier(subset(table, train), classifiers[c].factory,
+                                                      classifiers[c].spec.params);
+                        if (!model)
+                            return Status(model.error()).with_context("prefixes at " + std::to_string(f) +
+                                                                      ", classifier '" + ev.classifiers[c].name + "'");
+                        auto labels = predict_labels(**model, table, test_ok);
+                        if (!labels) return labels.error();
+                        for (std::size_t j = 0; j < test_ok.size(); ++j) predicted[test_ok[j]] = (*labels)[j];
+                    }
+                    for (std::size_t i : test_all) {
+                        auto& sp = per_speed[records[i].info.speed];
+                        for (auto* p : {&all, &sp}) {
+                            ++p->total;
+                            if (!ok[i]) ++p->no_decision;
+                            else if (predicted[i] == table.y[i]) ++p->correct;
+                        }
+                    }
+                }
+            }
+            auto& curve = out.classifiers[c];
+            curve.points.push_back(all);
+            for (auto& sc : curve.by_speed) {
+                PrefixPoint p = per_speed[sc.speed];
+                p.fraction = f;
+                p.seconds = f * nominal_of.at(sc.speed)->seconds;
+                sc.points.push_back(p);
+            }
+        }
+    }
+    // Where each classifier reaches 95 % of its accuracy at the largest fraction.
+    const std::size_t last =
+        static_cast<std::size_t>(std::max_element(out.fractions.begin(), out.fractions.end()) - out.fractions.begin());
+    for (auto& curve : out.classifiers) {
+        const double full = curve.points[last].accuracy();
+        std::optional<double> best;
+        for (const auto& p : curve.points)
+            if (p.accuracy() >= 0.95 * full && (!best || p.fraction < *best)) best = p.fraction;
+        curve.fraction_95 = best;
+    }
+    return out;
+}
+
+std::string format_prefix_curves(const PrefixCurves& pc) {
+    std::string out;
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "\nidentification before the roll ends (%d x %d-fold on the same partitions; prefix = fraction of "
+                  "the nominal recording length at the trial's speed; no decision counts as wrong):\n",
+                  pc.repeats, pc.folds);
+    out += buf;
+    out += "  nominal lengths (median over the trials of each speed):";
+    for (const auto& nl : pc.nominal) {
+        std::snprintf(buf, sizeof buf, " speed %s %.0f samples / %.2f s;", nl.speed.c_str(), nl.samples, nl.seconds);
+        out += buf;
+    }
+    out.back() = '\n';
+    out += "  ";
+    out += kPrefixTimingNote;
+    out += "\n";
+    for (const auto& c : pc.classifiers) {
+        out += "  " + c.classifier + " (" + c.input + "):\n    fraction ";
+        for (const auto& p : c.points) {
+            std::snprintf(buf, sizeof buf, " %5.0f%%", 100.0 * p.fraction);
+            out += buf;
+        }
+        out += "\n    accuracy ";
+        for (const auto& p : c.points) {
+            std::snprintf(buf, sizeof buf, " %5.1f%%", 100.0 * p.accuracy());
+            out += buf;
+        }
+        out += "\n    no decis.";
+        for (const auto& p : c.points) {
+            std::snprintf(buf, sizeof buf, " %5.1f%%",
+                          p.total ? 100.0 * static_cast<double>(p.no_decision) / static_cast<double>(p.total) : 0.0);
+            out += buf;
+        }
+        out += "\n";
+        for (const auto& s : c.by_speed) {
+            std::snprintf(buf, sizeof buf, "    speed %-4s", s.speed.c_str());
+            out += buf;
+            for (const auto& p : s.points) {
+                std::snprintf(buf, sizeof buf, " %5.1f%%", 100.0 * p.accuracy());
+                out += buf;
+            }
+            out += "\n";
+        }
+        if (c.fraction_95) {
+            std::snprintf(buf, sizeof buf, "    reaches 95 %% of its full-roll accuracy at %.0f %% of the roll\n",
+                          100.0 * *c.fraction_95);
+            out += buf;
+        }
+    }
+    return out;
+}
+
+}  // namespace rollsense::learn

@@ -1,0 +1,85 @@
+-- The paper's method and a raw-series one side by side: bagged trees on the 13
+-- features and MiniRocket on the prepared series (docs/minirocket.md,
+-- docs/series-preparation.md), on the same folds and the same trials, with
+-- identification before the roll ends; beside it MiniRocket on ALL trials,
+-- including those the paper's peak rule refuses.
+--
+--   rollsense run scripts/compare_methods.lua --seed 11 --out runs/compare
+--       records the stock experiment (as paper_experiment.lua) into runs/compare, then compares
+--   rollsense run scripts/compare_methods.lua --out runs/compare-of-11 --set dataset=runs/paper11
+--       compares on a dataset recorded earlier (outputs go to --out)
+--
+-- Outputs in --out: evaluation.txt/.json and report.html (both classifiers on the
+-- paper's clean trials that the series rule also accepts, with the prefix curves),
+-- evaluation-all-trials.txt/.json and report-all-trials.html (MiniRocket on every
+-- trial the series rule accepts), model.rsm (bagged trees) and model-minirocket.rsm.
+--
+-- Settings (--set key=value): dataset (record), runs (50), objects, speeds (as
+-- paper_experiment.lua), repeats (10), prefix_repeats (1), series_amplitude
+-- (the series rule's default).
+local rs = require "rollsense"
+local etroll = require "etroll"
+
+local function list(text)
+  local out = {}
+  for item in tostring(text):gmatch("[^,%s]+") do out[#out + 1] = item end
+  return out
+end
+
+local dataset = rs.setting("dataset", "")
+if dataset == "" then
+  -- The stock experiment, recorded exactly as scripts/paper_experiment.lua does.
+  local runs = math.tointeger(rs.setting("runs", 50)) or error("--set runs=N expects a whole number")
+  local objects = list(rs.setting("objects", "C1,C2,C3,S1,S2,P1,P2,H1,H2"))
+  local speeds = list(rs.setting("speeds", "10,15,20"))
+  rs.on_cleanup(etroll.park)
+  local total, done = #objects * #speeds * runs, 0
+  for _, object in ipairs(objects) do
+    for _, speed in ipairs(speeds) do
+      for repetition = 1, runs do
+        local id = rs.trial_id{ object = object, speed = tonumber(speed), repetition = repetition }
+        if not rs.has_trial(id) then
+          etroll.run_trial{ object = object, speed = tonumber(speed), repetition = repetition }
+        end
+        done = done + 1
+        rs.progress(done, total, id)
+      end
+    end
+  end
+  rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))
+end
+
+local common = {
+  folds = 5,
+  repeats = math.tointeger(rs.setting("repeats", 10)),
+  series_amplitude = rs.setting("series_amplitude", "") ~= "" and rs.setting("series_amplitude") or nil,
+}
+local function with(extra)
+  local t = {}
+  for k, v in pairs(common) do t[k] = v end
+  for k, v in pairs(extra) do t[k] = v end
+  if dataset ~= "" then t.dataset = dataset end
+  return t
+end
+
+-- Both methods on the same trials and folds, and before the roll ends.
+local both = rs.analyse(with{
+  classifiers = { "bagged_trees", "minirocket" },
+  prefixes = true,
+  prefix_repeats = math.tointeger(rs.setting("prefix_repeats", 1)),
+})
+for _, c in ipairs(both.classifiers) do
+  rs.log(string.format("%-14s %5.1f %% +- %.1f  (%d trials, the same %d-fold partitions)", c.name,
+    100 * c.accuracy, 100 * c.accuracy_sd, both.clean, 5))
+end
+
+-- MiniRocket on every trial its own (series) rule accepts, the paper's refused ones included.
+local all = rs.analyse(with{ classifiers = { "minirocket" }, trials = "all", tag = "all-trials",
+                             model = "model-minirocket.rsm" })
+rs.log(string.format("minirocket on all trials it accepts: %d of %d, accuracy %.1f %% +- %.1f (%s)",
+  all.clean, all.trials, 100 * all.accuracy, 100 * all.accuracy_sd, all.evaluation))
+local mr = all.classifiers[1]
+if mr.paper_refused then
+  rs.log(string.format("  of them %d are trials the paper's peak rule refuses: %d identified right out of fold (%.1f %%, "
+    .. "first repetition)", mr.paper_refused, mr.paper_refused_correct, 100 * mr.paper_refused_correct / mr.paper_refused))
+end
