@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rollsense/random.hpp"
+#include "rollsense/trial_id.hpp"
 #include "runtime/robot/robot.hpp"
 #include "runtime/time/clock.hpp"
 
@@ -31,12 +32,15 @@ Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInf
     if (!w) return w.status();
     dataset_ = std::move(*w);
     dataset_->set_commit_every(commit_every);
+    resumed_trials_ = dataset_->durable_trials();
     return {};
 }
 
 Status Recorder::begin_trial(TrialInfo info) {
     if (recording_) return {ErrorCode::state_error, "a trial cannot begin while recording (call rs.record_stop() first)"};
-    if (info.id.empty()) return {ErrorCode::invalid_argument, "a trial needs an id"};
+    // The id names the trial's file: checked here so rs.trial fails at once,
+    // not a batch of trials later when the file cannot be created.
+    if (auto s = check_trial_id(info.id); !s.ok()) return s;
     info.seed = trial_seed(run_seed_, info.id);
     trial_ = std::move(info);
     trial_rng_.seed(trial_.seed);
@@ -95,9 +99,7 @@ Status Recorder::save_trial() {
     if (data_.samples() == 0) return {ErrorCode::state_error, "trial '" + trial_.id + "' recorded no samples"};
     TrialRecord rec;
     rec.info = trial_;
-    auto s = dataset_->add_trial(rec, data_);
-    if (s.ok()) ++trials_saved_;
-    return s;
+    return dataset_->add_trial(rec, data_);
 }
 
 Status Recorder::end_trial() {
@@ -109,6 +111,10 @@ Status Recorder::end_trial() {
 Status Recorder::flush() {
     if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR"};
     return dataset_->flush();
+}
+
+std::size_t Recorder::trials_saved() const {
+    return dataset_ ? dataset_->durable_trials() - resumed_trials_ : 0;
 }
 
 bool Recorder::has_trial(const std::string& id) {

@@ -57,7 +57,10 @@ public:
     // The run failed or ended while recording: stop the sensors, keep nothing.
     void abort_recording();
 
-    std::size_t trials_saved() const { return trials_saved_; }
+    // Trials this run made durable (in the manifest on disk): after a failed
+    // write, trials save_trial accepted but the disk lost are not counted.
+    // Exact once flush() has returned.
+    std::size_t trials_saved() const;
     std::size_t trials_skipped() const { return trials_skipped_; }
     // run-info.csv of the dataset, if one is open (best effort).
     void write_run_info(const std::vector<std::pair<std::string, std::string>>& fields);
@@ -79,7 +82,7 @@ private:
     double sample_epoch_ = 0;
     std::uint64_t sample_m_ = 0;
     double next_sample_ = 0;
-    std::size_t trials_saved_ = 0;
+    std::size_t resumed_trials_ = 0;  // already in the dataset when it was opened
     std::size_t trials_skipped_ = 0;
 };
 
