@@ -425,6 +425,11 @@ std::size_t DatasetWriter::durable_trials() {
     return durable_;
 }
 
+std::size_t DatasetWriter::lost_trials() {
+    std::lock_guard lock(mutex_);
+    return lost_.size();
+}
+
 Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     if (auto s = take_error(); !s.ok()) return s;
     // Checked before anything is queued: an id the filesystem refuses would

@@ -109,6 +109,7 @@ TEST_CASE("a failed batch write names every trial it lost and counts only durabl
         CHECK_THAT(s.message(), Catch::Contains("3 trial(s) not saved: t0, t1, t2") &&
                                     Catch::Contains("0 trial(s) are safely in") && Catch::Contains("--resume"));
         CHECK((*w)->durable_trials() == 0);
+        CHECK((*w)->lost_trials() == 3);
     }
     SECTION("batches before it stay, batches after it are named") {
         (*w)->set_commit_every(1);
@@ -123,6 +124,7 @@ TEST_CASE("a failed batch write names every trial it lost and counts only durabl
         CHECK_THAT(s.message(), Catch::Contains("1 trial(s) not saved: t1") &&
                                     Catch::Contains("1 trial(s) are safely in"));
         CHECK((*w)->durable_trials() == 1);
+        CHECK((*w)->lost_trials() == 1);
     }
     w->reset();
     auto back = DatasetReader::open(dir / "ds");

@@ -111,6 +111,8 @@ public:
     // Trials listed in the manifest on disk (resumed ones included): what a
     // run may count as saved.
     std::size_t durable_trials();
+    // Trials add_trial() accepted that a failed write lost (not in the manifest).
+    std::size_t lost_trials();
 
     // Provenance outside the deterministic files.
     Status write_run_info(const std::vector<std::pair<std::string, std::string>>& entries);

@@ -32,7 +32,6 @@ Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInf
     if (!w) return w.status();
     dataset_ = std::move(*w);
     dataset_->set_commit_every(commit_every);
-    resumed_trials_ = dataset_->durable_trials();
     return {};
 }
 
@@ -99,7 +98,9 @@ Status Recorder::save_trial() {
     if (data_.samples() == 0) return {ErrorCode::state_error, "trial '" + trial_.id + "' recorded no samples"};
     TrialRecord rec;
     rec.info = trial_;
-    return dataset_->add_trial(rec, data_);
+    auto s = dataset_->add_trial(rec, data_);
+    if (s.ok()) ++trials_accepted_;
+    return s;
 }
 
 Status Recorder::end_trial() {
@@ -114,7 +115,10 @@ Status Recorder::flush() {
 }
 
 std::size_t Recorder::trials_saved() const {
-    return dataset_ ? dataset_->durable_trials() - resumed_trials_ : 0;
+    // Accepted minus lost: once flush() has returned, exactly the trials this
+    // run made durable; before, the ones still on their way count as well.
+    const std::size_t lost = dataset_ ? dataset_->lost_trials() : 0;
+    return trials_accepted_ > lost ? trials_accepted_ - lost : 0;
 }
 
 bool Recorder::has_trial(const std::string& id) {

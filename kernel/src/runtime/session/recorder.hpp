@@ -57,9 +57,8 @@ public:
     // The run failed or ended while recording: stop the sensors, keep nothing.
     void abort_recording();
 
-    // Trials this run made durable (in the manifest on disk): after a failed
-    // write, trials save_trial accepted but the disk lost are not counted.
-    // Exact once flush() has returned.
+    // Trials this run saved, less those a failed write lost: once flush() has
+    // returned, exactly the trials this run made durable (in the manifest).
     std::size_t trials_saved() const;
     std::size_t trials_skipped() const { return trials_skipped_; }
     // run-info.csv of the dataset, if one is open (best effort).
@@ -82,7 +81,7 @@ private:
     double sample_epoch_ = 0;
     std::uint64_t sample_m_ = 0;
     double next_sample_ = 0;
-    std::size_t resumed_trials_ = 0;  // already in the dataset when it was opened
+    std::size_t trials_accepted_ = 0;  // save_trial() calls the dataset accepted
     std::size_t trials_skipped_ = 0;
 };
 
