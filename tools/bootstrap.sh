@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config liblua5.4-dev libeigen3-dev libgpiod-dev libmodbus-dev
-          libboost-dev catch2 zlib1g-dev python3 python3-sklearn python3-numpy chromium)
+          libboost-dev catch2 zlib1g-dev python3 python3-sklearn python3-numpy chromium
+          clang)  # clang: the libFuzzer harnesses of .ci/run and tools/fuzz.sh
 
 if [[ -z "${ROLLSENSE_NO_APT:-}" ]]; then
   missing=()

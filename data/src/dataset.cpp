@@ -7,6 +7,7 @@
 
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/trial_id.hpp"
 
 namespace rollsense {
 namespace fs = std::filesystem;
@@ -67,6 +68,9 @@ std::string format_info(const DatasetInfo& info) {
     return out;
 }
 
+// Far above any sensor rollsense reads (the barometers sample at ~31 Hz).
+constexpr double kMaxSampleRateHz = 1e6;
+
 Result<DatasetInfo> read_info(const fs::path& file) {
     auto reader = csv::Reader::open(file);
     if (!reader) return reader.error();
@@ -89,7 +93,7 @@ Result<DatasetInfo> read_info(const fs::path& file) {
                                                          "', expected '" + kDatasetFormat + "'"};
             format_seen = true;
         } else if (key == "format_version") {
-            auto v = reader->number(f, *val_col);
+            auto v = reader->integer(f, *val_col, 1, INT32_MAX);
             if (!v) return v.error();
             if (*v > kDatasetFormatVersion)
                 return Error{ErrorCode::parse_error, reader->where(*val_col) + ": format version " + value +
@@ -99,6 +103,11 @@ Result<DatasetInfo> read_info(const fs::path& file) {
         } else if (key == "sample_rate_hz") {
             auto v = reader->number(f, *val_col);
             if (!v) return v.error();
+            // Every reader divides by it (sample periods, windows in samples).
+            if (!std::isfinite(*v) || *v <= 0.0 || *v > kMaxSampleRateHz)
+                return Error{ErrorCode::parse_error, reader->where(*val_col) + ": sample rate " + value +
+                                                         " Hz is not in (0, " + csv::format_number(kMaxSampleRateHz) +
+                                                         "]"};
             info.sample_rate_hz = *v;
         } else if (key == "channels") {
             info.channels = split(value, ' ');
@@ -167,6 +176,12 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
         r.invalid_samples = static_cast<std::size_t>(*invalid);
         if (col[8] != SIZE_MAX) r.info.extra = parse_extra(f[col[8]]);
         if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader->where(col[0]) + ": empty trial id"};
+        // A manifest names files inside its dataset folder only.
+        const fs::path listed(r.file);
+        if (r.file.empty() || listed.is_absolute() ||
+            std::any_of(listed.begin(), listed.end(), [](const fs::path& part) { return part == ".."; }))
+            return Error{ErrorCode::parse_error, reader->where(col[1]) + ": '" + r.file +
+                                                     "' is not a path inside the dataset folder (relative, no '..')"};
         if (!ids.insert(r.info.id).second)
             return Error{ErrorCode::parse_error, reader->where(col[0]) + ": trial id '" + r.info.id + "' appears twice"};
         out.push_back(std::move(r));
@@ -271,7 +286,14 @@ Result<TrialData> DatasetReader::load(const TrialRecord& record) const {
     TrialData d;
     d.channels.resize(ch_cols.size());
     d.joints.resize(joint_cols.size());
-    const std::size_t expected = record.samples;
+    // The manifest's count is only a hint for reserving: a row takes at least
+    // two bytes per column, so the file's size bounds what is worth reserving
+    // (a damaged manifest must not make this allocate gigabytes).
+    std::error_code size_ec;
+    const auto bytes = fs::file_size(dir_ / record.file, size_ec);
+    const std::size_t row_bytes = 2 * (1 + ch_cols.size() + joint_cols.size());
+    const std::size_t expected =
+        size_ec ? 0 : std::min<std::size_t>(record.samples, static_cast<std::size_t>(bytes / row_bytes));
     d.time.reserve(expected);
     for (auto& c : d.channels) c.reserve(expected);
     std::vector<std::string> f;
@@ -348,6 +370,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                                                         "choose another folder with --out"};
         w->trials_ = on_disk->trials();
     }
+    w->durable_ = w->trials_.size();
     std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)},
                                    {dir / "manifest.csv", w->manifest_text()}};
     if (auto s = write_files_atomic(files); !s.ok()) return s.error();
@@ -382,15 +405,36 @@ std::string DatasetWriter::manifest_text() const {
 
 Status DatasetWriter::take_error() {
     std::lock_guard lock(mutex_);
-    return error_;
+    return error_locked();
+}
+
+Status DatasetWriter::error_locked() const {
+    if (error_.ok()) return error_;
+    std::string ids;
+    for (std::size_t i = 0; i < lost_.size() && i < 20; ++i) ids += (i ? ", " : "") + lost_[i];
+    if (lost_.size() > 20) ids += ", ... (" + std::to_string(lost_.size() - 20) + " more)";
+    std::string lost = lost_.empty() ? std::string()
+                                     : "; " + std::to_string(lost_.size()) + " trial(s) not saved: " + ids;
+    return Error{error_.error().code, error_.error().message + lost + "; " + std::to_string(durable_) +
+                                          " trial(s) are safely in " + (dir_ / "manifest.csv").string() +
+                                          " (continue with --resume once the cause is fixed)"};
+}
+
+std::size_t DatasetWriter::durable_trials() {
+    std::lock_guard lock(mutex_);
+    return durable_;
+}
+
+std::size_t DatasetWriter::lost_trials() {
+    std::lock_guard lock(mutex_);
+    return lost_.size();
 }
 
 Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     if (auto s = take_error(); !s.ok()) return s;
-    if (record.info.id.empty() || record.info.id.find_first_of("/\\") != std::string::npos ||
-        record.info.id[0] == '.')
-        return {ErrorCode::invalid_argument,
-                "trial id '" + record.info.id + "' cannot name a file (no '/', no leading '.')"};
+    // Checked before anything is queued: an id the filesystem refuses would
+    // otherwise fail the whole batch later, losing the other trials in it.
+    if (auto s = check_trial_id(record.info.id); !s.ok()) return s;
     if (has_trial(record.info.id))
         return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string()};
     if (data.channels.size() != info_.channels.size() || data.joints.size() != info_.joints.size())
@@ -401,6 +445,7 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     record.samples = data.samples();
     record.invalid_samples = 0;
     for (auto v : data.valid) record.invalid_samples += v ? 0 : 1;
+    pending_.ids.push_back(record.info.id);
     pending_.trials.emplace_back(dir_ / record.file, data);
     trials_.push_back(std::move(record));
     if (pending_.trials.size() >= commit_every_) hand_over();
@@ -410,6 +455,7 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
 void DatasetWriter::hand_over() {
     if (pending_.trials.empty()) return;
     pending_.manifest = manifest_text();
+    pending_.listed = trials_.size();
     {
         std::lock_guard lock(mutex_);
         queue_.push_back(std::move(pending_));
@@ -439,7 +485,14 @@ void DatasetWriter::writer_loop() {
             if (s.ok()) s = write_file_atomic(dir_ / "manifest.csv", batch.manifest);
         }
         lock.lock();
-        if (!s.ok() && error_.ok()) error_ = s;
+        if (s.ok() && !failed) {
+            durable_ = batch.listed;
+        } else {
+            // Every trial of a batch that did not reach the manifest is lost,
+            // even those whose files were written: the manifest is what counts.
+            if (error_.ok()) error_ = s;
+            lost_.insert(lost_.end(), batch.ids.begin(), batch.ids.end());
+        }
         busy_ = false;
         idle_.notify_all();
     }
@@ -449,7 +502,7 @@ Status DatasetWriter::flush() {
     hand_over();
     std::unique_lock lock(mutex_);
     idle_.wait(lock, [&] { return queue_.empty() && !busy_; });
-    return error_;
+    return error_locked();
 }
 
 Status DatasetWriter::write_run_info(const std::vector<std::pair<std::string, std::string>>& entries) {

@@ -93,3 +93,73 @@ TEST_CASE("a user-added object loads, diameter derived when left empty", "[sim][
     REQUIRE(cat.ok());
     CHECK(cat->find("T1")->diameter == Approx(20.0 / std::sin(3.14159265358979323846 / 3)));
 }
+
+// Issue 22 item 7: a NaN edge radius overflowed the tumbling model's buffers,
+// side_mm=1e41 took 11 s per trial, sides=1e10 was cast to int (undefined).
+TEST_CASE("catalogue numbers outside their physical ranges are refused with file:line:column",
+          "[sim][catalogue][bounds]") {
+    struct Case {
+        std::string row;
+        std::string column;
+        std::string says;
+    };
+    const Case cases[] = {
+        {"S1,square,4,13,18.4,0.3,NaN,x\n", "edge_radius_max_mm", "not a finite number"},
+        {"S1,square,4,13,18.4,nan,1.5,x\n", "edge_radius_min_mm", "not a finite number"},
+        {"S1,square,4,13,18.4,0.3,inf,x\n", "edge_radius_max_mm", "not a finite number"},
+        {"S1,square,4,13,18.4,-inf,1.5,x\n", "edge_radius_min_mm", "not a finite number"},
+        {"S1,square,4,1e41,,0.3,1.5,x\n", "side_mm", "<= 200 mm"},
+        {"S1,square,4,NaN,,0.3,1.5,x\n", "side_mm", "> 0"},
+        {"S1,square,4,inf,,0.3,1.5,x\n", "side_mm", "> 0"},
+        {"S1,square,1e10,13,,0.3,1.5,x\n", "sides", "whole number"},
+        {"S1,square,NaN,13,,0.3,1.5,x\n", "sides", "whole number"},
+        {"S1,square,-4,13,,0.3,1.5,x\n", "sides", "whole number"},
+        {"S1,square,4.5,13,,0.3,1.5,x\n", "sides", "whole number"},
+        {"S1,square,4,13,NaN,0.3,1.5,x\n", "diameter_mm", "finite"},
+        {"C9,circle,0,,1e300,,,x\n", "diameter_mm", "<= 200 mm"},
+        {"C9,circle,0,,NaN,,,x\n", "diameter_mm", "> 0"},
+        {"C9,circle,0,,18,NaN,,x\n", "edge_radius_min_mm", "finite"},
+        {"../x,circle,0,,18,,,x\n", "id", "A-Z a-z 0-9"},
+        {"a b,circle,0,,18,,,x\n", "id", "A-Z a-z 0-9"},
+        {std::string(41, 'L') + ",circle,0,,18,,,x\n", "id", "1 to 40 characters"},
+    };
+    for (const auto& c : cases) {
+        const auto file = write_temp("bounds.csv", kHeader + "C1,circle,0,,18,,,ok\n" + c.row);
+        auto cat = ObjectCatalogue::load(file);
+        INFO(c.row);
+        REQUIRE_FALSE(cat.ok());
+        const std::string msg = cat.error().message;
+        INFO(msg);
+        CHECK(msg.find(file.string() + ":3: column '" + c.column + "'") != std::string::npos);
+        CHECK(msg.find(c.says) != std::string::npos);
+    }
+}
+
+TEST_CASE("the largest objects the ranges allow still load", "[sim][catalogue][bounds]") {
+    const auto file = write_temp("edge.csv", kHeader + "C1,circle,0,,200,,,big\nT1,triangle,3,200,,0,0,big\n" +
+                                                 "D1,octagon,8,0.5,,0,0.2,small\n" + std::string(40, 'L') +
+                                                 ",circle,0,,1,,,longest id\n");
+    auto cat = ObjectCatalogue::load(file);
+    INFO((cat.ok() ? std::string() : cat.error().describe()));
+    REQUIRE(cat.ok());
+    CHECK(cat->objects().size() == 4);
+}
+
+TEST_CASE("object_problem checks an object built without the reader", "[sim][catalogue][bounds]") {
+    ObjectSpec o;
+    o.id = "S1";
+    o.base = "square";
+    o.sides = 4;
+    o.side = 13.0;
+    o.diameter = 18.38;
+    o.edge_radius_min = 0.3;
+    o.edge_radius_max = 1.5;
+    CHECK_FALSE(object_problem(o).has_value());
+    o.edge_radius_max = std::nan("");
+    REQUIRE(object_problem(o).has_value());
+    CHECK(object_problem(o)->column == "edge_radius_max_mm");
+    o.edge_radius_max = 1.5;
+    o.sides = 1000;
+    REQUIRE(object_problem(o).has_value());
+    CHECK(object_problem(o)->column == "sides");
+}

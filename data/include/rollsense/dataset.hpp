@@ -102,8 +102,17 @@ public:
     // Number of trials collected before a group commit (1 = every trial durable
     // before the call returns).
     void set_commit_every(std::size_t trials) { commit_every_ = trials == 0 ? 1 : trials; }
+    // Refuses an id check_trial_id() refuses before anything is queued.
     Status add_trial(TrialRecord record, const TrialData& data);
+    // Waits for every queued batch. After a failed write, the error names the
+    // trials that were lost (those of the failed batch and of every batch
+    // after it: none of them is in the manifest) and how many are durable.
     Status flush();
+    // Trials listed in the manifest on disk (resumed ones included): what a
+    // run may count as saved.
+    std::size_t durable_trials();
+    // Trials add_trial() accepted that a failed write lost (not in the manifest).
+    std::size_t lost_trials();
 
     // Provenance outside the deterministic files.
     Status write_run_info(const std::vector<std::pair<std::string, std::string>>& entries);
@@ -112,12 +121,15 @@ private:
     struct Batch {
         std::vector<std::pair<std::filesystem::path, TrialData>> trials;
         std::string manifest;  // the manifest listing every trial up to this batch
+        std::vector<std::string> ids;  // the trials of this batch, for the error when it fails
+        std::size_t listed = 0;        // trials the manifest lists
     };
     DatasetWriter() = default;
     std::string manifest_text() const;
     void hand_over();           // pending trials → the writer thread
     void writer_loop();
     Status take_error();
+    Status error_locked() const;  // error_ with the lost trials named; mutex_ held
 
     DirectoryLock lock_;  // first member: released after the writer thread has ended
     std::filesystem::path dir_;
@@ -132,6 +144,8 @@ private:
     std::deque<Batch> queue_;
     bool busy_ = false, stopping_ = false;
     Status error_;
+    std::vector<std::string> lost_;  // trials of batches that failed or were skipped after a failure
+    std::size_t durable_ = 0;        // trials in the manifest on disk
 };
 
 // Render a trial as its CSV file content (used by the writer and by tests).

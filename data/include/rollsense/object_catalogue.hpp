@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,24 @@ struct ObjectSpec {
     // diameter for even n, inradius + circumradius for odd n), mm.
     double flat_width() const;
 };
+
+// The ranges every object must lie in, whoever built it (the catalogue reader
+// checks each row against them; the sim checks again before rolling one):
+// lengths finite in (0, 200] mm (the hand opens far less; beyond, the sim's
+// stepping would take minutes per trial), sides 0 or 3..12, edge radii finite,
+// 0 <= min <= max below the face's inradius limit, id 1..40 characters of
+// [A-Za-z0-9._-] (it becomes part of trial ids, hence of file names).
+inline constexpr int kMinSides = 3;
+inline constexpr int kMaxSides = 12;
+inline constexpr double kMaxObjectSizeMm = 200.0;
+inline constexpr std::size_t kMaxObjectIdLength = 40;
+
+struct ObjectProblem {
+    std::string column;   // the catalogue column at fault, e.g. "edge_radius_max_mm"
+    std::string message;  // what is wrong and what is accepted
+};
+// The first way `o` lies outside those ranges, or nullopt.
+std::optional<ObjectProblem> object_problem(const ObjectSpec& o);
 
 class ObjectCatalogue {
 public:

@@ -5,12 +5,23 @@
 // same string; docs/dataset-format.md ("manifest.csv") documents it.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
+
+#include "rollsense/status.hpp"
 
 namespace rollsense {
 
 // `speed` as the script wrote it ("10", "12.5"): the id keeps its spelling.
 std::string trial_id(std::string_view object, std::string_view speed, int repetition);
+
+// A trial id names its file (trials/<id>.csv) on every filesystem a dataset
+// may be copied to, so it is checked before anything is written: 1 to
+// kMaxTrialIdLength characters of [A-Za-z0-9._-], not starting with '.', and
+// not a name Windows reserves (CON, NUL, COM1, ...). An error says which rule
+// the id breaks and how to name it.
+inline constexpr std::size_t kMaxTrialIdLength = 100;
+Status check_trial_id(std::string_view id);
 
 }  // namespace rollsense

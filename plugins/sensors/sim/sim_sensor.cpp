@@ -63,6 +63,13 @@ Status SimSensor::begin_trial(const TrialInfo& trial) {
                                                     "' is not in the catalogue " + catalogue_->path().string() +
                                                     " (known: " + catalogue_->ids() +
                                                     "); add a row there or fix the script's object id"};
+        // The reader checks every row; checked again here because a NaN or
+        // huge length would make the tumbling model index out of bounds or
+        // step for minutes, whoever filled the catalogue.
+        if (auto problem = object_problem(*object_))
+            return Status{ErrorCode::invalid_argument, "sim: object '" + object_->id + "' of catalogue " +
+                                                           catalogue_->path().string() + ", column '" +
+                                                           problem->column + "': " + problem->message};
     }
     trial_ = std::make_unique<TrialModel>(settings_.physics, device_, object_, trial.seed);
     warned_no_pushing_joint_ = false;

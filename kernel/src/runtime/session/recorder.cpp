@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rollsense/random.hpp"
+#include "rollsense/trial_id.hpp"
 #include "runtime/robot/robot.hpp"
 #include "runtime/time/clock.hpp"
 
@@ -36,7 +37,9 @@ Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInf
 
 Status Recorder::begin_trial(TrialInfo info) {
     if (recording_) return {ErrorCode::state_error, "a trial cannot begin while recording (call rs.record_stop() first)"};
-    if (info.id.empty()) return {ErrorCode::invalid_argument, "a trial needs an id"};
+    // The id names the trial's file: checked here so rs.trial fails at once,
+    // not a batch of trials later when the file cannot be created.
+    if (auto s = check_trial_id(info.id); !s.ok()) return s;
     info.seed = trial_seed(run_seed_, info.id);
     trial_ = std::move(info);
     trial_rng_.seed(trial_.seed);
@@ -96,7 +99,7 @@ Status Recorder::save_trial() {
     TrialRecord rec;
     rec.info = trial_;
     auto s = dataset_->add_trial(rec, data_);
-    if (s.ok()) ++trials_saved_;
+    if (s.ok()) ++trials_accepted_;
     return s;
 }
 
@@ -109,6 +112,13 @@ Status Recorder::end_trial() {
 Status Recorder::flush() {
     if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR"};
     return dataset_->flush();
+}
+
+std::size_t Recorder::trials_saved() const {
+    // Accepted minus lost: once flush() has returned, exactly the trials this
+    // run made durable; before, the ones still on their way count as well.
+    const std::size_t lost = dataset_ ? dataset_->lost_trials() : 0;
+    return trials_accepted_ > lost ? trials_accepted_ - lost : 0;
 }
 
 bool Recorder::has_trial(const std::string& id) {

@@ -57,7 +57,9 @@ public:
     // The run failed or ended while recording: stop the sensors, keep nothing.
     void abort_recording();
 
-    std::size_t trials_saved() const { return trials_saved_; }
+    // Trials this run saved, less those a failed write lost: once flush() has
+    // returned, exactly the trials this run made durable (in the manifest).
+    std::size_t trials_saved() const;
     std::size_t trials_skipped() const { return trials_skipped_; }
     // run-info.csv of the dataset, if one is open (best effort).
     void write_run_info(const std::vector<std::pair<std::string, std::string>>& fields);
@@ -79,7 +81,7 @@ private:
     double sample_epoch_ = 0;
     std::uint64_t sample_m_ = 0;
     double next_sample_ = 0;
-    std::size_t trials_saved_ = 0;
+    std::size_t trials_accepted_ = 0;  // save_trial() calls the dataset accepted
     std::size_t trials_skipped_ = 0;
 };
 

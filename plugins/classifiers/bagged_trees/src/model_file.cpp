@@ -14,6 +14,8 @@
 //   checksum <FNV-1a 64 of every byte before this line, 16 hex digits>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -26,6 +28,13 @@ namespace {
 
 constexpr const char* kMagic = "rollsense-bagged-trees";
 constexpr int kVersion = 1;
+// Smallest a node line ("0 0 0\n") and a tree ("tree 0 1 1\n", one node line,
+// one leaf line) can be: the bounds declared counts are checked against.
+constexpr std::size_t kMinNodeBytes = 6;
+constexpr std::size_t kMinTreeBytes = 11 + kMinNodeBytes + 2;
+// Far above any model rollsense trains (the stock model is ~100 kB), far below
+// what would exhaust a machine reading it.
+constexpr std::uintmax_t kMaxModelBytes = std::uintmax_t{1} << 30;
 
 std::uint64_t fnv1a(std::string_view s) {
     std::uint64_t h = 0xcbf29ce484222325ULL;
@@ -84,6 +93,9 @@ public:
     }
     std::size_t line_start() const { return line_start_; }
     bool cut() const { return cut_; }
+    // Bytes not read yet: every count the file declares must fit in them
+    // before anything is allocated for it.
+    std::size_t remaining() const { return text_.size() - pos_; }
 
 private:
     std::string_view text_;
@@ -228,6 +240,12 @@ Status Ensemble::deserialize(std::string_view text, const std::string& source) {
     if (auto s = count_line("trees", b, "reading the tree count"); !s) return s;
     if (b == 0 || b > 1000000) return in.fail("implausible tree count " + std::to_string(b));
 
+    // Every tree takes at least a header line and two node lines ("0 0 0\n"
+    // is 6 bytes), so a count the rest of the file cannot hold is refused
+    // before anything is allocated for it.
+    if (b > in.remaining() / kMinTreeBytes)
+        return in.fail("declares " + std::to_string(b) + " trees but only " + std::to_string(in.remaining()) +
+                       " bytes follow");
     std::vector<Tree> trees(b);
     for (std::size_t ti = 0; ti < b; ++ti) {
         const std::string doing = "reading tree " + std::to_string(ti + 1) + " of " + std::to_string(b);
@@ -239,6 +257,13 @@ Status Ensemble::deserialize(std::string_view text, const std::string& source) {
         if (index != ti) return in.fail("tree " + std::to_string(index) + " where tree " + std::to_string(ti) + " belongs");
         if (nodes == 0 || leaves == 0 || leaves > nodes) return in.fail("tree with " + std::to_string(nodes) +
                                                                         " nodes and " + std::to_string(leaves) + " leaves");
+        // A node line is at least "0 0 0\n" (6 bytes) and a leaf line at least
+        // K numbers of 2 bytes ("0 " or "0\n"): what the rest of the file
+        // cannot hold is refused before the vectors are sized for it.
+        if (nodes > in.remaining() / kMinNodeBytes || leaves > in.remaining() / (2 * k) ||
+            nodes * kMinNodeBytes + leaves * 2 * k > in.remaining())
+            return in.fail("tree declares " + std::to_string(nodes) + " nodes and " + std::to_string(leaves) +
+                           " leaves but only " + std::to_string(in.remaining()) + " bytes follow");
         Tree& t = trees[ti];
         t.feature.resize(nodes);
         t.threshold.resize(nodes);
@@ -304,6 +329,13 @@ Status Ensemble::save(const std::filesystem::path& file) const {
 }
 
 Status Ensemble::load(const std::filesystem::path& file) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(file, ec);
+    if (!ec && size > kMaxModelBytes)
+        return {ErrorCode::parse_error, "model file '" + file.string() + "' is " + std::to_string(size >> 20) +
+                                            " MiB, more than any bagged-trees model (limit " +
+                                            std::to_string(kMaxModelBytes >> 20) +
+                                            " MiB): not a model file? retrain with 'rollsense train'"};
     std::ifstream in(file, std::ios::binary);
     if (!in)
         return {ErrorCode::not_found, "model file '" + file.string() + "' cannot be opened (does it exist? train one "
@@ -311,7 +343,13 @@ Status Ensemble::load(const std::filesystem::path& file) {
     std::ostringstream ss;
     ss << in.rdbuf();
     if (in.bad()) return {ErrorCode::io_error, "model file '" + file.string() + "' could not be read"};
-    return deserialize(ss.str(), file.string());
+    // deserialize() checks every count before allocating; this only keeps a
+    // machine out of memory from escaping the Status API as an exception.
+    try {
+        return deserialize(ss.str(), file.string());
+    } catch (const std::exception& e) {
+        return {ErrorCode::io_error, "model file '" + file.string() + "' could not be loaded: " + e.what()};
+    }
 }
 
 }  // namespace rollsense::bagged_trees

@@ -104,6 +104,9 @@ public:
     }
     std::size_t start() const { return start_; }
     bool cut() const { return cut_; }
+    // Bytes not read yet: what declared counts are checked against before
+    // anything is allocated for them.
+    std::size_t remaining() const { return text_.size() - pos_; }
 
 private:
     std::string_view text_;
@@ -239,6 +242,12 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
     if (combos != m.transform.combinations().size())
         return in.fail(std::to_string(combos) + " combinations where the options and series length give " +
                        std::to_string(m.transform.combinations().size()));
+    // One line of at least 2 bytes per combination, and per feature a line of
+    // 3 + K numbers of at least 2 bytes each: counts the rest of the file
+    // cannot hold are refused before anything is allocated for them.
+    if (combos > in.remaining() / 2)
+        return in.fail("declares " + std::to_string(combos) + " combinations but only " +
+                       std::to_string(in.remaining()) + " bytes follow");
     std::vector<std::vector<int>> subsets(combos);
     for (auto& sub : subsets) {
         if (!in.next(line)) return in.truncated("reading the channel subsets");
@@ -254,6 +263,9 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
     if (p != m.transform.features())
         return in.fail(std::to_string(p) + " features where the options and series length give " +
                        std::to_string(m.transform.features()));
+    if (p > in.remaining() / (2 * (3 + k)))  // k <= 1e5, so 2 * (3 + k) cannot overflow
+        return in.fail("declares " + std::to_string(p) + " features of " + std::to_string(k) +
+                       " weights each but only " + std::to_string(in.remaining()) + " bytes follow");
     std::vector<float> biases(p);
     m.mean.resize(p);
     m.scale.resize(p);

@@ -77,6 +77,9 @@ public:
     }
     std::size_t line_start() const { return start_; }
     bool cut() const { return cut_; }
+    // Bytes not read yet: what declared counts are checked against before
+    // anything is allocated for them.
+    std::size_t remaining() const { return text_.size() - pos_; }
 
 private:
     std::string_view text_;
@@ -214,6 +217,12 @@ Status Model::deserialize(std::string_view text, const std::string& source) {
         m.sd.push_back(f_sd);
         m.feature_names.emplace_back(rest.substr(1));
     }
+    // Each coordinate takes at least 2 bytes (" 0"): K x P coordinates the rest
+    // of the file cannot hold are refused before the table is allocated
+    // (k <= 1e5 and p <= 1e6, so k * p does not overflow).
+    if (k * p > in.remaining() / 2)
+        return in.fail("declares " + std::to_string(k) + " centroids of " + std::to_string(p) +
+                       " coordinates but only " + std::to_string(in.remaining()) + " bytes follow");
     m.centroids.assign(k * p, 0.0);
     for (std::size_t c = 0; c < k; ++c) {
         if (!in.next(line))

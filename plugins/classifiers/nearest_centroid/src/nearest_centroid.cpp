@@ -173,6 +173,14 @@ Status NearestCentroid::save(const std::filesystem::path& file) const {
 }
 
 Status NearestCentroid::load(const std::filesystem::path& file) {
+    // Far above any model (K x P numbers), far below what would exhaust a
+    // machine reading it whole.
+    constexpr std::uintmax_t kMaxModelBytes = std::uintmax_t{1} << 30;
+    std::error_code ec;
+    if (const auto size = std::filesystem::file_size(file, ec); !ec && size > kMaxModelBytes)
+        return {ErrorCode::parse_error, "model file '" + file.string() + "' is " + std::to_string(size >> 20) +
+                                            " MiB, more than any nearest_centroid model (limit " +
+                                            std::to_string(kMaxModelBytes >> 20) + " MiB): not a model file?"};
     std::ifstream in(file, std::ios::binary);
     if (!in)
         return {ErrorCode::not_found, "model file '" + file.string() +
@@ -182,7 +190,13 @@ Status NearestCentroid::load(const std::filesystem::path& file) {
     ss << in.rdbuf();
     if (in.bad()) return {ErrorCode::io_error, "model file '" + file.string() + "' could not be read"};
     Model loaded;
-    if (auto s = loaded.deserialize(ss.str(), file.string()); !s) return s;
+    // deserialize() checks every count before allocating; this only keeps a
+    // machine out of memory from escaping the Status API as an exception.
+    try {
+        if (auto s = loaded.deserialize(ss.str(), file.string()); !s) return s;
+    } catch (const std::exception& e) {
+        return {ErrorCode::io_error, "model file '" + file.string() + "' could not be loaded: " + e.what()};
+    }
     model_ = std::move(loaded);
     options_ = model_.options;
     return {};

@@ -1,0 +1,145 @@
+// Issue 22 item 12: a 300-character trial id was accepted by save_trial, then
+// its file could not be created (ENAMETOOLONG) and the whole batch, five
+// *other* trials with it, was lost; the run's summary still counted them.
+// Trial ids are now checked before anything is written, and a failed batch
+// write names the trials it lost and counts only the durable ones.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+#include "rollsense/dataset.hpp"
+#include "rollsense/trial_id.hpp"
+#include "run_command.hpp"
+#include "temp_dir.hpp"
+
+using namespace rollsense;
+using rollsense::testing::TempDir;
+
+namespace {
+
+DatasetInfo info() {
+    DatasetInfo i;
+    i.channels = {"ch1"};
+    i.profile = "test";
+    i.seed = 3;
+    return i;
+}
+
+TrialData samples() {
+    TrialData d;
+    d.time = {0.0, 0.1};
+    d.channels = {{1.0, 2.0}};
+    d.valid = {1, 1};
+    return d;
+}
+
+TrialRecord record(const std::string& id) {
+    TrialRecord r;
+    r.info.id = id;
+    r.info.object = "C1";
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("trial ids that cannot name a file everywhere are refused with the rule they break", "[data][trial_id]") {
+    for (const char* good : {"C1-v10-r001", "a", "x.y_z-1", "CONSOLE", "com10", "LPT0"})
+        CHECK(check_trial_id(good).ok());
+    CHECK(check_trial_id(std::string(kMaxTrialIdLength, 'x')).ok());
+    struct Case {
+        std::string id;
+        std::string says;
+    };
+    const Case cases[] = {
+        {"", "must not be empty"},
+        {std::string(kMaxTrialIdLength + 1, 'x'), "101 characters long, more than 100"},
+        {std::string(300, 'x'), "300 characters long"},
+        {"a/b", "contains '/' at position 2"},
+        {"..", "starts with '.'"},
+        {".hidden", "starts with '.'"},
+        {"a b", "contains 0x20 at position 2"},
+        {"a\nb", "contains 0x0A"},
+        {"C1,v10", "contains ','"},
+        {"caf\xC3\xA9", "contains 0xC3"},
+        {"CON", "reserved on Windows"},
+        {"nul.csv", "reserved on Windows"},
+        {"Com3", "reserved on Windows"},
+    };
+    for (const auto& c : cases) {
+        const auto s = check_trial_id(c.id);
+        INFO(c.id);
+        REQUIRE_FALSE(s.ok());
+        CHECK(s.code() == ErrorCode::invalid_argument);
+        CHECK_THAT(s.message(), Catch::Contains(c.says) && Catch::Contains("A-Z a-z 0-9 . _ -"));
+    }
+}
+
+TEST_CASE("an over-long trial id is refused at add_trial and the rest of its batch is saved", "[data][trial_id]") {
+    TempDir dir;
+    {
+        auto w = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::create);
+        REQUIRE(w.ok());
+        (*w)->set_commit_every(6);
+        for (int i = 0; i < 3; ++i) REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
+        const auto bad = (*w)->add_trial(record(std::string(300, 'x')), samples());
+        REQUIRE_FALSE(bad.ok());
+        CHECK_THAT(bad.message(), Catch::Contains("300 characters long"));
+        for (int i = 3; i < 5; ++i) REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
+        REQUIRE((*w)->flush().ok());
+        CHECK((*w)->durable_trials() == 5);
+    }
+    auto back = DatasetReader::open(dir / "ds");
+    REQUIRE(back.ok());
+    CHECK(back->trials().size() == 5);
+}
+
+TEST_CASE("a failed batch write names every trial it lost and counts only durable ones", "[data][trial_id]") {
+    TempDir dir;
+    auto w = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::create);
+    REQUIRE(w.ok());
+    // A non-empty folder where t1's file belongs: the rename onto it fails,
+    // as ENOSPC or EIO would, whoever runs the test.
+    std::filesystem::create_directories(dir / "ds" / "trials" / "t1.csv" / "blocker");
+
+    SECTION("the failing batch") {
+        (*w)->set_commit_every(3);
+        for (int i = 0; i < 3; ++i) REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
+        const auto s = (*w)->flush();
+        REQUIRE_FALSE(s.ok());
+        CHECK_THAT(s.message(), Catch::Contains("3 trial(s) not saved: t0, t1, t2") &&
+                                    Catch::Contains("0 trial(s) are safely in") && Catch::Contains("--resume"));
+        CHECK((*w)->durable_trials() == 0);
+        CHECK((*w)->lost_trials() == 3);
+    }
+    SECTION("batches before it stay, batches after it are named") {
+        (*w)->set_commit_every(1);
+        REQUIRE((*w)->add_trial(record("t0"), samples()).ok());
+        REQUIRE((*w)->flush().ok());
+        (void)(*w)->add_trial(record("t1"), samples());  // fails in the background
+        (void)(*w)->flush();
+        const auto later = (*w)->add_trial(record("t2"), samples());
+        REQUIRE_FALSE(later.ok());  // nothing more is accepted after a failure
+        const auto s = (*w)->flush();
+        REQUIRE_FALSE(s.ok());
+        CHECK_THAT(s.message(), Catch::Contains("1 trial(s) not saved: t1") &&
+                                    Catch::Contains("1 trial(s) are safely in"));
+        CHECK((*w)->durable_trials() == 1);
+        CHECK((*w)->lost_trials() == 1);
+    }
+    w->reset();
+    auto back = DatasetReader::open(dir / "ds");
+    REQUIRE(back.ok());
+    CHECK(back->trials().size() <= 1);
+}
+
+TEST_CASE("rs.trial refuses an over-long id at once, naming the rule", "[data][trial_id][cli]") {
+    TempDir dir;
+    const auto script = dir / "long_id.lua";
+    std::ofstream(script) << "local rs = require \"rollsense\"\nrs.trial{ id = string.rep(\"x\", 300), object = \"C1\" }\n"
+                             "rs.log(\"trial accepted\")\n";
+    auto r = rollsense::testing::run_rollsense("run " + script.string() + " --no-progress -q --out " +
+                                               (dir / "out").string());
+    INFO(r.output);
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains("300 characters long") && !Catch::Contains("trial accepted"));
+}
