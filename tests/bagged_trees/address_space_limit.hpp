@@ -3,6 +3,7 @@
 // of exhausting the machine that runs it.
 #pragma once
 
+#include "address_space.hpp"
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,21 +18,7 @@ namespace rollsense::testing {
 // an exception escape (the failure the bounded parsers exist to prevent).
 enum class ChildOutcome { passed, failed, threw, crashed };
 
-// An address-space cap cannot coexist with AddressSanitizer's shadow memory
-// (terabytes of reserved address space): under ASan the child runs without it,
-// and the sanitizer run's ASAN_OPTIONS=max_allocation_size_mb (.ci/run) make
-// a huge allocation end the child with a report instead (a crash, a failure).
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kCanLimitAddressSpace = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kCanLimitAddressSpace = false;
-#else
-inline constexpr bool kCanLimitAddressSpace = true;
-#endif
-#else
-inline constexpr bool kCanLimitAddressSpace = true;
-#endif
+using rollsense::testing::kCanLimitAddressSpace;  // address_space.hpp: false under ASan
 
 inline ChildOutcome run_with_address_space_limit(std::size_t bytes, const std::function<bool()>& body) {
     const pid_t pid = ::fork();
