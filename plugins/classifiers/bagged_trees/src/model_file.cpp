@@ -20,6 +20,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "rollsense/checksum.hpp"
 #include "rollsense/atomic_file.hpp"
 #include "rollsense/bagged_trees/ensemble.hpp"
 
@@ -35,21 +36,6 @@ constexpr std::size_t kMinTreeBytes = 11 + kMinNodeBytes + 2;
 // Far above any model rollsense trains (the stock model is ~100 kB), far below
 // what would exhaust a machine reading it.
 constexpr std::uintmax_t kMaxModelBytes = std::uintmax_t{1} << 30;
-
-std::uint64_t fnv1a(std::string_view s) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-
-std::string hex(std::uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 void put_number(std::string& out, double v) {
     char buf[32];
@@ -169,7 +155,7 @@ std::string Ensemble::serialize() const {
             out += '\n';
         }
     }
-    out += "checksum " + hex(fnv1a(out)) + "\n";
+    out += "checksum " + fnv1a_hex(out) + "\n";
     return out;
 }
 
@@ -304,7 +290,7 @@ Status Ensemble::deserialize(std::string_view text, const std::string& source) {
     }
     if (!in.next(line)) return in.truncated("looking for the checksum line");
     if (!keyword(line, "checksum", rest)) return in.fail("expected the 'checksum' line after the last tree");
-    const std::string expected = hex(fnv1a(text.substr(0, in.line_start())));
+    const std::string expected = fnv1a_hex(text.substr(0, in.line_start()));
     if (in.cut()) return in.truncated("reading the checksum");
     if (rest != expected)
         return Error{ErrorCode::parse_error, "model file '" + source + "' is corrupt: checksum " + std::string(rest) +

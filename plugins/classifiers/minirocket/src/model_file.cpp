@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "rollsense/checksum.hpp"
 #include "rollsense/minirocket/minirocket.hpp"
 
 namespace rollsense::minirocket {
@@ -28,21 +29,6 @@ namespace {
 
 constexpr const char* kMagic = "rollsense-minirocket";
 constexpr int kVersion = 1;
-
-std::uint64_t fnv1a(std::string_view s) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-
-std::string hex(std::uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 template <class T>
 void put(std::string& out, T v) {
@@ -164,7 +150,7 @@ std::string Model::serialize(const Options& o) const {
         put(out, v);
     }
     out += "\n";
-    out += "checksum " + hex(fnv1a(out)) + "\n";
+    out += "checksum " + fnv1a_hex(out) + "\n";
     return out;
 }
 
@@ -288,7 +274,7 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
 
     if (!in.next(line)) return in.truncated("looking for the checksum line");
     if (!keyword(line, "checksum", rest)) return in.fail("expected the 'checksum' line");
-    const std::string expected = hex(fnv1a(text.substr(0, in.start())));
+    const std::string expected = fnv1a_hex(text.substr(0, in.start()));
     if (in.cut()) return in.truncated("reading the checksum");
     if (rest != expected)
         return Error{ErrorCode::parse_error, "model file '" + source + "' is corrupt: checksum " + std::string(rest) +

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rollsense/checksum.hpp"
 #include "rollsense/nearest_centroid/nearest_centroid.hpp"
 
 namespace rollsense::nearest_centroid {
@@ -21,21 +22,6 @@ namespace {
 
 constexpr std::string_view kMagic = "rollsense-nearest-centroid";
 constexpr int kVersion = 1;
-
-std::uint64_t fnv1a(std::string_view s) {
-    std::uint64_t h = 0xcbf29ce484222325ULL;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 0x100000001b3ULL;
-    }
-    return h;
-}
-
-std::string hex(std::uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
 
 void put(std::string& out, double v) {
     char buf[32];
@@ -142,7 +128,7 @@ std::string Model::serialize() const {
         }
         out += '\n';
     }
-    out += "checksum " + hex(fnv1a(out)) + "\n";
+    out += "checksum " + fnv1a_hex(out) + "\n";
     return out;
 }
 
@@ -239,7 +225,7 @@ Status Model::deserialize(std::string_view text, const std::string& source) {
     if (!in.next(line)) return in.truncated("looking for the checksum line");
     if (!keyword(line, "checksum", rest)) return in.fail("expected the 'checksum' line after the last centroid");
     if (in.cut()) return in.truncated("reading the checksum");
-    const std::string expected = hex(fnv1a(text.substr(0, in.line_start())));
+    const std::string expected = fnv1a_hex(text.substr(0, in.line_start()));
     if (rest != expected)
         return Error{ErrorCode::parse_error, "model file '" + source + "' is corrupt: checksum " + std::string(rest) +
                                                  " does not match its content (" + expected +
