@@ -12,15 +12,14 @@
 //   tree <b> <nodes> <leaves>, then <nodes> lines "<feature> <threshold> <child>"
 //                              and <leaves> lines of K class probabilities
 //   checksum <FNV-1a 64 of every byte before this line, 16 hex digits>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
+#include <sstream>  // load(): the file into memory
 
-#include "rollsense/checksum.hpp"
+#include "rollsense/model_text.hpp"
 #include "rollsense/atomic_file.hpp"
 #include "rollsense/bagged_trees/ensemble.hpp"
 
@@ -37,86 +36,10 @@ constexpr std::size_t kMinTreeBytes = 11 + kMinNodeBytes + 2;
 // what would exhaust a machine reading it.
 constexpr std::uintmax_t kMaxModelBytes = std::uintmax_t{1} << 30;
 
-void put_number(std::string& out, double v) {
-    char buf[32];
-    auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    out.append(buf, ec == std::errc() ? ptr : buf);
-}
-
-// Reads the file line by line, every error naming the source and the line.
-class Parser {
-public:
-    Parser(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
-
-    Error fail(const std::string& what) const {
-        // A last line without its newline is a cut file, whatever it contains.
-        if (cut_) return truncated("in the middle of a line");
-        return Error{ErrorCode::parse_error,
-                     "model file '" + source_ + "' line " + std::to_string(line_no_) + ": " + what};
-    }
-    Error truncated(const std::string& while_doing) const {
-        return Error{ErrorCode::parse_error, "model file '" + source_ + "' is truncated: it ends after line " +
-                                                 std::to_string(line_no_) + " while " + while_doing +
-                                                 "; save the model again or retrain with 'rollsense train'"};
-    }
-
-    bool next(std::string_view& line) {
-        if (pos_ >= text_.size()) return false;
-        const auto nl = text_.find('\n', pos_);
-        if (nl == std::string_view::npos) {  // last line without newline: the file was cut
-            line = text_.substr(pos_);
-            line_start_ = pos_;
-            pos_ = text_.size();
-            ++line_no_;
-            cut_ = true;
-            return true;
-        }
-        line_start_ = pos_;
-        line = text_.substr(pos_, nl - pos_);
-        pos_ = nl + 1;
-        ++line_no_;
-        return true;
-    }
-    std::size_t line_start() const { return line_start_; }
-    bool cut() const { return cut_; }
-    // Bytes not read yet: every count the file declares must fit in them
-    // before anything is allocated for it.
-    std::size_t remaining() const { return text_.size() - pos_; }
-
-private:
-    std::string_view text_;
-    std::string source_;
-    std::size_t pos_ = 0, line_start_ = 0, line_no_ = 0;
-    bool cut_ = false;
-};
-
-// "<keyword> <rest>": the rest, or nullopt when the keyword differs.
-bool keyword(std::string_view line, std::string_view key, std::string_view& rest) {
-    if (line.size() < key.size() || line.substr(0, key.size()) != key) return false;
-    if (line.size() == key.size()) {
-        rest = {};
-        return true;
-    }
-    if (line[key.size()] != ' ') return false;
-    rest = line.substr(key.size() + 1);
-    return true;
-}
-
-template <class T>
-bool parse_value(std::string_view& s, T& out) {
-    while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-    const char* begin = s.data();
-    const char* end = s.data() + s.size();
-    auto [ptr, ec] = std::from_chars(begin, end, out);
-    if (ec != std::errc() || (ptr != end && *ptr != ' ')) return false;
-    s.remove_prefix(static_cast<std::size_t>(ptr - begin));
-    return true;
-}
-
-bool at_end(std::string_view s) {
-    while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-    return s.empty();
-}
+using model_text::at_end;
+using model_text::keyword;
+using model_text::put_number;
+using model_text::take;
 
 }  // namespace
 
@@ -155,76 +78,50 @@ std::string Ensemble::serialize() const {
             out += '\n';
         }
     }
-    out += "checksum " + fnv1a_hex(out) + "\n";
+    model_text::put_checksum(out);
     return out;
 }
 
 Status Ensemble::deserialize(std::string_view text, const std::string& source) {
-    Parser in(text, source);
+    model_text::Reader in(text, source);
     std::string_view line, rest;
     if (!in.next(line) || !keyword(line, kMagic, rest))
         return Error{ErrorCode::parse_error, "'" + source +
                                                  "' is not a rollsense bagged-trees model (it should start with '" +
                                                  kMagic + " " + std::to_string(kVersion) + "')"};
     int version = 0;
-    if (!parse_value(rest, version) || !at_end(rest)) return in.fail("malformed format version");
+    if (!take(rest, version) || !at_end(rest)) return in.fail("malformed format version");
     if (version != kVersion)
         return in.fail("model format version " + std::to_string(version) + " is not supported by this build (it reads version " +
-                       std::to_string(kVersion) + "); retrain with 'rollsense train'");
-
-    auto count_line = [&](std::string_view key, std::size_t& n, const char* doing) -> Status {
-        if (!in.next(line)) return in.truncated(doing);
-        if (!keyword(line, key, rest) || !parse_value(rest, n) || !at_end(rest))
-            return in.fail("expected '" + std::string(key) + " <count>'");
-        return {};
-    };
-    auto names = [&](std::string_view key, std::size_t n, std::vector<std::string>& out) -> Status {
-        out.clear();
-        for (std::size_t i = 0; i < n; ++i) {
-            if (!in.next(line)) return in.truncated("reading the " + std::string(key) + " names");
-            if (!keyword(line, key, rest)) return in.fail("expected '" + std::string(key) + " <name>'");
-            out.emplace_back(rest);
-        }
-        return {};
-    };
+                       std::to_string(kVersion) + ")");
 
     std::size_t k = 0, p = 0, b = 0;
     std::vector<std::string> classes, features;
-    if (auto s = count_line("classes", k, "reading the class count"); !s) return s;
-    if (k == 0 || k > 100000) return in.fail("implausible class count " + std::to_string(k));
-    if (auto s = names("class", k, classes); !s) return s;
-    if (auto s = count_line("features", p, "reading the feature count"); !s) return s;
-    if (p == 0 || p > 1000000) return in.fail("implausible feature count " + std::to_string(p));
-    if (auto s = names("feature", p, features); !s) return s;
+    if (auto s = in.count("classes", 100000, k); !s) return s;
+    if (auto s = in.names("class", k, classes); !s) return s;
+    if (auto s = in.count("features", 1000000, p); !s) return s;
+    if (auto s = in.names("feature", p, features); !s) return s;
 
     EnsembleOptions opts;
     if (!in.next(line)) return in.truncated("reading the options");
     if (!keyword(line, "options", rest)) return in.fail("expected the 'options' line");
-    {
-        std::istringstream words{std::string(rest)};
-        std::string word;
-        while (words >> word) {
-            const auto eq = word.find('=');
-            if (eq == std::string::npos) return in.fail("option '" + word + "' is not key=value");
-            const std::string key = word.substr(0, eq);
-            std::string_view value = std::string_view(word).substr(eq + 1);
-            bool ok = true;
-            if (key == "learners") ok = parse_value(value, opts.learners);
-            else if (key == "min_leaf_size") ok = parse_value(value, opts.tree.min_leaf_size);
-            else if (key == "min_parent_size") ok = parse_value(value, opts.tree.min_parent_size);
-            else if (key == "max_num_splits") ok = parse_value(value, opts.tree.max_num_splits);
-            else if (key == "predictors_per_split") ok = parse_value(value, opts.tree.predictors_per_split);
-            else if (key == "seed") ok = parse_value(value, opts.seed);
-            else if (key == "criterion") {
-                auto c = parse_split_criterion(value);
-                if (!c) return in.fail(c.error().message);
-                opts.tree.criterion = *c;
-            }  // unknown keys are informational: a newer writer may add some
-            if (!ok) return in.fail("option '" + word + "' has a malformed value");
+    // A word holds no spaces, so take() reading a number means it read all of it.
+    auto option = [&](std::string_view key, std::string_view value) {
+        if (key == "learners") return take(value, opts.learners);
+        if (key == "min_leaf_size") return take(value, opts.tree.min_leaf_size);
+        if (key == "min_parent_size") return take(value, opts.tree.min_parent_size);
+        if (key == "max_num_splits") return take(value, opts.tree.max_num_splits);
+        if (key == "predictors_per_split") return take(value, opts.tree.predictors_per_split);
+        if (key == "seed") return take(value, opts.seed);
+        if (key == "criterion") {
+            auto c = parse_split_criterion(value);
+            if (c) opts.tree.criterion = *c;
+            return static_cast<bool>(c);
         }
-    }
-    if (auto s = count_line("trees", b, "reading the tree count"); !s) return s;
-    if (b == 0 || b > 1000000) return in.fail("implausible tree count " + std::to_string(b));
+        return true;  // unknown keys are informational: a newer writer may add some
+    };
+    if (auto s = in.options(rest, option); !s) return s;
+    if (auto s = in.count("trees", 1000000, b); !s) return s;
 
     // Every tree takes at least a header line and two node lines ("0 0 0\n"
     // is 6 bytes), so a count the rest of the file cannot hold is refused
@@ -237,8 +134,8 @@ Status Ensemble::deserialize(std::string_view text, const std::string& source) {
         const std::string doing = "reading tree " + std::to_string(ti + 1) + " of " + std::to_string(b);
         if (!in.next(line)) return in.truncated(doing);
         std::size_t index = 0, nodes = 0, leaves = 0;
-        if (!keyword(line, "tree", rest) || !parse_value(rest, index) || !parse_value(rest, nodes) ||
-            !parse_value(rest, leaves) || !at_end(rest))
+        if (!keyword(line, "tree", rest) || !take(rest, index) || !take(rest, nodes) ||
+            !take(rest, leaves) || !at_end(rest))
             return in.fail("expected 'tree <index> <nodes> <leaves>'");
         if (index != ti) return in.fail("tree " + std::to_string(index) + " where tree " + std::to_string(ti) + " belongs");
         if (nodes == 0 || leaves == 0 || leaves > nodes) return in.fail("tree with " + std::to_string(nodes) +
@@ -258,8 +155,8 @@ Status Ensemble::deserialize(std::string_view text, const std::string& source) {
         for (std::size_t i = 0; i < nodes; ++i) {
             if (!in.next(line)) return in.truncated(doing);
             rest = line;
-            if (!parse_value(rest, t.feature[i]) || !parse_value(rest, t.threshold[i]) ||
-                !parse_value(rest, t.child[i]) || !at_end(rest))
+            if (!take(rest, t.feature[i]) || !take(rest, t.threshold[i]) ||
+                !take(rest, t.child[i]) || !at_end(rest))
                 return in.fail("expected '<feature> <threshold> <child>'");
             // Structure checks: children come after their parent (no loops),
             // features and leaves in range, so a damaged file cannot crash predict().
@@ -282,20 +179,13 @@ Status Ensemble::deserialize(std::string_view text, const std::string& source) {
             rest = line;
             for (std::size_t c = 0; c < k; ++c) {
                 double& v = t.leaf_probs[l * k + c];
-                if (!parse_value(rest, v) || !std::isfinite(v) || v < 0.0 || v > 1.0)
+                if (!take(rest, v) || !std::isfinite(v) || v < 0.0 || v > 1.0)
                     return in.fail("expected " + std::to_string(k) + " class probabilities in [0, 1]");
             }
             if (!at_end(rest)) return in.fail("more than " + std::to_string(k) + " class probabilities");
         }
     }
-    if (!in.next(line)) return in.truncated("looking for the checksum line");
-    if (!keyword(line, "checksum", rest)) return in.fail("expected the 'checksum' line after the last tree");
-    const std::string expected = fnv1a_hex(text.substr(0, in.line_start()));
-    if (in.cut()) return in.truncated("reading the checksum");
-    if (rest != expected)
-        return Error{ErrorCode::parse_error, "model file '" + source + "' is corrupt: checksum " + std::string(rest) +
-                                                 " does not match its content (" + expected +
-                                                 "); the file was modified or damaged — retrain with 'rollsense train'"};
+    if (auto s = in.checksum("the last tree"); !s) return s;
 
     class_names_ = std::move(classes);
     feature_names_ = std::move(features);

@@ -1,7 +1,6 @@
-// The MiniRocket model file, in the bagged-trees conventions: versioned,
-// line-oriented text (inspectable, diffable), numbers in the shortest form that
-// reads back to the same value, every count checked before anything is
-// allocated, and an FNV-1a checksum line catching truncation and damage.
+// The MiniRocket model file, in the conventions of every rollsense model file
+// (rollsense/model_text.hpp: versioned lines, shortest round-trip numbers,
+// counts checked before allocation, a checksum line):
 //
 //   rollsense-minirocket 1
 //   classes K            then K lines "class <name>"
@@ -16,12 +15,9 @@
 //
 // Dilations, feature counts and padding are not stored: they follow from L
 // and the options, and are recomputed (and checked against M and P) on load.
-#include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <sstream>
 
-#include "rollsense/checksum.hpp"
+#include "rollsense/model_text.hpp"
 #include "rollsense/minirocket/minirocket.hpp"
 
 namespace rollsense::minirocket {
@@ -30,76 +26,10 @@ namespace {
 constexpr const char* kMagic = "rollsense-minirocket";
 constexpr int kVersion = 1;
 
-template <class T>
-void put(std::string& out, T v) {
-    char buf[40];
-    auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    out.append(buf, ec == std::errc() ? ptr : buf);
-}
-
-template <class T>
-bool take(std::string_view& s, T& out) {
-    while (!s.empty() && s.front() == ' ') s.remove_prefix(1);
-    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-    if (ec != std::errc() || (ptr != s.data() + s.size() && *ptr != ' ')) return false;
-    s.remove_prefix(static_cast<std::size_t>(ptr - s.data()));
-    return true;
-}
-
-bool at_end(std::string_view s) { return s.find_first_not_of(' ') == std::string_view::npos; }
-
-bool keyword(std::string_view line, std::string_view key, std::string_view& rest) {
-    if (line.substr(0, key.size()) != key) return false;
-    if (line.size() == key.size()) {
-        rest = {};
-        return true;
-    }
-    if (line[key.size()] != ' ') return false;
-    rest = line.substr(key.size() + 1);
-    return true;
-}
-
-// Line reader whose errors name the file and line and say what to do.
-class Reader {
-public:
-    Reader(std::string_view text, std::string source) : text_(text), source_(std::move(source)) {}
-    bool next(std::string_view& line) {
-        if (pos_ >= text_.size()) return false;
-        start_ = pos_;
-        const auto nl = text_.find('\n', pos_);
-        ++line_no_;
-        if (nl == std::string_view::npos) {
-            cut_ = true;
-            line = text_.substr(pos_);
-            pos_ = text_.size();
-        } else {
-            line = text_.substr(pos_, nl - pos_);
-            pos_ = nl + 1;
-        }
-        return true;
-    }
-    Error fail(const std::string& what) const {
-        if (cut_) return truncated("in the middle of a line");
-        return Error{ErrorCode::parse_error,
-                     "model file '" + source_ + "' line " + std::to_string(line_no_) + ": " + what};
-    }
-    Error truncated(const std::string& doing) const {
-        return Error{ErrorCode::parse_error, "model file '" + source_ + "' is truncated: it ends after line " +
-                                                 std::to_string(line_no_) + " while " + doing +
-                                                 "; save the model again or retrain with 'rollsense train'"};
-    }
-    std::size_t start() const { return start_; }
-    bool cut() const { return cut_; }
-    // Bytes not read yet: what declared counts are checked against before
-    // anything is allocated for them.
-    std::size_t remaining() const { return text_.size() - pos_; }
-
-private:
-    std::string_view text_;
-    std::string source_;
-    std::size_t pos_ = 0, start_ = 0, line_no_ = 0;
-    bool cut_ = false;
-};
+using model_text::at_end;
+using model_text::keyword;
+using model_text::put_number;
+using model_text::take;
 
 }  // namespace
 
@@ -115,12 +45,12 @@ std::string Model::serialize(const Options& o) const {
     out += "options num_features=" + std::to_string(t.num_features) +
            " max_dilations_per_kernel=" + std::to_string(t.max_dilations_per_kernel) +
            " seed=" + std::to_string(t.seed) + " alpha_log10_low=";
-    put(out, o.log10_alpha_low);
+    put_number(out, o.log10_alpha_low);
     out += " alpha_log10_high=";
-    put(out, o.log10_alpha_high);
+    put_number(out, o.log10_alpha_high);
     out += " alphas=" + std::to_string(o.alphas) + "\n";
     out += "alpha ";
-    put(out, alpha);
+    put_number(out, alpha);
     out += "\n";
     out += "combinations " + std::to_string(transform.combinations().size()) + "\n";
     for (const auto& c : transform.combinations()) {
@@ -133,29 +63,29 @@ std::string Model::serialize(const Options& o) const {
     const std::size_t p = transform.features(), k = classes();
     out += "features " + std::to_string(p) + "\n";
     for (std::size_t j = 0; j < p; ++j) {
-        put(out, transform.biases()[j]);
+        put_number(out, transform.biases()[j]);
         out += ' ';
-        put(out, mean[j]);
+        put_number(out, mean[j]);
         out += ' ';
-        put(out, scale[j]);
+        put_number(out, scale[j]);
         for (std::size_t c = 0; c < k; ++c) {
             out += ' ';
-            put(out, weights[j * k + c]);
+            put_number(out, weights[j * k + c]);
         }
         out += '\n';
     }
     out += "intercept";
     for (double v : intercept) {
         out += ' ';
-        put(out, v);
+        put_number(out, v);
     }
     out += "\n";
-    out += "checksum " + fnv1a_hex(out) + "\n";
+    model_text::put_checksum(out);
     return out;
 }
 
 Status Model::deserialize(std::string_view text, const std::string& source, Options& options) {
-    Reader in(text, source);
+    model_text::Reader in(text, source);
     std::string_view line, rest;
     if (!in.next(line) || !keyword(line, kMagic, rest))
         return Error{ErrorCode::parse_error, "'" + source + "' is not a rollsense MiniRocket model (it should start with '" +
@@ -165,56 +95,32 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
     if (!take(rest, version) || !at_end(rest)) return in.fail("malformed format version");
     if (version > kVersion)
         return in.fail("model format version " + std::to_string(version) + " is newer than this build reads (" +
-                       std::to_string(kVersion) + "); update rollsense or retrain with 'rollsense train'");
+                       std::to_string(kVersion) + "); update rollsense to read it");
     if (version != kVersion) return in.fail("model format version " + std::to_string(version) + " is not supported");
-
-    auto count = [&](std::string_view key, std::size_t& n, std::size_t max, const char* doing) -> Status {
-        if (!in.next(line)) return in.truncated(doing);
-        if (!keyword(line, key, rest) || !take(rest, n) || !at_end(rest))
-            return in.fail("expected '" + std::string(key) + " <count>'");
-        if (n == 0 || n > max) return in.fail("implausible " + std::string(key) + " " + std::to_string(n));
-        return {};
-    };
-    auto names = [&](std::string_view key, std::size_t n, std::vector<std::string>& out) -> Status {
-        for (std::size_t i = 0; i < n; ++i) {
-            if (!in.next(line)) return in.truncated("reading the " + std::string(key) + " names");
-            if (!keyword(line, key, rest)) return in.fail("expected '" + std::string(key) + " <name>'");
-            out.emplace_back(rest);
-        }
-        return {};
-    };
 
     Model m;
     std::size_t k = 0, channels = 0, length = 0, combos = 0, p = 0;
-    if (auto s = count("classes", k, 100000, "reading the class count"); !s) return s;
+    if (auto s = in.count("classes", 100000, k); !s) return s;
     if (k < 2) return in.fail("a model needs at least 2 classes");
-    if (auto s = names("class", k, m.class_names); !s) return s;
-    if (auto s = count("channels", channels, 100000, "reading the channel count"); !s) return s;
-    if (auto s = names("channel", channels, m.channel_names); !s) return s;
-    if (auto s = count("series_length", length, 10000000, "reading the series length"); !s) return s;
+    if (auto s = in.names("class", k, m.class_names); !s) return s;
+    if (auto s = in.count("channels", 100000, channels); !s) return s;
+    if (auto s = in.names("channel", channels, m.channel_names); !s) return s;
+    if (auto s = in.count("series_length", 10000000, length); !s) return s;
 
     Options o = options;
     if (!in.next(line)) return in.truncated("reading the options");
     if (!keyword(line, "options", rest)) return in.fail("expected the 'options' line");
-    {
-        std::istringstream words{std::string(rest)};
-        std::string word;
-        while (words >> word) {
-            const auto eq = word.find('=');
-            if (eq == std::string::npos) return in.fail("option '" + word + "' is not key=value");
-            const std::string key = word.substr(0, eq);
-            std::string_view v = std::string_view(word).substr(eq + 1);
-            bool ok = true;
-            if (key == "num_features") ok = take(v, o.transform.num_features);
-            else if (key == "max_dilations_per_kernel") ok = take(v, o.transform.max_dilations_per_kernel);
-            else if (key == "seed") ok = take(v, o.transform.seed);
-            else if (key == "alpha_log10_low") ok = take(v, o.log10_alpha_low);
-            else if (key == "alpha_log10_high") ok = take(v, o.log10_alpha_high);
-            else if (key == "alphas") ok = take(v, o.alphas);
-            // unknown keys are informational: a newer writer may add some
-            if (!ok) return in.fail("option '" + word + "' has a malformed value");
-        }
-    }
+    // A word holds no spaces, so take() reading a number means it read all of it.
+    auto option = [&](std::string_view key, std::string_view v) {
+        if (key == "num_features") return take(v, o.transform.num_features);
+        if (key == "max_dilations_per_kernel") return take(v, o.transform.max_dilations_per_kernel);
+        if (key == "seed") return take(v, o.transform.seed);
+        if (key == "alpha_log10_low") return take(v, o.log10_alpha_low);
+        if (key == "alpha_log10_high") return take(v, o.log10_alpha_high);
+        if (key == "alphas") return take(v, o.alphas);
+        return true;  // unknown keys are informational: a newer writer may add some
+    };
+    if (auto s = in.options(rest, option); !s) return s;
     if (o.transform.num_features < kKernels || o.transform.num_features > 1000000 ||
         o.transform.max_dilations_per_kernel < 1 || o.transform.max_dilations_per_kernel > 1024)
         return in.fail("options out of range (num_features 84…1,000,000, max_dilations_per_kernel 1…1024)");
@@ -224,7 +130,7 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
         return in.fail("expected 'alpha <positive number>'");
 
     if (auto s = m.transform.plan(channels, length, o.transform); !s) return in.fail(s.error().message);
-    if (auto s = count("combinations", combos, 10000000, "reading the combination count"); !s) return s;
+    if (auto s = in.count("combinations", 10000000, combos); !s) return s;
     if (combos != m.transform.combinations().size())
         return in.fail(std::to_string(combos) + " combinations where the options and series length give " +
                        std::to_string(m.transform.combinations().size()));
@@ -245,7 +151,7 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
             sub.push_back(ch);
         }
     }
-    if (auto s = count("features", p, 10000000, "reading the feature count"); !s) return s;
+    if (auto s = in.count("features", 10000000, p); !s) return s;
     if (p != m.transform.features())
         return in.fail(std::to_string(p) + " features where the options and series length give " +
                        std::to_string(m.transform.features()));
@@ -272,14 +178,7 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
         if (!take(rest, v) || !std::isfinite(v)) return in.fail("expected " + std::to_string(k) + " finite intercepts");
     if (!at_end(rest)) return in.fail("more than " + std::to_string(k) + " intercepts");
 
-    if (!in.next(line)) return in.truncated("looking for the checksum line");
-    if (!keyword(line, "checksum", rest)) return in.fail("expected the 'checksum' line");
-    const std::string expected = fnv1a_hex(text.substr(0, in.start()));
-    if (in.cut()) return in.truncated("reading the checksum");
-    if (rest != expected)
-        return Error{ErrorCode::parse_error, "model file '" + source + "' is corrupt: checksum " + std::string(rest) +
-                                                 " does not match its content (" + expected +
-                                                 "); the file was modified or damaged — retrain with 'rollsense train'"};
+    if (auto s = in.checksum("the intercepts"); !s) return s;
     *this = std::move(m);
     options.transform = o.transform;
     options.log10_alpha_low = o.log10_alpha_low;
