@@ -119,15 +119,18 @@ Result<std::string> peak_grid_figure(const DatasetReader& dataset, const TrialSe
             const double x0 = left + static_cast<double>(s) * (cell_w + gap);
             svg.open_group("peak-plot");
             const long idx = sel.trial[o][s];
-            if (idx < 0) {
+            // A trial whose file cannot be read was skipped by the features
+            // (its reason is in the accuracy section): an empty cell, not a failed report.
+            auto t = idx < 0 ? Result<PlottedTrial>(Error{ErrorCode::not_found, ""})
+                             : load_plotted_trial(dataset, trials[static_cast<std::size_t>(idx)], settings);
+            if (!t) {
                 const Stroke none{"#ccc", 1.0, "4 3"};
                 svg.rect(x0, y0, cell_w, cell_h, "#fafafa", &none);
-                svg.text(x0 + cell_w / 2.0, y0 + cell_h / 2.0, "no trial recorded", {11.0, Anchor::middle, false, "#777"});
+                svg.text(x0 + cell_w / 2.0, y0 + cell_h / 2.0, idx < 0 ? "no trial recorded" : "trial file unreadable",
+                         {11.0, Anchor::middle, false, "#777"});
                 svg.close_group();
                 continue;
             }
-            auto t = load_plotted_trial(dataset, trials[static_cast<std::size_t>(idx)], settings);
-            if (!t) return t.error();
             const auto [a, b] = view_window(*t);
             double lo = 0.0, hi = std::numeric_limits<double>::lowest();
             for (const auto& ch : t->smoothed)
