@@ -22,6 +22,10 @@ Result<PlottedTrial> load_plotted_trial(const DatasetReader& dataset, const Tria
     t.x.resize(in.time.size());
     for (std::size_t i = 0; i < t.x.size(); ++i)
         t.x[i] = settings.time_base == features::TimeBase::samples ? static_cast<double>(i) : in.time[i];
+    t.x_label = settings.time_base == features::TimeBase::samples ? "time (samples)" : "time (s)";
+    const auto& units = dataset.info().channel_units;
+    const std::string unit = (*columns)[0] < units.size() ? units[(*columns)[0]] : "1";
+    t.y_label = unit == "1" ? "smoothed reading (unitless, about 1/16 per kPa)" : "smoothed reading (" + unit + ")";
     return t;
 }
 
