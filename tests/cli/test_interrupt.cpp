@@ -28,13 +28,7 @@ CommandRun interrupt_when(const std::vector<std::string>& args, const std::strin
         ::dup2(fds[1], 2);
         ::close(fds[0]);
         ::close(fds[1]);
-        std::vector<std::string> all{rollsense_bin()};
-        all.insert(all.end(), args.begin(), args.end());
-        std::vector<char*> argv;
-        for (auto& a : all) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
+        exec_rollsense(args);
     }
     ::close(fds[1]);
     CommandRun r;

@@ -21,18 +21,25 @@ std::string dataset_info_value(const fs::path& dir, const std::string& key) {
     return text.substr(start, text.find('\n', start) - start);
 }
 
+// Records the experiment at seed 5 on the mock hand into DIR/rec, then
+// replays it into DIR/rep with `replay_options`; both must succeed.
+CommandRun record_and_replay(const TempDir& dir, const std::string& options, const std::string& replay_options) {
+    const auto rec = run_rollsense("run " + kExperiment + options + " --profile mock --seed 5 --out " + shell_quoted(dir / "rec"));
+    INFO(rec.output);
+    REQUIRE(rec.status == 0);
+    const auto rep = run_rollsense("run " + kExperiment + options + " --profile replay --set dataset=" +
+                                   shell_quoted(dir / "rec") + replay_options + " --out " + shell_quoted(dir / "rep"));
+    INFO(rep.output);
+    REQUIRE(rep.status == 0);
+    return rep;
+}
+
 }  // namespace
 
 TEST_CASE("a replay without --seed adopts the recording's seed and reproduces its features") {
     TempDir dir("rollsense-cli-replay-seed");
-    const auto rec = run_rollsense("run " + kExperiment + " --profile mock --seed 5 --out " + shell_quoted(dir / "rec"));
-    INFO(rec.output);
-    REQUIRE(rec.status == 0);
-
-    const auto rep = run_rollsense("run " + kExperiment + " --profile replay --set dataset=" +
-                                   shell_quoted(dir / "rec") + " --out " + shell_quoted(dir / "rep"));
+    const auto rep = record_and_replay(dir, "", "");
     INFO(rep.output);
-    REQUIRE(rep.status == 0);
     CHECK(rep.output.find("uses the recording's seed 5") != std::string::npos);  // says where the seed came from
     CHECK(rep.output.find("another --seed") == std::string::npos);  // no seed-mismatch warning
     CHECK(dataset_info_value(dir / "rep", "seed") == "5");
@@ -44,14 +51,8 @@ TEST_CASE("a replay without --seed adopts the recording's seed and reproduces it
 
 TEST_CASE("an explicit --seed overrides the recording's on replay") {
     TempDir dir("rollsense-cli-replay-seed-given");
-    const auto rec = run_rollsense("run " + kExperiment + " --set analyse=false --profile mock --seed 5 --out " +
-                                   shell_quoted(dir / "rec"));
-    INFO(rec.output);
-    REQUIRE(rec.status == 0);
-    const auto rep = run_rollsense("run " + kExperiment + " --set analyse=false --profile replay --seed 11 --set dataset=" +
-                                   shell_quoted(dir / "rec") + " --out " + shell_quoted(dir / "rep"));
+    const auto rep = record_and_replay(dir, " --set analyse=false", " --seed 11");
     INFO(rep.output);
-    REQUIRE(rep.status == 0);
     CHECK(dataset_info_value(dir / "rep", "seed") == "11");
     CHECK(rep.output.find("rerun with --seed 5") != std::string::npos);  // the replay's own warning
 }
