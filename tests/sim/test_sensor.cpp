@@ -138,7 +138,7 @@ TEST_CASE("the data follow what the script commanded", "[sim][sensor]") {
         in.joint_names = &names;
         in.joint_states = &st;
         REQUIRE(s->begin_trial(t).ok());
-        st[1].current = 100.0;
+        st[1].current = 120.0;  // etroll.lua's clamping current
         st[0].position = -44.0;
         REQUIRE(s->start_recording(in).ok());
         std::array<std::vector<double>, 3> ch;

@@ -16,9 +16,11 @@
 namespace rollsense::features {
 
 IdentificationInput identification_input(const TrialData& data, const std::array<std::size_t, kChannels>& columns) {
+    // A sample without a valid flag (a series assembled by hand) counts as valid.
+    auto valid = [&data](std::size_t i) { return i >= data.valid.size() || data.valid[i] != 0; };
     std::size_t first = 0, last = data.samples();
-    while (first < last && !data.valid[first]) ++first;
-    while (last > first && !data.valid[last - 1]) --last;
+    while (first < last && !valid(first)) ++first;
+    while (last > first && !valid(last - 1)) --last;
     IdentificationInput in;
     in.first = first;
     for (std::size_t c = 0; c < kChannels; ++c)
