@@ -22,7 +22,7 @@ struct RollPlan {
     double speed_factor = 1.0;           // actuator's speed error (≈ 1 % jitter)
     double lead_in = 0.08;               // s recorded before the finger starts
     double settle = 0.12;                // s recorded after it stops
-    double clamp_current = 100.0;        // mA on the pushing finger
+    double clamp_current = 120.0;        // mA on the pushing finger (share/lua/etroll.lua's clamp_current)
     double rate = 31.1;                  // Hz
 };
 

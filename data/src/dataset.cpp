@@ -61,6 +61,17 @@ std::string format_info(const DatasetInfo& info) {
     csv::append_row(out, {"format_version", std::to_string(kDatasetFormatVersion)});
     csv::append_row(out, {"sample_rate_hz", csv::format_number(info.sample_rate_hz)});
     csv::append_row(out, {"channels", join(info.channels, ' ')});
+    if (!info.channel_units.empty()) {
+        // Space-separated like the names: a unit with a space gets '_', an unstated one '?'.
+        std::vector<std::string> units;
+        for (auto u : info.channel_units) {
+            std::replace(u.begin(), u.end(), ' ', '_');
+            units.push_back(u.empty() ? "?" : u);
+        }
+        csv::append_row(out, {"channel_units", join(units, ' ')});
+    }
+    if (!info.identification_channels.empty())
+        csv::append_row(out, {"identification_channels", join(info.identification_channels, ' ')});
     csv::append_row(out, {"joints", join(info.joints, ' ')});
     csv::append_row(out, {"profile", info.profile});
     csv::append_row(out, {"seed", std::to_string(info.seed)});
@@ -111,6 +122,10 @@ Result<DatasetInfo> read_info(const fs::path& file) {
             info.sample_rate_hz = *v;
         } else if (key == "channels") {
             info.channels = split(value, ' ');
+        } else if (key == "channel_units") {
+            info.channel_units = split(value, ' ');
+        } else if (key == "identification_channels") {
+            info.identification_channels = split(value, ' ');
         } else if (key == "joints") {
             info.joints = split(value, ' ');
         } else if (key == "profile") {
@@ -124,6 +139,11 @@ Result<DatasetInfo> read_info(const fs::path& file) {
         }
     }
     if (!format_seen) return Error{ErrorCode::parse_error, file.string() + ": no 'format' row; not a rollsense dataset"};
+    if (!info.channel_units.empty() && info.channel_units.size() != info.channels.size())
+        return Error{ErrorCode::parse_error, file.string() + ": 'channel_units' gives " +
+                                                 std::to_string(info.channel_units.size()) + " units for " +
+                                                 std::to_string(info.channels.size()) +
+                                                 " channels; give one per channel, in the order of 'channels'"};
     return info;
 }
 

@@ -27,6 +27,17 @@ inline std::size_t count_of(const std::string& hay, const std::string& needle) {
     return n;
 }
 
+// In a forked child: becomes `rollsense ARGS` (exit 127 if it cannot).
+[[noreturn]] inline void exec_rollsense(const std::vector<std::string>& args) {
+    std::vector<std::string> all{rollsense_bin()};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+}
+
 // Runs `rollsense ARGS` with stdout and stderr on a pseudo-terminal, with the
 // extra environment `env` ("NAME=value"; "NAME=" unsets NAME). Returns what the
 // terminal showed and the exit status.
@@ -42,13 +53,7 @@ inline CommandRun run_on_terminal(const std::vector<std::string>& args, const st
             else
                 ::setenv(e.substr(0, eq).c_str(), e.substr(eq + 1).c_str(), 1);
         }
-        std::vector<std::string> all{rollsense_bin()};
-        all.insert(all.end(), args.begin(), args.end());
-        std::vector<char*> argv;
-        for (auto& a : all) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
+        exec_rollsense(args);
     }
     CommandRun r;
     char buf[4096];

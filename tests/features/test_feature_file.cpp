@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "feature_fixtures.hpp"
 #include "rollsense/features.hpp"
 
 using namespace rollsense;
@@ -13,22 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_dir(const std::string& name) {
-    auto d = fs::temp_directory_path() / ("rollsense-test-features-" + name + "-" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
-
-std::vector<double> triangle(std::size_t n, double amp, long m, double rise, double fall) {
-    std::vector<double> x(n, 0.0);
-    for (long i = 0; i < static_cast<long>(n); ++i) {
-        const double d = static_cast<double>(i - m);
-        const double v = d <= 0 ? 1.0 + d / rise : 1.0 - d / fall;
-        x[static_cast<std::size_t>(i)] = amp * std::max(0.0, v);
-    }
-    return x;
-}
+using test::temp_dir;
+using test::triangle;
 
 }  // namespace
 

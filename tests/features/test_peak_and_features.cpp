@@ -6,23 +6,14 @@
 #include <limits>
 #include <vector>
 
+#include "feature_fixtures.hpp"
 #include "rollsense/features.hpp"
 
 using namespace rollsense::features;
 
 namespace {
 
-// Triangle with its maximum `amp` at sample m, rising over `rise` samples and
-// falling over `fall` samples, zero elsewhere.
-std::vector<double> triangle(std::size_t n, double amp, long m, double rise, double fall) {
-    std::vector<double> x(n, 0.0);
-    for (long i = 0; i < static_cast<long>(n); ++i) {
-        const double d = static_cast<double>(i - m);
-        const double v = d <= 0 ? 1.0 + d / rise : 1.0 - d / fall;
-        x[static_cast<std::size_t>(i)] = amp * std::max(0.0, v);
-    }
-    return x;
-}
+using test::triangle;
 
 FeatureSettings unsmoothed() {
     FeatureSettings s;

@@ -157,3 +157,28 @@ TEST_CASE("trial seeds are pinned: a recorded dataset's seeds never change with 
     CHECK(Session::trial_seed(1, "C1-v10-r002") == 2584686174751327471ULL);
     CHECK(Session::trial_seed(0, "C1-v10-r001") == 12764483367218769105ULL);
 }
+
+TEST_CASE("dataset-info.csv carries the channel units and the identification channels", "[dataset][issue24]") {
+    kt::TempDir dir;
+    DatasetInfo i = info();
+    i.channel_units = {"1", "k Pa", ""};  // a space and an undeclared unit cannot break the list
+    i.identification_channels = {"ch3", "ch2", "ch1"};
+    {
+        auto w = DatasetWriter::open(dir.path(), i, DatasetOpenMode::create);
+        REQUIRE(w.ok());
+        REQUIRE((*w)->add_trial(record("C1-v10-r001"), data(5)).ok());
+    }
+    CHECK_THAT(kt::read_file(dir / "dataset-info.csv"),
+               Catch::Contains("\nchannel_units,1 k_Pa ?\n") && Catch::Contains("\nidentification_channels,ch3 ch2 ch1\n"));
+    auto r = DatasetReader::open(dir.path());
+    REQUIRE(r.ok());
+    CHECK(r->info().channel_units == std::vector<std::string>{"1", "k_Pa", "?"});
+    CHECK(r->info().identification_channels == i.identification_channels);
+
+    // A units row that does not match the channels is refused, naming the file.
+    kt::write_file(dir / "dataset-info.csv", "key,value\nformat,rollsense-dataset\nchannels,ch1 ch2 ch3\n"
+                                             "channel_units,1 1\nsample_rate_hz,31.1\n");
+    auto bad = DatasetReader::open(dir.path());
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error().message, Catch::Contains("dataset-info.csv") && Catch::Contains("2 units for 3 channels"));
+}

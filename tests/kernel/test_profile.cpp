@@ -116,3 +116,17 @@ TEST_CASE("command-line settings reach profiles through setting() and dotted pat
     REQUIRE_FALSE(q.ok());
     CHECK_THAT(q.error().message, Catch::Contains("has no table 'nothing'"));
 }
+
+TEST_CASE("a profile names the identification channels; the robot knows each channel's unit", "[profile][issue24]") {
+    kt::TempDir dir;
+    auto p = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",",
+                                    "clock = \"virtual\", identification_channels = { \"ch1\", \"ch2\", \"ch3\" },"));
+    INFO(p.status().message());
+    REQUIRE(p.ok());
+    CHECK(p->identification_channels == std::vector<std::string>{"ch1", "ch2", "ch3"});
+    auto robot = robot_from(dir, kt::kTestProfile);
+    REQUIRE(robot.ok());
+    const auto& units = (*robot)->channel_units();
+    REQUIRE(units.size() == (*robot)->channel_columns().size());
+    for (const auto& u : units) CHECK(u == "1");  // example_bump's readings are unitless
+}

@@ -13,6 +13,7 @@
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/report/breakdown.hpp"
+#include "analysis/report/confusion_figure.hpp"
 #include "analysis/report/object_order.hpp"
 #include "analysis/report/plotted_trial.hpp"
 #include "analysis/report/report.hpp"
@@ -327,4 +328,122 @@ TEST_CASE("several classifiers are compared side by side, a single one gets no c
     CHECK_THAT(h.substr(h.find("id=\"headline\""), 300), Catch::Contains("(few, 2 \u00d7 3-fold CV)"));
     const std::string summary = text_summary(in);
     CHECK_THAT(summary, Catch::Contains("compared: many") && Catch::Contains("first minus it"));
+}
+
+TEST_CASE("a report made inside the recording run shows that run's provenance, not 'No run-info.csv'",
+          "[report][provenance][issue24]") {
+    const auto& r = rendered();
+    const fs::path dir = r.root / "in-progress";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    fs::copy(r.inputs.dataset_dir, dir / "dataset", fs::copy_options::recursive);
+    fs::remove(dir / "dataset" / "run-info.csv");  // what rs.analyse finds: the run has not ended yet
+    ReportInputs in = r.inputs;
+    in.dataset_dir = dir / "dataset";
+    in.output.clear();
+    SECTION("given the run's provenance") {
+        in.recording_run = {{"command_line", "rollsense run paper.lua --seed 11"}, {"seed", "11"}};
+        auto html = render_report(in);
+        REQUIRE(html.ok());
+        CHECK_THAT(*html, !Catch::Contains("No run-info.csv") && Catch::Contains("still in progress") &&
+                              Catch::Contains("rollsense run paper.lua --seed 11"));
+    }
+    SECTION("a dataset made by hand still says it has none") {
+        auto html = render_report(in);
+        REQUIRE(html.ok());
+        CHECK_THAT(*html, Catch::Contains("No run-info.csv"));
+    }
+}
+
+TEST_CASE("the paper comparison says n/a where there is nothing to count, never a made-up 0",
+          "[report][tables][issue24]") {
+    const auto& r = rendered();
+    const auto rows = table_rows(element(r.html, "table", "paper-comparison"));
+    REQUIRE(rows.size() > 5);
+    bool any_na = false;
+    for (const auto& row : rows) {
+        REQUIRE(row.size() == 3);
+        for (const auto& cell : {row[1], row[2]}) {
+            INFO(row[0] << " | " << cell);
+            CHECK(cell != "0");
+            any_na = any_na || cell == "n/a";
+        }
+    }
+    // The synthetic dataset has no hexagons: their rows have nothing to count.
+    CHECK(any_na);
+    CHECK(learn::format_paper_comparison(learn::PaperAnalysis{}).find(" 0 ") == std::string::npos);
+}
+
+TEST_CASE("a trial whose file cannot be read is named in the report with its reason", "[report][issue24]") {
+    const auto& r = rendered();
+    ReportInputs in = r.inputs;
+    in.output = r.root / "unreadable.html";
+    in.rows[0].clean = false;
+    in.rows[0].reason = "unreadable (trials/x.csv:3: column 'time': '0.06x' is not a number)";
+    auto html = render_report(in);
+    REQUIRE(html.ok());
+    const auto at = html->find("id=\"unreadable-trials\"");
+    REQUIRE(at != std::string::npos);
+    CHECK_THAT(html->substr(at, 600), Catch::Contains(in.rows[0].trial_id) && Catch::Contains("x.csv:3"));
+}
+
+namespace {
+struct SvgText {
+    double x = 0, y = 0;
+    std::string anchor, transform, text;
+    double size = 0;
+};
+std::vector<SvgText> svg_texts(const std::string& svg) {
+    std::vector<SvgText> out;
+    const std::regex text_re(R"re(<text x="([-0-9.]+)" y="([-0-9.]+)" font-size="([0-9.]+)" text-anchor="(\w+)"[^>]*?(?:transform="([^"]*)")?>([^<]*)</text>)re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), text_re); it != std::sregex_iterator(); ++it)
+        out.push_back({std::stod((*it)[1]), std::stod((*it)[2]), (*it)[4], (*it)[5], (*it)[6], std::stod((*it)[3])});
+    return out;
+}
+}  // namespace
+
+TEST_CASE("long custom object names get room in the confusion figure and the peak grid", "[report][layout][issue24]") {
+    const std::string long_a = "left_handed_teapot_lid_large", long_b = "left_handed_teapot_lid_small";
+    learn::ConfusionMatrix m({"C1", long_a, long_b});
+    m.add(0, 0), m.add(1, 2), m.add(2, 2);
+    const std::string svg = confusion_figure(m, learn::paper_objects(), "fig", "long names");
+    const auto texts = svg_texts(svg);
+    std::size_t turned = 0;
+    for (const auto& t : texts) {
+        if (t.text != long_a && t.text != long_b) continue;
+        if (!t.transform.empty()) {
+            ++turned;  // a column name, at 45 degrees: neighbours cannot overlap
+            CHECK(t.transform.find("rotate(-45") == 0);
+            CHECK(t.y - 0.7072 * text_width(t.text, t.size) > 30.0);  // clear of the "predicted object" title
+        } else {
+            CHECK(t.anchor == "end");  // a row name: it ends at its glyph and must start inside the figure
+            CHECK(t.x - text_width(t.text, t.size) >= 0.0);
+        }
+    }
+    CHECK(turned == 2);
+    // Short names stay level.
+    learn::ConfusionMatrix short_names({"C1", "C2"});
+    CHECK(svg.find("rotate(-45") != std::string::npos);
+    CHECK(confusion_figure(short_names, learn::paper_objects(), "fig", "short").find("rotate(-45") == std::string::npos);
+}
+
+TEST_CASE("every plot has axis ticks and the units of its axes", "[report][layout][issue24]") {
+    const auto& r = rendered();
+    const std::string feats = element(r.html, "svg", "fig-features");
+    CHECK_THAT(feats, Catch::Contains("time (samples)") && Catch::Contains("smoothed reading (unitless"));
+    const std::string peaks = element(r.html, "svg", "fig-peaks");
+    CHECK_THAT(peaks, Catch::Contains("time (samples) (x)") && Catch::Contains("smoothed reading (unitless"));
+    // Tick labels: numbers in 11 px (feature figure) and 9 px (each peak plot).
+    auto numeric = [](const std::vector<SvgText>& ts, double size) {
+        std::size_t n = 0;
+        for (const auto& t : ts) n += t.size == size && std::regex_match(t.text, std::regex("-?[0-9]+(\\.[0-9]+)?"));
+        return n;
+    };
+    CHECK(numeric(svg_texts(feats), 11.0) >= 6);
+    CHECK(numeric(svg_texts(peaks), 9.0) >= 4u * test::kSyntheticObjects * test::kSyntheticSpeeds);
+    const auto ticks = nice_ticks(0.0, 1.0, 5);
+    REQUIRE(ticks.size() == 6);
+    CHECK(ticks[3] == Approx(0.6));
+    CHECK(tick_label(0.25, 0.05) == "0.25");
+    CHECK(tick_label(40.0, 20.0) == "40");
 }

@@ -15,8 +15,10 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -98,6 +100,28 @@ private:
 
 // ---------------------------------------------------------------- datasets --
 
+// The three sensor channels the identification reads (features and series
+// alike), as indices into the dataset's channel columns, ch1..ch3 in order:
+// the columns dataset-info.csv names as `identification_channels` (the robot
+// profile's key of that name), else the dataset's channels when it has
+// exactly three (one sensor). More channels and no name is an error listing
+// them and saying how to name three: never a silent choice. `dataset` names
+// the dataset in messages.
+Result<std::array<std::size_t, kChannels>> identification_channels(const DatasetInfo& info,
+                                                                   const std::string& dataset);
+
+// The part of a recorded trial the identification reads: the three
+// identification channels and the time column, from the trial's first to its
+// last valid sample. Invalid samples before and after them (a replay's reads
+// past the recording's end) are not part of the roll and are left out; an
+// invalid sample between valid ones stays, as the recording had it.
+struct IdentificationInput {
+    std::array<std::span<const double>, kChannels> channels;
+    std::span<const double> time;
+    std::size_t first = 0;  // index in the trial of the first sample used
+};
+IdentificationInput identification_input(const TrialData& data, const std::array<std::size_t, kChannels>& columns);
+
 // One row of a features file.
 struct FeatureRow {
     std::string trial_id;
@@ -108,19 +132,25 @@ struct FeatureRow {
     std::string reason;
     std::array<double, kFeatureCount> values{};
     std::array<int, kChannels> windows{};  // smoothing windows used (diagnostics)
+    std::map<std::string, std::string> extra;  // the trial's `extra` metadata (manifest.csv)
 };
 
 // Extract every trial of a dataset, in manifest order, on `threads` threads
 // (0 = hardware concurrency). Results do not depend on the thread count. The
-// dataset's first three sensor channels are ch1..ch3. A trial file that cannot
-// be read is an error naming it; an invalid peak is a rejected row.
+// channels are identification_channels(); a dataset where they cannot be
+// chosen is an error. A trial file that cannot be read does not stop the
+// others: its row is rejected with the reason "unreadable (file:line: ...)".
+// An invalid peak is a rejected row. `stop`, when given and set (Ctrl-C),
+// ends the extraction with ErrorCode::cancelled.
 Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, const FeatureSettings& settings,
-                                                unsigned threads = 0);
+                                                unsigned threads = 0, const std::atomic<bool>* stop = nullptr);
 
 // Features CSV, loadable by MATLAB's readtable / Classification Learner and by
 // pandas.read_csv without options:
-//   trial_id,object,speed,repetition,clean,reason,F1,…,F13,window_ch1,window_ch2,window_ch3
+//   trial_id,object,speed,repetition,clean,reason,F1,…,F13,window_ch1,window_ch2,window_ch3[,extra_<key>...]
 // `clean` is 1 or 0; a rejected trial's features are empty fields (NaN on load).
+// When any trial carries `extra` metadata, one column per key follows,
+// `extra_<key>`, keys sorted, empty where a trial lacks the key.
 std::string format_features_csv(const std::vector<FeatureRow>& rows);
 Status write_features_csv(const std::filesystem::path& file, const std::vector<FeatureRow>& rows);
 // Reads a features file (the window columns are optional). Errors name the

@@ -1,5 +1,6 @@
 // rollsense evaluate INPUT: how well a classifier identifies the objects, with
 // the paper's protocol and the honest one side by side.
+#include <atomic>
 #include <cstdio>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
+#include "runtime/session/safety.hpp"
 
 namespace rollsense::cli {
 
@@ -116,6 +118,10 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
         request.prefixes = po;
     }
     request.options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    // Ctrl-C (or SIGTERM/SIGHUP) stops the evaluation at its next training: exit 130.
+    std::atomic<bool> interrupted{false};
+    runtime::InterruptGuard on_interrupt(interrupted);
+    request.options.stop = &interrupted;
     learn::PipelineStage failed = learn::PipelineStage::evaluation;
     auto result = learn::run_pipeline(
         registry, request,

@@ -227,17 +227,18 @@ std::vector<Outcome> predict_features(const Classifier& clf, const Input& in, co
                                       const TrainingDescription& t) {
     std::vector<Outcome> out;
     features::FeatureExtractor extractor(fs_);
+    // The channels and samples of features::extract_dataset.
+    const auto columns = features::identification_channels(in.dataset.info(), in.dataset.dir().string());
     for (const auto& rec : in.trials) {
         Outcome o{rec.info.id, rec.info.object, {}, {}, {}, {}};
         auto data = in.dataset.load(rec);
         if (!data) {
             o.reason = data.error().describe();
-        } else if (data->channels.size() < features::kChannels) {
-            o.reason = "the trial has " + std::to_string(data->channels.size()) + " channels, the features need 3";
+        } else if (!columns) {
+            o.reason = columns.error().message;
         } else {
-            // The rule of features::extract_dataset: the first three sensor channels.
-            std::vector<std::vector<double>> ch(data->channels.begin(), data->channels.begin() + features::kChannels);
-            auto f = extractor.extract(ch, data->time);
+            const features::IdentificationInput ch = features::identification_input(*data, *columns);
+            auto f = extractor.extract(std::span<const std::span<const double>>(ch.channels), ch.time);
             if (!f) o.reason = f.error().describe();
             else if (!f->clean) o.reason = "no clean peaks: " + f->reason;
             else {

@@ -6,6 +6,7 @@
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
 #include "cli/paths.hpp"
+#include "cli/recorded_seed.hpp"
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/log.hpp"
 #include "runtime/session/session.hpp"
@@ -26,7 +27,8 @@ options:
                         default: runs/<script>-<date>-<time>
   --resume              continue the dataset in --out: trials already on disk
                         are kept and skipped; the result equals an uninterrupted run
-  --seed N              run seed (per-trial seeds derive from it); default: 1
+  --seed N              run seed (per-trial seeds derive from it); default: 1,
+                        or, replaying a dataset, the seed it was recorded with
   --set KEY=VALUE       a setting read by the profile or script (repeatable);
                         a dotted key overrides a profile entry, e.g.
                         --set devices.tactile.params.kernel_fwhm=5
@@ -76,6 +78,12 @@ int run(const std::vector<std::string>& argv) {
     o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
     o.progress = !args.flag("--no-progress");
     o.digital_lines = hal::gpio_digital_lines();
+    if (args.option("--seed").empty())
+        if (auto recorded = recorded_seed(o)) {
+            o.seed = recorded->seed;
+            log_info("rollsense", "replaying " + recorded->dataset.string() + ": the run uses the recording's seed " +
+                                      std::to_string(o.seed) + " (so its trials line up; give --seed N for another)");
+        }
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
 

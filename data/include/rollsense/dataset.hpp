@@ -2,7 +2,8 @@
 // writes (docs/dataset-format.md describes it for MATLAB and pandas users).
 //
 //   <dir>/dataset-info.csv   key,value: format, version, sample rate, channel and
-//                            joint column names, profile, seed (deterministic)
+//                            joint column names, channel units, profile, seed
+//                            (deterministic)
 //   <dir>/manifest.csv       one row per trial, in recording order
 //   <dir>/trials/<id>.csv    time,<channels...>,<joints...>,valid  (time from the
 //                            recording's start; values with 9 significant digits)
@@ -33,6 +34,10 @@ inline constexpr int kDatasetFormatVersion = 1;
 struct DatasetInfo {
     double sample_rate_hz = 31.1;
     std::vector<std::string> channels;  // sensor channel columns, e.g. ch1 ch2 ch3
+    std::vector<std::string> channel_units;  // their units, same order ("1" = unitless); empty = not stated
+    // The three channels the identification reads, when the dataset has more
+    // than one sensor (the profile's identification_channels); empty = not named.
+    std::vector<std::string> identification_channels;
     std::vector<std::string> joints;    // recorded joint position columns, e.g. sensing_finger
     std::string profile;
     std::uint64_t seed = 0;

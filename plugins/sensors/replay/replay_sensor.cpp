@@ -110,12 +110,16 @@ Status ReplaySensor::on_configure(const ParamSet& p, const PluginContext& contex
                                             ": no sensor channel columns (hand-made trial files name them ch1, "
                                             "ch2, ...; docs/dataset-format.md)"};
     channels_.clear();
-    for (const auto& name : info.channels) {
+    for (std::size_t c = 0; c < info.channels.size(); ++c) {
+        const std::string& name = info.channels[c];
         if (name.empty() || name.find_first_of(", \"\n\r") != std::string::npos)
             return {ErrorCode::parse_error, dataset_name() + ": channel column '" + name +
                                                 "' cannot be recorded again (no spaces, commas or quotes in "
                                                 "column names)"};
-        channels_.push_back({name, "1", "column '" + name + "' replayed from " + dataset_name()});
+        // The recorded unit when the dataset states it; a hand-made dataset's
+        // columns are the paper's unitless reading (docs/dataset-format.md).
+        const std::string unit = c < info.channel_units.size() ? info.channel_units[c] : "1";
+        channels_.push_back({name, unit, "column '" + name + "' replayed from " + dataset_name()});
     }
     check_column_.reset();
     if (!check_joint_.empty()) {

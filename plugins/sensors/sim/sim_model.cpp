@@ -46,11 +46,25 @@ TrialModel::TrialModel(const SimParameters& params, const DeviceState& device, c
 }
 
 void TrialModel::start(double time, double theta) {
+    // Each recording restarts the output chain (its baseline is taken at the
+    // recording's start); the first of a trial draws the named noise streams,
+    // later ones their own, so that a back pass is not a copy of the forward one.
+    const std::string pass = recordings_ == 0 ? "" : "-rec" + std::to_string(recordings_ + 1);
     for (int i = 0; i < kChannels; ++i) {
         const auto k = static_cast<std::size_t>(i);
         channels_[k] = OutputChannel(p_.chain, device_->gain[k], device_->ambient_offset[k]);
-        channels_[k].begin_trial(Rng(seed_, i == 0 ? "noise-ch1" : i == 1 ? "noise-ch2" : "noise-ch3"), time);
+        channels_[k].begin_trial(Rng(seed_, (i == 0 ? "noise-ch1" : i == 1 ? "noise-ch2" : "noise-ch3") + pass), time);
     }
+    last_theta_ = theta;
+    last_time_ = time;
+    start_time_ = time;
+    speed_ = 0.0;
+    started_ = true;
+    // The object is placed once per trial, at its first recording. A later
+    // recording (a back pass) finds it where the fingers have rolled it: it
+    // follows the finger angle from there, so rolling back crosses the
+    // barometers again instead of starting from a fresh placement.
+    if (recordings_++ > 0) return;
     cylinder_.reset();
     polygon_.reset();
     slip_rng_ = Rng(seed_, "slip");
@@ -61,12 +75,7 @@ void TrialModel::start(double time, double theta) {
         polygon_.emplace(p_.hand, shape, draws_.start_centre,
                          PolygonTumbler::flat_orientation(object_->sides) + draws_.tilt, theta);
     }
-    last_theta_ = theta;
-    last_time_ = time;
-    start_time_ = time;
-    speed_ = 0.0;
     line_load_prev_ = 0.0;
-    started_ = true;
 }
 
 void TrialModel::compute_stress(double time, double theta, double clamp_current) {

@@ -39,7 +39,9 @@ struct SimParameters {
     double contact_modulus = 0.3;          // MPa, E* for the Hertz contact of a cylinder
     double foundation_stiffness = 0.05;    // N/mm³, rubber as an elastic foundation under an edge
     double clamp_line_load = 0.03;         // N/mm, median clamping load at the reference lever arm
-    double clamp_reference_current = 0.0;  // mA; > 0: load scales with current / this
+    // mA: the current clamp_line_load is calibrated at (share/lua/etroll.lua's
+    // clamp_current); the load scales with current / this. 0: current only gates.
+    double clamp_reference_current = 120.0;
     double clamp_current_threshold = 5.0;  // mA; below: not clamped
     double force_log_sigma = 0.17;         // per-trial log-normal spread of the clamping load
     double palm_oscillation = 0.06;        // relative force modulation at the reference speed
@@ -84,7 +86,8 @@ public:
     TrialModel(const SimParameters& params, const DeviceState& device, const ObjectSpec* object,
                std::uint64_t trial_seed);
 
-    // Recording starts with the fingers at theta (rad) at `time` (s).
+    // Recording starts with the fingers at theta (rad) at `time` (s). The
+    // first of a trial places the object; a later one keeps it where it is.
     void start(double time, double theta);
     // One sample: the sensing finger at theta (rad), clamping current (mA).
     std::array<double, kChannels> sample(double time, double theta, double clamp_current);
@@ -112,6 +115,7 @@ private:
     std::optional<PolygonTumbler> polygon_;
     std::array<double, kChannels> stress_{};
     bool started_ = false;
+    int recordings_ = 0;  // recordings started in this trial (the object is placed at the first)
     double start_time_ = 0.0;  // recording start: times inside a trial are relative to it (resume-identical)
     double last_theta_ = 0.0, last_time_ = 0.0, speed_ = 0.0;  // speed in rad/s, low-passed
     double contact_ = 0.0, line_load_ = 0.0, line_load_prev_ = 0.0;

@@ -38,7 +38,8 @@ ParamSchema sim_schema() {
         param_number("clamp_line_load", d.clamp_line_load,
                      "median clamping load per unit prism length at the reference lever arm", 0.0, 10.0, "N/mm"),
         param_number("clamp_reference_current", d.clamp_reference_current,
-                     "> 0: the load scales with pushing current / this; 0: current only gates clamping", 0.0,
+                     "the pushing current clamp_line_load is calibrated at (etroll.lua's clamp_current): the load "
+                     "scales with current / this; 0: current only gates clamping", 0.0,
                      10000.0, "mA"),
         param_number("clamp_current_threshold", d.clamp_current_threshold,
                      "pushing-finger current below which the object counts as not clamped", 0.0, 10000.0, "mA"),

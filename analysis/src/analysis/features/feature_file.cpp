@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
+#include <string_view>
 #include <thread>
 
 #include "rollsense/atomic_file.hpp"
@@ -13,46 +15,57 @@
 
 namespace rollsense::features {
 
+IdentificationInput identification_input(const TrialData& data, const std::array<std::size_t, kChannels>& columns) {
+    // A sample without a valid flag (a series assembled by hand) counts as valid.
+    auto valid = [&data](std::size_t i) { return i >= data.valid.size() || data.valid[i] != 0; };
+    std::size_t first = 0, last = data.samples();
+    while (first < last && !valid(first)) ++first;
+    while (last > first && !valid(last - 1)) --last;
+    IdentificationInput in;
+    in.first = first;
+    for (std::size_t c = 0; c < kChannels; ++c)
+        in.channels[c] = std::span<const double>(data.channels[columns[c]]).subspan(first, last - first);
+    in.time = std::span<const double>(data.time).subspan(first, last - first);
+    return in;
+}
+
 Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, const FeatureSettings& settings,
-                                                unsigned threads) {
+                                                unsigned threads, const std::atomic<bool>* stop) {
     const auto& trials = dataset.trials();
-    if (dataset.info().channels.size() < kChannels && !dataset.info().channels.empty())
-        return Error{ErrorCode::invalid_argument, "dataset " + dataset.dir().string() + " has " +
-                                                      std::to_string(dataset.info().channels.size()) +
-                                                      " sensor channels; the features need 3 (ch1..ch3)"};
+    auto columns = identification_channels(dataset.info(), dataset.dir().string());
+    if (!columns) return columns.error();
     std::vector<FeatureRow> rows(trials.size());
-    std::vector<Status> errors(trials.size());
     std::atomic<std::size_t> next{0};
+    std::atomic<bool> stopped{false};
 
     auto work = [&] {
         FeatureExtractor extractor(settings);
         for (;;) {
+            if (stop && stop->load()) {
+                stopped = true;
+                return;
+            }
             const std::size_t i = next.fetch_add(1);
             if (i >= trials.size()) return;
             const auto& rec = trials[i];
-            auto data = dataset.load(rec);
-            if (!data) {
-                errors[i] = data.status();
-                continue;
-            }
-            if (data->channels.size() < kChannels) {
-                errors[i] = Status(ErrorCode::invalid_argument,
-                                   dataset.dir().string() + "/" + rec.file + ": " +
-                                       std::to_string(data->channels.size()) + " channels, the features need 3");
-                continue;
-            }
-            std::array<std::span<const double>, kChannels> ch;
-            for (std::size_t c = 0; c < kChannels; ++c) ch[c] = data->channels[c];
-            auto tf = extractor.extract(std::span<const std::span<const double>>(ch), data->time);
-            if (!tf) {
-                errors[i] = std::move(tf).status().with_context(dataset.dir().string() + "/" + rec.file);
-                continue;
-            }
             FeatureRow& row = rows[i];
             row.trial_id = rec.info.id;
             row.object = rec.info.object;
             row.speed = rec.info.speed;
             row.repetition = rec.info.repetition;
+            row.extra = rec.info.extra;
+            // A trial that cannot be read is skipped with the reason; the others go on.
+            auto data = dataset.load(rec);
+            if (!data) {
+                row.reason = "unreadable (" + data.error().message + ")";
+                continue;
+            }
+            const IdentificationInput in = identification_input(*data, *columns);
+            auto tf = extractor.extract(std::span<const std::span<const double>>(in.channels), in.time);
+            if (!tf) {
+                row.reason = "unreadable (" + dataset.dir().string() + "/" + rec.file + ": " + tf.error().message + ")";
+                continue;
+            }
             row.clean = tf->clean;
             row.reason = tf->reason;
             row.values = tf->values;
@@ -68,15 +81,30 @@ Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, co
         for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
         for (auto& t : pool) t.join();
     }
-    for (auto& e : errors)
-        if (!e.ok()) return e;
+    if (stopped) return Error{ErrorCode::cancelled, "feature extraction interrupted"};
     return rows;
 }
+
+namespace {
+
+// The keys of every trial's extra metadata, sorted: the extra_<key> columns.
+std::vector<std::string> extra_keys(const std::vector<FeatureRow>& rows) {
+    std::set<std::string> keys;
+    for (const auto& r : rows)
+        for (const auto& [k, v] : r.extra) keys.insert(k);
+    return {keys.begin(), keys.end()};
+}
+
+constexpr std::string_view kExtraPrefix = "extra_";
+
+}  // namespace
 
 std::string format_features_csv(const std::vector<FeatureRow>& rows) {
     std::vector<std::string> header = {"trial_id", "object", "speed", "repetition", "clean", "reason"};
     for (const auto& n : feature_names()) header.push_back(n);
     for (std::size_t c = 0; c < kChannels; ++c) header.push_back("window_ch" + std::to_string(c + 1));
+    const auto keys = extra_keys(rows);
+    for (const auto& k : keys) header.push_back(std::string(kExtraPrefix) + k);
     std::string out;
     csv::append_row(out, header);
     std::vector<std::string> f;
@@ -92,6 +120,10 @@ std::string format_features_csv(const std::vector<FeatureRow>& rows) {
         // readtable and read_csv load as NaN: never silently usable.
         for (double v : r.values) f.push_back(r.clean && std::isfinite(v) ? csv::format_number(v) : "");
         for (int w : r.windows) f.push_back(std::to_string(w));
+        for (const auto& k : keys) {
+            const auto it = r.extra.find(k);
+            f.push_back(it == r.extra.end() ? std::string() : it->second);
+        }
         csv::append_row(out, f);
     }
     return out;
@@ -125,6 +157,9 @@ Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& f
     const std::size_t speed_col = optional("speed"), rep_col = optional("repetition"), reason_col = optional("reason");
     std::array<std::size_t, kChannels> wcol{};
     for (std::size_t c = 0; c < kChannels; ++c) wcol[c] = optional("window_ch" + std::to_string(c + 1));
+    std::vector<std::pair<std::size_t, std::string>> extra_cols;  // column, key
+    for (std::size_t c = 0; c < r.header().size(); ++c)
+        if (r.header()[c].rfind(kExtraPrefix, 0) == 0) extra_cols.emplace_back(c, r.header()[c].substr(kExtraPrefix.size()));
 
     std::vector<FeatureRow> rows;
     std::vector<std::string> f;
@@ -167,6 +202,8 @@ Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& f
             if (!v) return v.error();
             row.windows[c] = static_cast<int>(*v);
         }
+        for (const auto& [c, key] : extra_cols)
+            if (!f[c].empty()) row.extra[key] = f[c];
         rows.push_back(std::move(row));
     }
     return rows;

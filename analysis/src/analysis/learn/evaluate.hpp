@@ -5,6 +5,7 @@
 // paper's own analyses beside the paper's numbers.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
@@ -34,6 +35,10 @@ struct EvaluationOptions {
     std::function<std::string(const features::FeatureRow&)> group_of;
     std::vector<ObjectShape> catalogue = paper_objects();
     std::function<void(const std::string&)> progress;  // one line per step
+    // Set from another thread or a signal handler (Ctrl-C): the work stops at
+    // the next classifier it would train, with ErrorCode::cancelled. The
+    // pipeline (run_pipeline) checks it; nullptr = never stopped.
+    const std::atomic<bool>* stop = nullptr;
 };
 
 struct RepeatedCv {

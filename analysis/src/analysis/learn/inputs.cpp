@@ -7,12 +7,12 @@ namespace rollsense::learn {
 
 Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesystem::path& input,
                                                             const features::FeatureSettings& settings,
-                                                            unsigned threads) {
+                                                            unsigned threads, const std::atomic<bool>* stop) {
     std::error_code ec;
     if (std::filesystem::is_directory(input, ec)) {
         auto ds = DatasetReader::open(input);
         if (!ds) return ds.error();
-        return features::extract_dataset(*ds, settings, threads);
+        return features::extract_dataset(*ds, settings, threads, stop);
     }
     if (!std::filesystem::exists(input, ec))
         return Error{ErrorCode::not_found, "'" + input.string() +

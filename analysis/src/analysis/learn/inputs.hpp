@@ -13,9 +13,11 @@ namespace rollsense::learn {
 
 // A folder is a recorded dataset (features extracted with `settings`); a file
 // is a features CSV written by `rollsense features` (or by hand).
+// `stop`: as in features::extract_dataset.
 Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesystem::path& input,
                                                             const features::FeatureSettings& settings,
-                                                            unsigned threads = 0);
+                                                            unsigned threads = 0,
+                                                            const std::atomic<bool>* stop = nullptr);
 
 // "learners=100" → integer, "rate=0.1" → number, "x=true" → boolean,
 // anything else a string. Errors name the text.

@@ -115,6 +115,7 @@ namespace {
 std::string cell(const Count& c, bool has_k = true) {
     char buf[64];
     if (!has_k) return "-";
+    if (c.n == 0 && c.k == 0) return "n/a";  // nothing to count: no such trials (or no figure in the paper)
     if (c.n == 0) std::snprintf(buf, sizeof buf, "%zu", c.k);
     else std::snprintf(buf, sizeof buf, "%zu / %zu (%.1f %%)", c.k, c.n, 100.0 * c.fraction());
     return buf;

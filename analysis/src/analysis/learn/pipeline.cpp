@@ -118,12 +118,12 @@ Result<series::Amplitude> parse_amplitude(std::string_view text) {
                                                   "(docs/series-preparation.md)"};
 }
 
-Result<std::vector<std::string>> series_channels(const DatasetInfo& info) {
-    if (info.channels.size() < features::kChannels)
-        return Error{ErrorCode::invalid_argument,
-                     "the dataset records " + std::to_string(info.channels.size()) +
-                         " channels; a series classifier reads the three sensor channels the features use"};
-    return std::vector<std::string>(info.channels.begin(), info.channels.begin() + features::kChannels);
+Result<std::vector<std::string>> series_channels(const DatasetInfo& info, const std::string& dataset) {
+    auto columns = features::identification_channels(info, dataset);
+    if (!columns) return columns.error();
+    std::vector<std::string> names;
+    for (const std::size_t c : *columns) names.push_back(info.channels[c]);
+    return names;
 }
 
 namespace {
@@ -138,8 +138,8 @@ struct SeriesVerdicts {
 Result<SeriesVerdicts> prepare_all_series(const std::filesystem::path& dataset_dir, const InputOptions& options) {
     auto ds = DatasetReader::open(dataset_dir);
     if (!ds) return ds.error();
-    auto channels = series_channels(ds->info());
-    if (!channels) return Status(channels.error()).with_context("dataset '" + dataset_dir.string() + "'");
+    auto channels = series_channels(ds->info(), dataset_dir.string());
+    if (!channels) return channels.error();
     auto st = series::series_table(*ds, ds->trials(), *channels, options.series, options.threads);
     if (!st) return st.error();
     SeriesVerdicts v;
@@ -287,6 +287,21 @@ Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& r
     return out;
 }
 
+namespace {
+
+// Every classifier the evaluation trains is made by its factory (each fold,
+// each optimiser point, nested folds, prefixes, the final model): checking
+// the stop flag there ends any of them within one training.
+ClassifierFactory stoppable(ClassifierFactory factory, const std::atomic<bool>* stop) {
+    if (!stop) return factory;
+    return [factory = std::move(factory), stop](const ParamSet& params) -> Result<ClassifierPtr> {
+        if (stop->load()) return Error{ErrorCode::cancelled, "interrupted (Ctrl-C): the evaluation stopped"};
+        return factory(params);
+    };
+}
+
+}  // namespace
+
 Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const PipelineRequest& request,
                                     const std::function<Status(const std::vector<features::FeatureRow>&)>& on_rows,
                                     PipelineStage* failed) {
@@ -298,7 +313,8 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     auto prepared = prepare_classifiers(registry, request.classifiers);
     if (!prepared) return fail(PipelineStage::classifiers, prepared.error());
     out.classifiers = std::move(prepared).value();
-    auto rows = load_feature_rows(request.input, request.features);
+    for (auto& c : out.classifiers) c.factory = stoppable(std::move(c.factory), request.options.stop);
+    auto rows = load_feature_rows(request.input, request.features, 0, request.options.stop);
     if (!rows) return fail(PipelineStage::rows, rows.error());
     out.rows = std::move(rows).value();
     if (on_rows)

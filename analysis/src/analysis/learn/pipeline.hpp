@@ -80,9 +80,9 @@ struct InputOptions {
     unsigned threads = 0;           // series preparation threads (0 = all cores)
 };
 
-// The channels a series classifier reads: the dataset's three sensor
-// channels, as the 13 features do (its first three channel columns).
-Result<std::vector<std::string>> series_channels(const DatasetInfo& info);
+// The channels a series classifier reads: the three the 13 features read
+// (features::identification_channels), by column name.
+Result<std::vector<std::string>> series_channels(const DatasetInfo& info, const std::string& dataset);
 
 // The input step for the classifiers' kinds: one table per kind present
 // (features first), the same trials in the same order. `dataset_dir` is the

@@ -80,7 +80,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                                                       "' is not a dataset folder (a features CSV has no prefixes)"};
     auto ds = DatasetReader::open(dataset_dir);
     if (!ds) return ds.error();
-    auto channels = series_channels(ds->info());
+    auto channels = series_channels(ds->info(), dataset_dir.string());
     if (!channels) return channels.error();
     auto channel_idx = series::channel_indices(ds->info(), *channels);
     if (!channel_idx) return channel_idx.error();

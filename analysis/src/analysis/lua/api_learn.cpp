@@ -117,6 +117,7 @@ int l_analyse(lua_State* L) {
     eo.nested = opt_field_bool(L, opts, "nested", eo.optimize);
     eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
+    eo.stop = &s.interrupt_flag();  // Ctrl-C stops the analysis, not only the roll
     request.classifiers = classifier_specs_from(L, opts, eo.params);
     // The input step: trials = "clean" (the paper's, default) | "all" (every trial the
     // series rule accepts; series classifiers only), series_amplitude = the series rule's mode.
@@ -157,6 +158,12 @@ int l_analyse(lua_State* L) {
     ri.rows = result->rows;
     ri.evaluation = evaluation;
     ri.command_line = s.options().command_line;
+    if (dataset.empty())  // this run's own dataset: its run-info.csv comes when the run ends
+        ri.recording_run = {{"command_line", s.options().command_line},
+                            {"profile", s.profile().path.string()},
+                            {"script", s.options().script.string()},
+                            {"seed", std::to_string(s.options().seed)},
+                            {"status", "running (this report is made by the script's rs.analyse)"}};
     auto page = report::write_report(ri);
     check(L, page.status());
     std::fprintf(stderr, "\n%s", report::text_summary(ri).c_str());
@@ -276,7 +283,8 @@ void push_prediction(lua_State* L, const Classifier& clf, const Prediction& p) {
 // A series model (minirocket) identifies from the recording prepared by the
 // one series rule, with the settings it was trained with: the documented
 // defaults, or clf:identify{series_amplitude = "z_per_channel"}.
-int identify_series(lua_State* L, const Classifier& clf, const TrialData& data) {
+int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
+                    const std::array<std::size_t, features::kChannels>& columns) {
     series::SeriesSettings settings;
     if (lua_istable(L, 2)) {
         const std::string amplitude = opt_field_string(L, 2, "series_amplitude", "");
@@ -286,8 +294,7 @@ int identify_series(lua_State* L, const Classifier& clf, const TrialData& data) 
             settings.amplitude = *a;
         }
     }
-    static constexpr std::size_t kSensorChannels[] = {0, 1, 2};  // the three sensor channels, as the features
-    auto prepared = series::prepare_series(data, kSensorChannels, settings);
+    auto prepared = series::prepare_series(data, columns, settings);
     check(L, prepared.status());
     if (!prepared->ok) {
         lua_pushnil(L);
@@ -308,12 +315,16 @@ int l_identify(lua_State* L) {
     Session& s = Session::of(L);
     const auto& data = s.recorded();
     if (data.samples() == 0) return luaL_error(L, "identify: nothing recorded (rs.record_start/stop first)");
-    if (data.channels.size() < features::kChannels)
-        return luaL_error(L, "identify: the recording has %d channels, the features need 3", static_cast<int>(data.channels.size()));
-    if (clf->input() == ClassifierInput::series) return identify_series(L, *clf, data);
-    std::vector<std::vector<double>> channels(data.channels.begin(), data.channels.begin() + features::kChannels);
+    // The channels a dataset of this profile would name (features::identification_channels).
+    DatasetInfo live;
+    live.channels = s.robot().channel_columns();
+    live.identification_channels = s.profile().identification_channels;
+    auto columns = features::identification_channels(live, "the recording of profile '" + s.profile().name + "'");
+    check(L, Status(columns.status()).with_context("identify"));
+    if (clf->input() == ClassifierInput::series) return identify_series(L, *clf, data, *columns);
+    const features::IdentificationInput in = features::identification_input(data, *columns);
     features::FeatureExtractor extractor;
-    auto f = extractor.extract(channels, data.time);
+    auto f = extractor.extract(std::span<const std::span<const double>>(in.channels), in.time);
     check(L, f.status());
     if (!f->clean) {
         lua_pushnil(L);

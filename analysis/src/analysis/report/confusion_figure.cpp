@@ -29,9 +29,15 @@ std::string confusion_figure(const learn::ConfusionMatrix& m, const std::vector<
     const ObjectOrder ord = order_objects(m.classes, catalogue);
     const std::size_t n = m.size();
     const double cell = n > 12 ? 36.0 : 48.0;
-    const double left = 110.0, top = 70.0;
+    // Room for the names, however long: row names left of their glyphs; column
+    // names above, turned 45 degrees when one is wider than a cell.
+    double widest = 0.0;
+    for (const auto& c : m.classes) widest = std::max(widest, text_width(c, 13.0));
+    const bool turn = widest > cell - 4.0;
+    const double rise = turn ? widest * 0.7072 : 0.0;  // height (and reach to the right) of a turned name
+    const double left = std::max(110.0, 34.0 + widest + 36.0), top = 70.0 + rise;
     const double tpr_gap = 14.0, tpr_w = 70.0;
-    const double width = left + cell * static_cast<double>(n) + tpr_gap + tpr_w + 20.0;
+    const double width = left + cell * static_cast<double>(n) + tpr_gap + tpr_w + 20.0 + rise;
     const double height = top + cell * static_cast<double>(n) + 60.0;
     Svg svg(width, height, id, caption);
 
@@ -69,7 +75,10 @@ std::string confusion_figure(const learn::ConfusionMatrix& m, const std::vector<
     }
     for (std::size_t c = 0; c < n; ++c) {
         const double x = left + cell * static_cast<double>(c);
-        svg.text(x + cell / 2.0, top - 26.0, m.classes[ord.order[c]], {13.0, Anchor::middle, true});
+        if (turn)
+            svg.text(x + cell / 2.0, top - 26.0, m.classes[ord.order[c]], {13.0, Anchor::start, true, "#000", -45.0});
+        else
+            svg.text(x + cell / 2.0, top - 26.0, m.classes[ord.order[c]], {13.0, Anchor::middle, true});
         draw_object_glyph(svg, m.classes[ord.order[c]], catalogue, x + cell / 2.0, top - 12.0, 7.0);
     }
     svg.text(grid_x1 + tpr_gap + tpr_w / 2.0, top - 12.0, "TPR", {13.0, Anchor::middle, true});

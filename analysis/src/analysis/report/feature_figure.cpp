@@ -65,11 +65,19 @@ std::string feature_figure(const PlottedTrial& t, const std::string& id) {
     svg.line(left, height - bottom, width - right, height - bottom, axis);
     svg.line(left, top - 10.0, left, height - bottom, axis);
     svg.line(left, sy(0.0), width - right, sy(0.0), {"#bbb", 0.8, "2 3"});
-    svg.text((left + width - right) / 2.0, height - 14.0, "time (samples; only ratios of times become features)",
+    svg.text((left + width - right) / 2.0, height - 14.0, t.x_label + "; only ratios of times become features",
              {12.0, Anchor::middle});
-    svg.text(18.0, (top + height - bottom) / 2.0, "smoothed reading", {12.0, Anchor::middle, false, "#000", -90.0});
-    svg.text(left - 6.0, sy(0.0) + 4.0, "0", {11.0, Anchor::end});
-    svg.text(left - 6.0, sy(hi) + 4.0, fixed(hi, 3), {11.0, Anchor::end});
+    svg.text(14.0, (top + height - bottom) / 2.0, t.y_label, {12.0, Anchor::middle, false, "#000", -90.0});
+    const auto xt = nice_ticks(t.x[a], t.x[b], 8);
+    for (const double v : xt) {
+        svg.line(sx(v), height - bottom, sx(v), height - bottom + 5.0, axis);
+        svg.text(sx(v), height - bottom + 16.0, tick_label(v, xt.size() > 1 ? xt[1] - xt[0] : 1.0), {11.0, Anchor::middle});
+    }
+    const auto yt = nice_ticks(lo, hi * 1.05, 5);
+    for (const double v : yt) {
+        svg.line(left - 5.0, sy(v), left, sy(v), axis);
+        svg.text(left - 7.0, sy(v) + 4.0, tick_label(v, yt.size() > 1 ? yt[1] - yt[0] : 1.0), {11.0, Anchor::end});
+    }
 
     for (std::size_t c = 0; c < features::kChannels; ++c) {
         std::vector<std::pair<double, double>> pts;
@@ -90,7 +98,7 @@ std::string feature_figure(const PlottedTrial& t, const std::string& id) {
         svg.text(xm + 4.0, sy(p.amplitude) - 6.0, "F" + cn[c] + " amplitude", {11.0, Anchor::start, true, colour});
         // Width: the 5 % crossings, one band per channel under the axis; the
         // skewness compares its mid-point (tick) with the maximum.
-        const double level5 = height - bottom + 18.0 + 17.0 * static_cast<double>(c);
+        const double level5 = height - bottom + 30.0 + 17.0 * static_cast<double>(c);  // below the tick labels
         svg.line(sx(p.t_start), sy(p.peak.max * 0.05), sx(p.t_start), level5, {colour, 0.8, "2 2"});
         svg.line(sx(p.t_end), sy(p.peak.max * 0.05), sx(p.t_end), level5, {colour, 0.8, "2 2"});
         svg.arrow(sx(p.t_start), level5, sx(p.t_end), level5, mark, true, true);

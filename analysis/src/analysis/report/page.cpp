@@ -56,6 +56,18 @@ ExtraRow identification_time(const DatasetReader& dataset) {
     return row;
 }
 
+// Trials whose file could not be read were skipped by the feature extraction:
+// each is named with the reason, so the file can be fixed.
+std::string unreadable_trials(const std::vector<features::FeatureRow>& rows) {
+    std::string items;
+    for (const auto& r : rows)
+        if (!r.clean && r.reason.rfind("unreadable", 0) == 0)
+            items += "<li><code>" + escape_xml(r.trial_id) + "</code>: " + escape_xml(r.reason) + "</li>\n";
+    if (items.empty()) return {};
+    return "<p class=\"note\" id=\"unreadable-trials\">Skipped: trials whose file could not be read (fix the file and "
+           "run the analysis again):</p>\n<ul>\n" + items + "</ul>\n";
+}
+
 }  // namespace
 
 std::filesystem::path report_path(const ReportInputs& in) {
@@ -93,7 +105,7 @@ Result<std::string> render_report(const ReportInputs& in) {
 
     body += section("sec-accuracy", "Accuracy", accuracy_table(ev, ev.name) +
                                                     "<p class=\"note\">" + escape_xml(learn::summarize_rejections(in.rows)) +
-                                                    "</p>\n");
+                                                    "</p>\n" + unreadable_trials(in.rows));
     if (several)
         body += section("sec-compare", "Classifiers compared on the same folds",
                         comparison_section(in.evaluation, in.catalogue) +
@@ -162,10 +174,15 @@ Result<std::string> render_report(const ReportInputs& in) {
                           {"seed", std::to_string(di.seed)},
                           {"recording software version", di.software_version},
                           {"sample rate (Hz)", fixed(di.sample_rate_hz, 2)}};
-    std::string prov = "<h3>Recording (run-info.csv)</h3>\n";
-    prov += run_info->empty() ? "<p class=\"note\">No run-info.csv: the dataset was not recorded by rollsense "
-                                "run.</p>\n"
-                              : key_value_table(*run_info);
+    std::string prov;
+    if (!run_info->empty())
+        prov = "<h3>Recording (run-info.csv)</h3>\n" + key_value_table(*run_info);
+    else if (!in.recording_run.empty())
+        prov = "<h3>Recording (this run, still in progress: its run-info.csv is written when it ends)</h3>\n" +
+               key_value_table(in.recording_run);
+    else
+        prov = "<h3>Recording (run-info.csv)</h3>\n<p class=\"note\">No run-info.csv: the dataset was not recorded "
+               "by rollsense run.</p>\n";
     prov += "<h3>Dataset (dataset-info.csv)</h3>\n" + key_value_table(recorded);
     prov += "<h3>This report</h3>\n" + key_value_table(made);
     body += section("sec-provenance", "Provenance", prov);

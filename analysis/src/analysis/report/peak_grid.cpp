@@ -93,11 +93,14 @@ std::pair<std::size_t, std::size_t> view_window(const PlottedTrial& t) {
 
 Result<std::string> peak_grid_figure(const DatasetReader& dataset, const TrialSelection& sel,
                                      const features::FeatureSettings& settings, const std::string& id) {
-    const double cell_w = 230.0, cell_h = 120.0, gap = 14.0;
-    const double left = 60.0, top = 56.0;
+    // Each cell has its own ticks: x below it, y left of it (amplitude is scaled per plot).
+    const double cell_w = 230.0, cell_h = 120.0, gap = 40.0, row_gap = 26.0, ytick_w = 34.0;
+    double widest_object = 0.0;
+    for (const auto& o : sel.objects) widest_object = std::max(widest_object, text_width(o, 14.0));
+    const double left = ytick_w + 12.0 + std::max(14.0, widest_object), top = 56.0;
     const double cols = static_cast<double>(sel.speeds.size()), rows = static_cast<double>(sel.objects.size());
     const double width = left + cols * (cell_w + gap) + 10.0;
-    const double height = top + rows * (cell_h + gap) + 30.0;
+    const double height = top + rows * (cell_h + row_gap) + 30.0;
     Svg svg(width, height, id, "Smoothed peaks of selected trials, three channels, normalised time");
 
     // Legend and column headings.
@@ -111,23 +114,27 @@ Result<std::string> peak_grid_figure(const DatasetReader& dataset, const TrialSe
                  {13.0, Anchor::middle, true});
 
     const auto& trials = dataset.trials();
+    std::string axis_labels;  // from the first trial drawn: the same for every plot
     int letter = 0;
     for (std::size_t o = 0; o < sel.objects.size(); ++o) {
-        const double y0 = top + static_cast<double>(o) * (cell_h + gap);
-        svg.text(left - 12.0, y0 + cell_h / 2.0 + 5.0, sel.objects[o], {14.0, Anchor::end, true});
+        const double y0 = top + static_cast<double>(o) * (cell_h + row_gap);
+        svg.text(left - ytick_w - 8.0, y0 + cell_h / 2.0 + 5.0, sel.objects[o], {14.0, Anchor::end, true});
         for (std::size_t s = 0; s < sel.speeds.size(); ++s) {
             const double x0 = left + static_cast<double>(s) * (cell_w + gap);
             svg.open_group("peak-plot");
             const long idx = sel.trial[o][s];
-            if (idx < 0) {
+            // A trial whose file cannot be read was skipped by the features
+            // (its reason is in the accuracy section): an empty cell, not a failed report.
+            auto t = idx < 0 ? Result<PlottedTrial>(Error{ErrorCode::not_found, ""})
+                             : load_plotted_trial(dataset, trials[static_cast<std::size_t>(idx)], settings);
+            if (!t) {
                 const Stroke none{"#ccc", 1.0, "4 3"};
                 svg.rect(x0, y0, cell_w, cell_h, "#fafafa", &none);
-                svg.text(x0 + cell_w / 2.0, y0 + cell_h / 2.0, "no trial recorded", {11.0, Anchor::middle, false, "#777"});
+                svg.text(x0 + cell_w / 2.0, y0 + cell_h / 2.0, idx < 0 ? "no trial recorded" : "trial file unreadable",
+                         {11.0, Anchor::middle, false, "#777"});
                 svg.close_group();
                 continue;
             }
-            auto t = load_plotted_trial(dataset, trials[static_cast<std::size_t>(idx)], settings);
-            if (!t) return t.error();
             const auto [a, b] = view_window(*t);
             double lo = 0.0, hi = std::numeric_limits<double>::lowest();
             for (const auto& ch : t->smoothed)
@@ -147,6 +154,20 @@ Result<std::string> peak_grid_figure(const DatasetReader& dataset, const TrialSe
                     if (std::isfinite(t->smoothed[c][i])) pts.emplace_back(sx(t->x[i]), sy(t->smoothed[c][i]));
                 svg.polyline(pts, {channel_colour(c), 1.6, {}});
             }
+            const Stroke tick{"#666", 0.8, {}};
+            const auto xt = nice_ticks(t->x[a], t->x[b], 4);
+            for (const double v : xt) {
+                svg.line(sx(v), y0 + cell_h, sx(v), y0 + cell_h + 3.0, tick);
+                svg.text(sx(v), y0 + cell_h + 12.0, tick_label(v, xt.size() > 1 ? xt[1] - xt[0] : 1.0),
+                         {9.0, Anchor::middle, false, "#444"});
+            }
+            const auto yt = nice_ticks(lo, hi * 1.08, 3);
+            for (const double v : yt) {
+                svg.line(x0 - 3.0, sy(v), x0, sy(v), tick);
+                svg.text(x0 - 5.0, sy(v) + 3.0, tick_label(v, yt.size() > 1 ? yt[1] - yt[0] : 1.0),
+                         {9.0, Anchor::end, false, "#444"});
+            }
+            if (axis_labels.empty()) axis_labels = t->x_label + " (x), " + t->y_label + " (y)";
             // A…Z, then AA, AB, … as a spreadsheet labels columns.
             std::string tag;
             for (int k = letter + 1; k > 0; k = (k - 1) / 26) tag.insert(tag.begin(), static_cast<char>('A' + (k - 1) % 26));
@@ -159,8 +180,8 @@ Result<std::string> peak_grid_figure(const DatasetReader& dataset, const TrialSe
         }
     }
     svg.text(left + cols * (cell_w + gap) / 2.0, height - 10.0,
-             "time normalised to each trial's peaks (no absolute timing, as the paper requires); "
-             "amplitude scaled per plot",
+             (axis_labels.empty() ? std::string() : axis_labels + "; ") +
+                 "each plot spans its trial's peaks, amplitude scaled per plot",
              {11.0, Anchor::middle, false, "#444"});
     return svg.str();
 }

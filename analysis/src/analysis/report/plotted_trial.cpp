@@ -6,24 +6,26 @@ namespace rollsense::report {
 
 Result<PlottedTrial> load_plotted_trial(const DatasetReader& dataset, const TrialRecord& record,
                                         const features::FeatureSettings& settings) {
+    auto columns = features::identification_channels(dataset.info(), dataset.dir().string());
+    if (!columns) return columns.error();
     auto data = dataset.load(record);
     if (!data) return data.error();
-    if (data->channels.size() < features::kChannels)
-        return Error{ErrorCode::parse_error, "trial '" + record.info.id + "' has " +
-                                                 std::to_string(data->channels.size()) +
-                                                 " sensor channels; the report needs 3 (ch1..ch3)"};
+    // The samples the features were computed on (features::identification_input).
+    const features::IdentificationInput in = features::identification_input(*data, *columns);
     features::FeatureExtractor extractor(settings);
-    std::vector<std::vector<double>> channels(data->channels.begin(),
-                                              data->channels.begin() + static_cast<std::ptrdiff_t>(features::kChannels));
-    auto f = extractor.extract(channels, data->time);
+    auto f = extractor.extract(std::span<const std::span<const double>>(in.channels), in.time);
     if (!f) return Error{f.error().code, "trial '" + record.info.id + "': " + f.error().message};
     PlottedTrial t;
     t.info = record.info;
     t.features = std::move(f).value();
     t.smoothed = extractor.smoothed();
-    t.x.resize(data->samples());
+    t.x.resize(in.time.size());
     for (std::size_t i = 0; i < t.x.size(); ++i)
-        t.x[i] = settings.time_base == features::TimeBase::samples ? static_cast<double>(i) : data->time[i];
+        t.x[i] = settings.time_base == features::TimeBase::samples ? static_cast<double>(i) : in.time[i];
+    t.x_label = settings.time_base == features::TimeBase::samples ? "time (samples)" : "time (s)";
+    const auto& units = dataset.info().channel_units;
+    const std::string unit = (*columns)[0] < units.size() ? units[(*columns)[0]] : "1";
+    t.y_label = unit == "1" ? "smoothed reading (unitless, about 1/16 per kPa)" : "smoothed reading (" + unit + ")";
     return t;
 }
 

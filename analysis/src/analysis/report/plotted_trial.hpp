@@ -18,6 +18,8 @@ struct PlottedTrial {
     std::vector<double> x;  // per sample: index (TimeBase::samples) or recorded time
     std::array<std::vector<double>, features::kChannels> smoothed;
     features::TrialFeatures features;
+    std::string x_label;  // the x axis with its unit: "time (samples)" or "time (s)"
+    std::string y_label;  // the reading with its unit (dataset-info.csv channel_units)
 };
 
 Result<PlottedTrial> load_plotted_trial(const DatasetReader& dataset, const TrialRecord& record,

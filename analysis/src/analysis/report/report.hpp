@@ -24,6 +24,11 @@ struct ReportInputs {
                                                   // classifier, or several compared on the same folds
     features::FeatureSettings settings;           // the settings `rows` were extracted with
     std::string command_line;                     // what made this report (shown under provenance)
+    // Made by the run that recorded the dataset (rs.analyse at its end): its
+    // run-info.csv is written only when the run ends, so the run's own
+    // provenance so far (command line, profile, script, seed, version) is
+    // given here and shown in its place. Empty: read run-info.csv.
+    std::vector<std::pair<std::string, std::string>> recording_run;
     std::vector<learn::ObjectShape> catalogue = learn::paper_objects();
 };
 

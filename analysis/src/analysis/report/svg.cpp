@@ -31,6 +31,32 @@ std::string fixed(double value, int decimals) {
     return s;
 }
 
+std::vector<double> nice_ticks(double lo, double hi, int count) {
+    std::vector<double> out;
+    if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi) || count < 1) return out;
+    const double raw = (hi - lo) / count;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    double step = mag;
+    for (const double m : {1.0, 2.0, 5.0, 10.0})
+        if (m * mag >= raw) {
+            step = m * mag;
+            break;
+        }
+    for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1.0) out.push_back(k * step);
+    return out;
+}
+
+std::string tick_label(double value, double step) {
+    const int decimals = step >= 1.0 ? 0 : static_cast<int>(std::ceil(-std::log10(step) - 1e-9));
+    return fixed(value, decimals);
+}
+
+double text_width(std::string_view text, double size) {
+    std::size_t glyphs = 0;
+    for (const unsigned char c : text) glyphs += (c & 0xC0) != 0x80;  // UTF-8: count characters, not bytes
+    return 0.6 * size * static_cast<double>(glyphs);
+}
+
 std::string percent(double fraction, int decimals) {
     if (!std::isfinite(fraction)) return "\u2013";
     return fixed(100.0 * fraction, decimals) + "\u00a0%";

@@ -19,6 +19,15 @@ std::string fixed(double value, int decimals);
 // "91.2 %" from a fraction 0.912.
 std::string percent(double fraction, int decimals = 1);
 
+// Round values to label an axis over [lo, hi]: multiples of 1, 2 or 5 × 10^k,
+// about `count` of them, all inside the interval.
+std::vector<double> nice_ticks(double lo, double hi, int count = 5);
+// The text of a tick value: as many decimals as the tick spacing needs.
+std::string tick_label(double value, double step);
+// About how wide `text` renders at font size `size` (0.6 em per character,
+// generous for the report's sans-serif): what layouts reserve for labels.
+double text_width(std::string_view text, double size);
+
 // Maps a data interval onto a pixel interval (either may be reversed).
 struct LinearScale {
     double d0 = 0.0, d1 = 1.0;  // data

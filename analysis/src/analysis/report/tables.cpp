@@ -18,6 +18,7 @@ std::string th(const std::string& text) {
 }
 
 std::string count(const learn::Count& c) {
+    if (c.n == 0 && c.k == 0) return "n/a";  // nothing to count: no such trials (or no figure in the paper)
     if (c.n == 0) return std::to_string(c.k);
     return std::to_string(c.k) + " / " + std::to_string(c.n) + " (" + percent(c.fraction()) + ")";
 }

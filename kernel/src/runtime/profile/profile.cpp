@@ -301,6 +301,7 @@ Status read_profile_table(lua_State* L, const Settings& settings, Profile& p) {
         p.plugin_path.push_back(pp.is_absolute() ? pp : p.path.parent_path() / pp);
     }
     TRY(take(r.string_list("record_joints"), p.record_joints));
+    TRY(take(r.string_list("identification_channels"), p.identification_channels));
 
     TRY(r.each("devices", [&](const std::string& name, const std::string& where) -> Status {
         if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table { plugin = ..., params = {...} }"};

@@ -12,6 +12,7 @@
 //     devices = { name = { plugin = "...", params = { ... } }, ... },
 //     joints  = { name = { min = .., max = .., max_velocity = .., max_current = .., safe = "hold"|"torque_off" } },
 //     record_joints = { "sensing_finger" },
+//     identification_channels = { "a_ch1", "a_ch2", "a_ch3" },  -- with several sensors
 //     controllers = { palm_parallel = { ... } },
 //     safety = { estop = { chip = .., line = .., active_low = .. }, trigger = { chip = .., line = .., pulse_ms = .. } },
 //   }
@@ -69,6 +70,7 @@ struct Profile {
     std::vector<DeviceSpec> devices;
     std::vector<JointLimit> joints;
     std::vector<std::string> record_joints;
+    std::vector<std::string> identification_channels;  // into dataset-info.csv: the 3 the analysis reads
     std::vector<ControllerSpec> controllers;
     std::optional<GpioLine> estop;
     std::optional<GpioLine> trigger;

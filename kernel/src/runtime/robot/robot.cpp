@@ -88,7 +88,10 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
     // Channel columns: a lone sensor's channel names; several sensors are prefixed.
     for (auto& s : r->sensors_) {
         for (const auto& ch : s.handle->plugin().channels())
+        {
             r->channel_columns_.push_back(r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name);
+            r->channel_units_.push_back(ch.unit);
+        }
         s.frame.values.assign(s.channels, 0.0);
     }
 

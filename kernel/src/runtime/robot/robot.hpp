@@ -60,6 +60,7 @@ public:
 
     // The dataset columns this robot records.
     const std::vector<std::string>& channel_columns() const { return channel_columns_; }
+    const std::vector<std::string>& channel_units() const { return channel_units_; }
     const std::vector<std::string>& recorded_joints() const { return recorded_joints_; }
 
     // Sensors' trial hooks.
@@ -125,6 +126,7 @@ private:
     std::vector<std::string> joint_names_;       // for SampleInput
     std::vector<JointState> joint_states_;       // for SampleInput: a view filled from joints_
     std::vector<std::string> channel_columns_;
+    std::vector<std::string> channel_units_;     // per channel column
     std::vector<std::string> recorded_joints_;
     std::vector<std::size_t> recorded_joint_index_;
     bool locked_ = false;

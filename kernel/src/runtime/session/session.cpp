@@ -79,6 +79,8 @@ Status Session::open_dataset() {
     DatasetInfo info;
     info.sample_rate_hz = profile_.sample_rate_hz;
     info.channels = robot_->channel_columns();
+    info.channel_units = robot_->channel_units();
+    info.identification_channels = profile_.identification_channels;
     info.joints = robot_->recorded_joints();
     info.profile = profile_.name;
     info.seed = options_.seed;

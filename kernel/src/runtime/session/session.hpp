@@ -80,6 +80,7 @@ public:
     Recorder& recorder() { return *recorder_; }
     Robot& robot() { return *robot_; }
     const Profile& profile() const { return profile_; }
+    const std::atomic<bool>& interrupt_flag() { return safety_.interrupt_flag(); }  // Ctrl-C, for long C++ work
     const SessionOptions& options() const { return options_; }
     Sandbox& sandbox() { return *sandbox_; }
     PluginRegistry& registry() { return *registry_; }

@@ -1,0 +1,51 @@
+// Explicit identification channels end to end (issue 24 item 4): a hand with
+// a second sensor records six channel columns; the analysis refuses to guess
+// which three identify the object and lists them, until the profile names
+// them (identification_channels, recorded into dataset-info.csv).
+#include <catch2/catch.hpp>
+
+#include "cli_helpers.hpp"
+
+namespace {
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+// The mock profile with a second bump sensor ("extra") beside "tactile".
+std::string two_sensor_profile(const std::string& more) {
+    return "local p = include('mock')\n"
+           "p.devices.extra = { plugin = 'example_bump', params = { joint = 'sensing_finger', cell_angles = { -30, 0, 30 } } }\n" +
+           more + "return p\n";
+}
+
+CommandRun record(const fs::path& dir, const std::string& profile_text) {
+    write_file(dir / "two.lua", profile_text);
+    return run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua") +
+                         " --profile " + shell_quoted(dir / "two.lua") +
+                         " --set runs=3 --set objects=C1,P1 --set speeds=10 --no-progress -q --out " + shell_quoted(dir / "run"));
+}
+
+}  // namespace
+
+TEST_CASE("two sensors and no identification_channels: the analysis lists the channels instead of guessing") {
+    TempDir dir("rollsense-cli-channels-unnamed");
+    const auto r = record(dir.path(), two_sensor_profile(""));
+    INFO(r.output);
+    CHECK(r.status != 0);  // rs.analyse at the script's end stops
+    CHECK_THAT(r.output, Catch::Contains("6 sensor channels (extra_ch1, extra_ch2, extra_ch3, tactile_ch1, tactile_ch2, "
+                                         "tactile_ch3)") &&
+                             Catch::Contains("identification_channels"));
+    CHECK_THAT(read_file(dir / "run" / "dataset-info.csv"), Catch::Contains("\nchannel_units,1 1 1 1 1 1\n"));
+    const auto f = run_rollsense("features " + shell_quoted(dir / "run") + " -o " + shell_quoted(dir / "f.csv"));
+    CHECK(f.status != 0);
+    CHECK_THAT(f.output, Catch::Contains("does not say which three"));
+}
+
+TEST_CASE("the profile's identification_channels reach dataset-info.csv and the analysis reads those three") {
+    TempDir dir("rollsense-cli-channels-named");
+    const auto r = record(dir.path(), two_sensor_profile("p.identification_channels = { 'tactile_ch1', 'tactile_ch2', 'tactile_ch3' }\n"));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(read_file(dir / "run" / "dataset-info.csv"),
+               Catch::Contains("\nidentification_channels,tactile_ch1 tactile_ch2 tactile_ch3\n"));
+    CHECK(fs::exists(dir / "run" / "features.csv"));
+}

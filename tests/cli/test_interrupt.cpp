@@ -1,0 +1,81 @@
+// Ctrl-C during the analysis (issue 24 item 5): SIGINT sent to a child
+// `rollsense` once its analysis has begun stops it with the interrupted exit
+// code (130) and message, instead of being ignored (rs.analyse: until the
+// watchdog's last resort) or killing the program (evaluate: no handler).
+#include <catch2/catch.hpp>
+
+#include <csignal>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cli_helpers.hpp"
+
+namespace {
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+// Starts `rollsense args...` with stdout and stderr on a pipe, sends SIGINT
+// once its output contains `marker`, and returns everything it printed and
+// its exit status (-1: killed by a signal).
+CommandRun interrupt_when(const std::vector<std::string>& args, const std::string& marker) {
+    int fds[2];
+    REQUIRE(::pipe(fds) == 0);
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        ::dup2(fds[1], 1);
+        ::dup2(fds[1], 2);
+        ::close(fds[0]);
+        ::close(fds[1]);
+        exec_rollsense(args);
+    }
+    ::close(fds[1]);
+    CommandRun r;
+    bool sent = false;
+    char buf[4096];
+    for (;;) {
+        const ssize_t n = ::read(fds[0], buf, sizeof buf);
+        if (n <= 0) break;
+        r.output.append(buf, static_cast<std::size_t>(n));
+        if (!sent && r.output.find(marker) != std::string::npos) {
+            ::kill(pid, SIGINT);
+            sent = true;
+        }
+    }
+    ::close(fds[0]);
+    int st = 0;
+    ::waitpid(pid, &st, 0);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    INFO(r.output);
+    REQUIRE(sent);  // the marker was seen: the signal came during the analysis
+    return r;
+}
+
+const fs::path kPaper = fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua";
+
+}  // namespace
+
+TEST_CASE("Ctrl-C during rs.analyse's optimisation ends the run as interrupted") {
+    TempDir dir("rollsense-cli-interrupt-analyse");
+    const auto r = interrupt_when({"run", kPaper.string(), "--set", "runs=4", "--set", "optimize=true", "--seed", "3",
+                                   "--no-progress", "--out", (dir / "run").string()},
+                                  "optimiser 1:");
+    INFO(r.output);
+    CHECK(r.status == 130);
+    CHECK(r.output.find("interrupted (Ctrl-C)") != std::string::npos);
+    CHECK(r.output.find("did not stop within") == std::string::npos);  // not the watchdog's last resort
+    CHECK(fs::exists(dir / "run" / "run-info.csv"));  // the run ended the ordinary way
+}
+
+TEST_CASE("Ctrl-C during rollsense evaluate ends it as interrupted") {
+    TempDir dir("rollsense-cli-interrupt-evaluate");
+    const auto rec = run_rollsense("run " + shell_quoted(kPaper) + " --set runs=4 --set analyse=false --no-progress -q --out " +
+                                   shell_quoted(dir / "run"));
+    INFO(rec.output);
+    REQUIRE(rec.status == 0);
+    const auto r = interrupt_when({"evaluate", (dir / "run").string(), "--optimize", "--evaluations", "200"}, "optimiser 1:");
+    INFO(r.output);
+    CHECK(r.status == 130);
+    CHECK(r.output.find("interrupted (Ctrl-C)") != std::string::npos);
+}
