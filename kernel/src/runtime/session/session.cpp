@@ -109,7 +109,7 @@ RunSummary Session::run() {
         write_run_info(s, wall_start);
     }
     for (const auto& key : options_.settings.unused())
-        if (!options_.settings.namespace_declared(key))  // declared ones were checked before the first trial
+        if (prepared_ && !options_.settings.namespace_declared(key))  // declared ones were checked at once
             log_warning("kernel", "--set " + key + " was not used by the profile or the script (a typo?)");
 
     summary.status = s;
