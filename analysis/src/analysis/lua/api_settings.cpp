@@ -18,7 +18,6 @@ using script_settings::Declaration;
 
 [[noreturn]] void refuse(lua_State* L, const std::string& message) {
     raise_status(L, Status{ErrorCode::invalid_argument, message});
-    throw;  // not reached
 }
 
 // The catalogue the run's objects come from: a device's 'catalogue'
