@@ -236,7 +236,7 @@ TEST_CASE("a run that fails before any trial removes the folder it created, neve
     CHECK(fs::exists(dir / "late" / "trials" / "C1-v10-r001.csv"));
 }
 
-TEST_CASE("--resume records again a trial whose file is truncated or that the manifest does not list") {
+TEST_CASE("a resumed run records again a trial whose file is truncated or that the manifest does not list") {
     TempDir dir("rollsense-resume");
     const auto out = dir / "out";
     REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(out)).status == 0);

@@ -62,7 +62,7 @@ int print_script_help(const std::vector<std::string>& positionals) {
     if (positionals.size() != 1) return kExitOk;
     const auto script = resolve_script(positionals[0]);
     auto declared = script_settings::declared_by(script, share_dir());
-    if (!declared) throw StatusError(Status{declared.error()}.with_context(script.string()));
+    if (!declared) throw StatusError(Status{declared.error()});
     if (declared->empty())
         std::printf("\n%s declares no settings (rs.settings); its --set keys are not checked before it runs\n",
                     positionals[0].c_str());
@@ -137,7 +137,7 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
     if (!summary.status.ok()) {
         log_error("rollsense", summary.status.error().describe());
-        if (summary.cancelled && summary.trials_saved > 0)
+        if (summary.cancelled && summary.trials_saved + summary.trials_skipped > 0)
             std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     }
     return exit_code_for(summary.status.code());
