@@ -74,13 +74,13 @@ int print_script_help(const std::vector<std::string>& positionals) {
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--set", "--plugin-path", "--time-limit",
-                         "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
-                         "--verbose", "-q", "--quiet"});
     const std::vector<std::string> valued = {"--profile", "--out", "--seed", "--set", "--plugin-path",
                                              "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every"};
     auto pos = args.positionals(valued);
     if (args.wants_help()) return print_script_help(pos);
+    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--set", "--plugin-path", "--time-limit",
+                         "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
+                         "--verbose", "-q", "--quiet"});
     if (pos.size() != 1) throw UsageError("expects one SCRIPT (see --help)");
     setup_logging(args);
 
