@@ -14,11 +14,21 @@
 -- evaluation-all-trials.txt/.json and report-all-trials.html (MiniRocket on every
 -- trial the series rule accepts), model.rsm (bagged trees) and model-minirocket.rsm.
 --
--- Settings (--set key=value): dataset (record), runs (50), objects, speeds (as
--- paper_experiment.lua), repeats (10), prefix_repeats (1), series_amplitude
--- (the series rule's default).
+-- Settings (--set key=value; `rollsense run scripts/compare_methods.lua --help`
+-- lists them): declared below, checked before the first trial.
 local rs = require "rollsense"
 local etroll = require "etroll"
+
+rs.settings{
+  dataset = { default = "", kind = "string", help = "compare on this dataset recorded earlier (empty: record one into --out)" },
+  runs = { default = 50, kind = "integer", min = 1, help = "repetitions of each object at each speed (when recording)" },
+  objects = { default = "C1,C2,C3,S1,S2,P1,P2,H1,H2", kind = "objects", help = "the objects to roll (when recording)" },
+  speeds = { default = "10,15,20", kind = "numbers", min = 1,
+             help = "roll speeds in Dynamixel profile-velocity units (when recording)" },
+  repeats = { default = 10, kind = "integer", min = 1, help = "repetitions of the k-fold cross-validation" },
+  prefix_repeats = { default = 1, kind = "integer", min = 1, help = "repetitions of the accuracy-before-the-end curves" },
+  series_amplitude = { default = "", kind = "string", help = "the series rule's amplitude mode (empty: its default)" },
+}
 
 local function list(text)
   local out = {}
@@ -26,12 +36,12 @@ local function list(text)
   return out
 end
 
-local dataset = rs.setting("dataset", "")
+local dataset = rs.setting("dataset")
 if dataset == "" then
   -- The stock experiment, recorded exactly as scripts/paper_experiment.lua does.
-  local runs = math.tointeger(rs.setting("runs", 50)) or error("--set runs=N expects a whole number")
-  local objects = list(rs.setting("objects", "C1,C2,C3,S1,S2,P1,P2,H1,H2"))
-  local speeds = list(rs.setting("speeds", "10,15,20"))
+  local runs = rs.setting("runs")
+  local objects = list(rs.setting("objects"))
+  local speeds = list(rs.setting("speeds"))
   rs.on_cleanup(etroll.park)
   local total, done = #objects * #speeds * runs, 0
   for _, object in ipairs(objects) do
@@ -51,8 +61,8 @@ end
 
 local common = {
   folds = 5,
-  repeats = math.tointeger(rs.setting("repeats", 10)),
-  series_amplitude = rs.setting("series_amplitude", "") ~= "" and rs.setting("series_amplitude") or nil,
+  repeats = rs.setting("repeats"),
+  series_amplitude = rs.setting("series_amplitude") ~= "" and rs.setting("series_amplitude") or nil,
 }
 local function with(extra)
   local t = {}
@@ -66,7 +76,7 @@ end
 local both = rs.analyse(with{
   classifiers = { "bagged_trees", "minirocket" },
   prefixes = true,
-  prefix_repeats = math.tointeger(rs.setting("prefix_repeats", 1)),
+  prefix_repeats = rs.setting("prefix_repeats"),
 })
 for _, c in ipairs(both.classifiers) do
   rs.log(string.format("%-14s %5.1f %% +- %.1f  (%d trials, the same %d-fold partitions)", c.name,

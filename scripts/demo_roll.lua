@@ -6,7 +6,8 @@ local etroll = require "etroll"
 
 rs.on_cleanup(etroll.park)
 
-local object = rs.setting("object", "C2")
+rs.settings{ object = { default = "C2", kind = "object", help = "the object rolled three times" } }
+local object = rs.setting("object")
 for repetition = 1, 3 do
   local samples, id = etroll.run_trial{ object = object, speed = 10, repetition = repetition }
   local data = rs.recorded()

@@ -8,10 +8,19 @@
 -- At the end the dataset is analysed (rs.analyse): features.csv, the evaluation
 -- (evaluation.txt, printed), a trained model (model.rsm) in the output folder.
 --
--- Settings (--set key=value): runs (50), objects ("C1,C2,...,H2"), speeds ("10,15,20"),
--- analyse (true), optimize (false: the paper's Bayesian optimisation with nested CV).
+-- Settings (--set key=value; `rollsense run scripts/paper_experiment.lua --help`
+-- lists them with the etroll module's): declared below, checked before the first trial.
 local rs = require "rollsense"
 local etroll = require "etroll"
+
+rs.settings{
+  runs = { default = 50, kind = "integer", min = 1, help = "repetitions of each object at each speed" },
+  objects = { default = "C1,C2,C3,S1,S2,P1,P2,H1,H2", kind = "objects", help = "the objects to roll" },
+  speeds = { default = "10,15,20", kind = "numbers", min = 1,
+             help = "roll speeds in Dynamixel profile-velocity units (0.229 rev/min)" },
+  analyse = { default = true, help = "analyse the dataset at the end (features, evaluation, model)" },
+  optimize = { default = false, help = "the paper's Bayesian optimisation with nested CV (slow)" },
+}
 
 local function list(text)
   local out = {}
@@ -19,9 +28,9 @@ local function list(text)
   return out
 end
 
-local runs = math.tointeger(rs.setting("runs", 50)) or error("--set runs=N expects a whole number")
-local objects = list(rs.setting("objects", "C1,C2,C3,S1,S2,P1,P2,H1,H2"))
-local speeds = list(rs.setting("speeds", "10,15,20"))
+local runs = rs.setting("runs")
+local objects = list(rs.setting("objects"))
+local speeds = list(rs.setting("speeds"))
 
 rs.on_cleanup(etroll.park)
 
@@ -41,9 +50,9 @@ for _, object in ipairs(objects) do
 end
 rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))
 
-if rs.setting("analyse", true) then
+if rs.setting("analyse") then
   etroll.rest()  -- parked, Bus Watchdog off: no control period runs while the analysis works
-  local result = rs.analyse{ folds = 5, optimize = rs.setting("optimize", false) }
+  local result = rs.analyse{ folds = 5, optimize = rs.setting("optimize") }
   rs.log(string.format("%d trials, %d clean; 5-fold CV accuracy %.1f %% (95 %% interval %.1f-%.1f %%)",
     result.trials, result.clean, 100 * result.accuracy, 100 * result.interval_low, 100 * result.interval_high))
 end

@@ -388,11 +388,32 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                          dir.string() + " was recorded with another setup (profile '" + old.profile + "', seed " +
                              std::to_string(old.seed) + "); resume it with the same --profile and --seed, or "
                                                         "choose another folder with --out"};
-        w->trials_ = on_disk->trials();
+        if (auto recorded = read_run_config(dir); !recorded) {
+            return Error{recorded.error().code, "cannot resume: " + recorded.error().message};
+        } else if (!recorded->empty() && !info.run_config.empty()) {
+            auto diffs = run_config_differences(*recorded, info.run_config);
+            std::string text;
+            for (const auto& d : diffs) text += "\n  " + d;
+            if (!diffs.empty())
+                return Error{ErrorCode::invalid_argument,
+                             "cannot resume " + dir.string() + ": this run differs from the one that recorded it (" +
+                                 (dir / kRunConfigFile).string() + "):" + text +
+                                 "\nresume with the same script, --profile, --set options and --seed, or choose "
+                                 "another folder with --out"};
+        }
+        // A trial whose file is missing or not what the manifest says (cut short
+        // by a crash or a full disk) is recorded again, not kept.
+        for (const auto& t : on_disk->trials()) {
+            if (auto loaded = on_disk->load(t); loaded)
+                w->trials_.push_back(t);
+            else
+                log_warning("dataset", loaded.error().message + ": trial '" + t.info.id + "' is recorded again");
+        }
     }
     w->durable_ = w->trials_.size();
     std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)},
                                    {dir / "manifest.csv", w->manifest_text()}};
+    if (!info.run_config.empty()) files.push_back({dir / kRunConfigFile, format_run_config(info.run_config)});
     if (auto s = write_files_atomic(files); !s.ok()) return s.error();
     return w;
 }

@@ -5,8 +5,12 @@
 local rs = require "rollsense"
 local etroll = require "etroll"
 
-local object = rs.setting("object", "C2")
-local speed = rs.setting("speed", 15)     -- Dynamixel profile-velocity units
+rs.settings{
+  object = { default = "C2", kind = "object", help = "the object rolled (the simulation's; on the hand, what hangs there)" },
+  speed = { default = 15, min = 1, help = "roll speed, Dynamixel profile-velocity units (0.229 rev/min)" },
+}
+local object = rs.setting("object")
+local speed = rs.setting("speed")
 rs.on_cleanup(etroll.park)                -- whatever happens, open the hand
 
 rs.trial{ object = object, speed = speed, repetition = 1, id = object .. "-back-and-forth" }

@@ -4,17 +4,31 @@
 --   rollsense run scripts/examples/identify.lua --set model=runs/paper/model.rsm --set object=P2
 -- On the real hand the object is whatever you hang on the winch; `object` only
 -- tells the simulation what to simulate (and is the truth it reports beside).
+--
+-- The rolls are trials of their own, never ones the model was trained on: their
+-- ids (identify-<object>-v<speed>-a<attempt>) lie outside the experiment's
+-- (<object>-v<speed>-r<repetition>), and a simulated trial's randomness derives
+-- from its id and the run's seed. With --set save=true and --out DIR they are
+-- saved as a dataset (to check that, or to analyse them later).
 local rs = require "rollsense"
 local etroll = require "etroll"
 
+rs.settings{
+  model = { kind = "string", help = "the saved model (model.rsm of a run of paper_experiment.lua)" },
+  object = { default = "P2", kind = "object", help = "the object the simulation rolls (the truth shown beside the answer)" },
+  speed = { default = 20, min = 1, help = "roll speed, Dynamixel profile-velocity units (0.229 rev/min)" },
+  attempts = { default = 3, kind = "integer", min = 1, help = "rolls until the peaks are clean" },
+  save = { default = false, help = "save the rolls into the --out dataset" },
+}
 local clf = rs.classifier{ model = rs.setting("model") }
-local object = rs.setting("object", "P2")
-local speed = rs.setting("speed", 20)
-local attempts = rs.setting("attempts", 3)
+local object = rs.setting("object")
+local speed = rs.setting("speed")
+local attempts = rs.setting("attempts")
 rs.on_cleanup(etroll.park)
 
 for attempt = 1, attempts do
-  rs.trial{ object = object, speed = speed, repetition = attempt, id = "identify-" .. attempt }
+  local id = string.format("identify-%s-v%s-a%d", object, tostring(speed), attempt)
+  rs.trial{ object = object, speed = speed, repetition = attempt, id = id }
   etroll.open()
   etroll.clamp()
   local t0 = rs.now()
@@ -23,16 +37,17 @@ for attempt = 1, attempts do
   local answer, why = clf:identify()
   etroll.return_to_start()
   etroll.release()
+  if rs.setting("save") then rs.save_trial() end
   rs.end_trial()
   if answer then
     local ranked = {}
     for name, score in pairs(answer.scores) do ranked[#ranked + 1] = { name, score } end
     table.sort(ranked, function(a, b) return a[2] > b[2] end)
-    rs.log(string.format("roll %d (%.1f s): it is %s  [%s %.2f, %s %.2f, %s %.2f]  (truth: %s)",
-      attempt, roll_time, answer.object, ranked[1][1], ranked[1][2], ranked[2][1], ranked[2][2],
+    rs.log(string.format("roll %s (%.1f s): it is %s  [%s %.2f, %s %.2f, %s %.2f]  (truth: %s)",
+      id, roll_time, answer.object, ranked[1][1], ranked[1][2], ranked[2][1], ranked[2][2],
       ranked[3][1], ranked[3][2], object))
     break
   end
-  rs.log(string.format("roll %d: no clean peaks (%s); rolling again", attempt, why))
+  rs.log(string.format("roll %s: no clean peaks (%s); rolling again", id, why))
   etroll.winch_reset()
 end

@@ -4,9 +4,15 @@
 local rs = require "rollsense"
 local etroll = require "etroll"
 
-local object = rs.setting("object", "C3")
-local from, to, step = rs.setting("from", 5), rs.setting("to", 25), rs.setting("step", 5)
-if step <= 0 or from > to then error("need from <= to and step > 0") end
+rs.settings{
+  object = { default = "C3", kind = "object", help = "the object rolled" },
+  from = { default = 5, min = 1, help = "first speed, Dynamixel profile-velocity units (0.229 rev/min)" },
+  to = { default = 25, min = 1, help = "last speed" },
+  step = { default = 5, min = 0.1, help = "speed step" },
+}
+local object = rs.setting("object")
+local from, to, step = rs.setting("from"), rs.setting("to"), rs.setting("step")
+if from > to then error(string.format("--set from=%s is above --set to=%s: need from <= to", from, to)) end
 rs.on_cleanup(etroll.park)
 
 for speed = from, to, step do

@@ -7,7 +7,7 @@
 --   local etroll = require "etroll"
 --   etroll.run_trial{ object = "C1", speed = 10, repetition = 1 }
 --
--- Every number below is a documented setting; override any of them with
+-- Every number below is a declared setting; override any of them with
 -- etroll.configure{ ... } or from the command line (--set etroll.<key>=...).
 local rs = require "rollsense"
 
@@ -19,22 +19,30 @@ M.DXL_VELOCITY_UNIT_DPS = 0.229 * 360 / 60
 -- The paper's three speeds, in profile-velocity units (2.29, 3.435, 4.58 rev/min).
 M.SPEEDS = { 10, 15, 20 }
 
-M.config = {
-  sensing_start = -44,     -- deg, sensing finger at the start of a roll (Table I step 1)
-  sensing_end = 44,        -- deg, end of the roll (step 3)
-  pushing_open = -66,      -- deg, pushing finger open, room for the object (step 1)
-  palm_width = 65,         -- mm, palm width while initialising (step 1)
-  clamp_current = 120,     -- mA, constant clamping current of the pushing finger (steps 2-4)
-  clamp_settle_ms = 300,   -- ms, let the clamp settle before rolling
-  move_velocity = 40,      -- deg/s, fingers between rolls
-  roll_ramp_ms = 100,      -- ms to reach the roll speed (sets the servo's profile acceleration)
-  record_margin_ms = 45,   -- ms recorded before and after the sweep (start/stop latency)
-  record_margin_jitter_ms = 15, -- ms, simulated latency spread (virtual clock only)
-  winch_payout = 10,       -- mm of string paid out before rolling (step 2)
-  winch_lift = 60,         -- mm the reset lifts the object
-  winch_velocity = 60,     -- mm/s
-  palm_controller = "palm_parallel", -- used when the profile configures it
+-- The procedure's settings, declared so that a --set etroll.<key>=... is
+-- checked before the first trial (rollsense run SCRIPT --help lists them).
+-- Ranges are sanity checks; the profile's joint limits protect the hand.
+local SETTINGS = {
+  sensing_start = { default = -44, min = -180, max = 180, help = "deg, sensing finger at the start of a roll (Table I step 1)" },
+  sensing_end = { default = 44, min = -180, max = 180, help = "deg, end of the roll (step 3)" },
+  pushing_open = { default = -66, min = -180, max = 180, help = "deg, pushing finger open, room for the object (step 1)" },
+  palm_width = { default = 65, min = 0, help = "mm, palm width while initialising (step 1)" },
+  clamp_current = { default = 120, min = 0, help = "mA, constant clamping current of the pushing finger (steps 2-4)" },
+  clamp_settle_ms = { default = 300, min = 0, help = "ms, let the clamp settle before rolling" },
+  move_velocity = { default = 40, min = 0.1, help = "deg/s, fingers between rolls" },
+  roll_ramp_ms = { default = 100, min = 1, help = "ms to reach the roll speed (sets the servo's profile acceleration)" },
+  record_margin_ms = { default = 45, min = 0, help = "ms recorded before and after the sweep (start/stop latency)" },
+  record_margin_jitter_ms = { default = 15, min = 0, help = "ms, simulated latency spread (virtual clock only)" },
+  winch_payout = { default = 10, min = 0, help = "mm of string paid out before rolling (step 2)" },
+  winch_lift = { default = 60, min = 0, help = "mm the reset lifts the object" },
+  winch_velocity = { default = 60, min = 0.1, help = "mm/s" },
+  palm_controller = { default = "palm_parallel", help = "palm controller, used when the profile configures it" },
 }
+rs.settings("etroll", SETTINGS)
+
+-- The settings in force: the declared defaults, or --set etroll.<key>=...
+M.config = {}
+for k in pairs(SETTINGS) do M.config[k] = rs.setting("etroll." .. k) end
 
 function M.configure(overrides)
   for k, v in pairs(overrides) do
@@ -42,9 +50,6 @@ function M.configure(overrides)
     M.config[k] = v
   end
 end
-
--- Settings from the command line: --set etroll.clamp_current=150
-for k, v in pairs(M.config) do M.config[k] = rs.setting("etroll." .. k, v) end
 
 local function has_controller(name)
   for _, c in ipairs(rs.profile().controllers) do if c == name then return true end end

@@ -1,5 +1,6 @@
 // rollsense run SCRIPT: run a roll procedure on a robot profile.
 #include <cstdio>
+#include <system_error>
 #include <ctime>
 #include <string>
 
@@ -7,6 +8,8 @@
 #include "cli/log_setup.hpp"
 #include "cli/paths.hpp"
 #include "cli/recorded_seed.hpp"
+#include "cli/run_dataset.hpp"
+#include "analysis/lua/script_settings.hpp"
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/log.hpp"
 #include "runtime/session/session.hpp"
@@ -15,6 +18,7 @@ namespace rollsense::cli {
 namespace {
 
 const char* kHelp = R"(usage: rollsense run SCRIPT [options]
+       rollsense run SCRIPT --help      the settings SCRIPT declares (runs no trial)
 
 Run a Lua roll procedure on a robot profile. With the default `sim` profile
 the hand, the objects and the barometers are simulated on a virtual clock (the
@@ -26,12 +30,18 @@ options:
   --out DIR             dataset folder for recorded trials and outputs;
                         default: runs/<script>-<date>-<time>
   --resume              continue the dataset in --out: trials already on disk
-                        are kept and skipped; the result equals an uninterrupted run
+                        are kept and skipped; the result equals an uninterrupted run.
+                        Refused when script, profile, --set or --seed differ
+                        from the run that recorded it (run-config.csv)
   --seed N              run seed (per-trial seeds derive from it); default: 1,
                         or, replaying a dataset, the seed it was recorded with
-  --set KEY=VALUE       a setting read by the profile or script (repeatable);
-                        a dotted key overrides a profile entry, e.g.
-                        --set devices.tactile.params.kernel_fwhm=5
+  --set KEY=VALUE       a setting (repeatable): a key starting with a profile
+                        entry overrides it (plugin parameters:
+                        devices.NAME.params.KEY, e.g. devices.tactile.params.kernel_fwhm=5);
+                        any other key is a script setting: plain for the
+                        script (runs=2), MODULE.KEY for a Lua module
+                        (etroll.clamp_current=150); checked before the first
+                        trial when the script declares its settings
   --plugin-path DIR     search plugins here first (repeatable)
   --time-limit S        cancel the run after S seconds of run time
   --slice-limit-ms MS   cancel a script that runs MS ms without waiting (default 5000)
@@ -48,14 +58,31 @@ std::string default_out(const std::filesystem::path& script) {
     return "runs/" + script.stem().string() + "-" + stamp;
 }
 
+// `rollsense run SCRIPT --help`: the command's options, then the script's settings.
+int print_script_help(const std::vector<std::string>& positionals) {
+    std::printf("%s\n\nexit codes (rollsense --help):\n%s", kHelp, exit_code_table().c_str());
+    if (positionals.size() != 1) return kExitOk;
+    const auto script = resolve_script(positionals[0]);
+    auto declared = script_settings::declared_by(script, share_dir());
+    if (!declared) throw StatusError(Status{declared.error()});
+    if (declared->empty())
+        std::printf("\n%s declares no settings (rs.settings); its --set keys are not checked before it runs\n",
+                    positionals[0].c_str());
+    else
+        std::printf("\nsettings of %s (--set KEY=VALUE; default shown):\n%s", positionals[0].c_str(),
+                    script_settings::describe(*declared).c_str());
+    return kExitOk;
+}
+
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--set", "--plugin-path", "--time-limit",
-                         "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
-                         "--verbose", "-q", "--quiet"});
     const std::vector<std::string> valued = {"--profile", "--out", "--seed", "--set", "--plugin-path",
                                              "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every"};
     auto pos = args.positionals(valued);
+    if (args.wants_help()) return print_script_help(pos);
+    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--set", "--plugin-path", "--time-limit",
+                         "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
+                         "--verbose", "-q", "--quiet"});
     if (pos.size() != 1) throw UsageError("expects one SCRIPT (see --help)");
     setup_logging(args);
 
@@ -68,9 +95,21 @@ int run(const std::vector<std::string>& argv) {
     if (out.empty() && o.resume) throw UsageError("--resume needs --out DIR (the dataset to continue)");
     o.out_dir = out.empty() ? default_out(o.script) : out;
     o.seed = args.unsigned_option("--seed", 1, 0, UINT64_MAX);
-    for (const auto& kv : args.options("--set"))
+    // The options that decide what is recorded: in run-config.csv and in the resume command.
+    std::vector<std::pair<std::string, std::string>> deciding;
+    if (!args.option("--profile").empty()) deciding.emplace_back("--profile", args.option("--profile"));
+    if (!args.option("--seed").empty()) deciding.emplace_back("--seed", args.option("--seed"));
+    SetOptions sets;
+    for (const auto& kv : args.options("--set")) {
         if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());
-    for (const auto& p : args.options("--plugin-path")) o.plugin_path.emplace_back(p);
+        sets.emplace_back(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1));
+        deciding.emplace_back("--set", kv);
+    }
+    for (const auto& p : args.options("--plugin-path")) {
+        o.plugin_path.emplace_back(p);
+        deciding.emplace_back("--plugin-path", p);
+    }
+    o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.seed, sets);
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.sandbox.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));
@@ -87,25 +126,32 @@ int run(const std::vector<std::string>& argv) {
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
 
-    runtime::Session session(o);
-    auto summary = session.run();
+    std::error_code ec;
+    const bool out_existed = std::filesystem::exists(o.out_dir, ec);
+    runtime::RunSummary summary;
+    {
+        runtime::Session session(o);
+        summary = session.run();
+    }  // the dataset's folder lock is released here
     std::fprintf(stderr, "%s: %zu trials saved, %zu already on disk; %.1f s robot time in %.2f s wall\n",
                  summary.status.ok() ? "done" : (summary.cancelled ? "cancelled" : "failed"), summary.trials_saved,
                  summary.trials_skipped, summary.run_time_s, summary.wall_time_s);
     if (summary.control_timing && summary.control_timing->periods > 0)
         std::fprintf(stderr, "control loop: %s\n", summary.control_timing->describe().c_str());
-    if (summary.trials_saved + summary.trials_skipped > 0 || std::filesystem::exists(o.out_dir))
+    // A run that failed before its first trial leaves no empty folder behind.
+    const bool removed = !summary.status.ok() && !out_existed && summary.trials_saved == 0 &&
+                         summary.trials_skipped == 0 && remove_empty_dataset(o.out_dir);
+    if (!removed && (summary.trials_saved + summary.trials_skipped > 0 || std::filesystem::exists(o.out_dir, ec)))
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
     if (!summary.status.ok()) {
         log_error("rollsense", summary.status.error().describe());
-        if (summary.cancelled && summary.trials_saved > 0)
-            std::fprintf(stderr, "continue with: rollsense run %s --out %s --resume%s\n", pos[0].c_str(),
-                         o.out_dir.c_str(), args.option("--seed").empty() ? "" : (" --seed " + args.option("--seed")).c_str());
+        if (summary.cancelled && summary.trials_saved + summary.trials_skipped > 0)
+            std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     }
     return exit_code_for(summary.status.code());
 }
 
-const Registration reg{{"run", "run a Lua roll procedure on a robot profile", kHelp, &run}};
+const Registration reg{{"run", "run a Lua roll procedure on a robot profile", kHelp, &run, true}};
 
 }  // namespace
 }  // namespace rollsense::cli

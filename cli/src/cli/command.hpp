@@ -46,6 +46,7 @@ struct Command {
     std::string summary;  // one line for the command list
     std::string help;     // full text for `rollsense <name> --help`
     int (*run)(const std::vector<std::string>& args);
+    bool own_help = false;  // --help goes to `run` (run SCRIPT --help lists the script's settings)
 };
 
 struct Registration {

@@ -52,7 +52,7 @@ int unknown_command(const std::string& name) {
 // Runs one command; every exception that escapes it is printed here, once.
 int dispatch(const Command& c, const std::vector<std::string>& rest) {
     try {
-        if (Args(rest).wants_help()) {
+        if (!c.own_help && Args(rest).wants_help()) {
             print_command_help(c);
             return kExitOk;
         }

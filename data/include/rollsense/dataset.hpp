@@ -9,6 +9,9 @@
 //                            recording's start; values with 9 significant digits)
 //   <dir>/run-info.csv       wall-clock provenance (date, command line, host);
 //                            kept apart so the rest is byte-identical per seed
+//   <dir>/run-config.csv     what decided the trials (script, profile, --set,
+//                            seed, version; rollsense/run_config.hpp): --resume
+//                            refuses a run that differs
 #pragma once
 
 #include <condition_variable>
@@ -23,6 +26,7 @@
 
 #include "rollsense/atomic_file.hpp"
 #include "rollsense/directory_lock.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/status.hpp"
 #include "rollsense/types.hpp"
 
@@ -42,6 +46,7 @@ struct DatasetInfo {
     std::string profile;
     std::uint64_t seed = 0;
     std::string software_version;
+    RunConfig run_config;  // written to run-config.csv by the writer; empty: none written, none checked
 };
 
 // One trial's samples, column-major.
@@ -82,7 +87,8 @@ private:
 
 enum class DatasetOpenMode {
     create,  // the folder must not hold a dataset yet
-    resume,  // continue a dataset with the same info; trials already on disk are kept
+    resume,  // continue a dataset with the same info and run configuration; trials
+             // listed in the manifest whose file is complete are kept, the others recorded again
 };
 
 // Writes trials durably, holding a lock on the folder (a second writer is

@@ -85,6 +85,9 @@ int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
     const int opts = 1;
+    check_options(L, opts, "rs.analyse", {"model", "dataset", "tag", "folds", "repeats", "params", "optimize",
+                                          "nested", "evaluations", "classifier", "classifiers", "trials",
+                                          "prefixes", "prefix_repeats", "series_amplitude"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
     // The model's name is checked before anything is written.
     const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
@@ -253,6 +256,7 @@ int l_classifier(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
     luaL_checktype(L, 1, LUA_TTABLE);
+    check_options(L, 1, "rs.classifier", {"model", "classifier"});
     const std::string model = opt_field_string(L, 1, "model", "");
     if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
     auto chosen = learn::classifier_or_default(opt_field_string(L, 1, "classifier", ""), s.options().share_dir);
@@ -287,6 +291,7 @@ int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
                     const std::array<std::size_t, features::kChannels>& columns) {
     series::SeriesSettings settings;
     if (lua_istable(L, 2)) {
+        check_options(L, 2, "identify", {"series_amplitude"});
         const std::string amplitude = opt_field_string(L, 2, "series_amplitude", "");
         if (!amplitude.empty()) {
             auto a = learn::parse_amplitude(amplitude);

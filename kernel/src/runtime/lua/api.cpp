@@ -1,6 +1,7 @@
 // Module assembly and the core of the rollsense Lua API: time, waiting,
 // settings, logging, progress, tasks and cleanup.
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "rollsense/log.hpp"
@@ -89,6 +90,21 @@ int finish_wait(lua_State* L, int, lua_KContext) {
     return 0;
 }
 
+void check_options(lua_State* L, int table, const char* call, std::initializer_list<const char*> valid) {
+    if (!lua_istable(L, table)) return;
+    table = lua_absindex(L, table);
+    for (lua_pushnil(L); lua_next(L, table); lua_pop(L, 1)) {
+        const char* key = lua_type(L, -2) == LUA_TSTRING ? lua_tostring(L, -2) : nullptr;
+        bool ok = false;
+        for (const char* v : valid) ok = ok || (key && std::strcmp(key, v) == 0);
+        if (ok) continue;
+        std::string names;
+        for (const char* v : valid) names += (names.empty() ? "" : ", ") + std::string(v);
+        luaL_error(L, "%s: unknown option '%s' (options: %s)", call, key ? key : luaL_tolstring(L, -2, nullptr),
+                   names.c_str());
+    }
+}
+
 double opt_field_number(lua_State* L, int table, const char* key, double fallback) {
     if (lua_isnoneornil(L, table)) return fallback;
     luaL_checktype(L, table, LUA_TTABLE);
@@ -170,15 +186,29 @@ int l_wait_until(lua_State* L) {
 }
 
 // rs.setting(key, default): a --set value (converted to the default's type
-// where it is a number or boolean), or the default. No default: required.
+// where it is a number or boolean), or the declared default (rs.settings), or
+// `default`. No default: required. In a namespace that declared its settings,
+// an undeclared key is an error.
 int l_setting(lua_State* L) {
-    Session& s = Session::of(L);
-    const char* key = luaL_checkstring(L, 1);
-    if (const ParamValue* v = s.options().settings.find(key)) {
+    const Settings& st = Session::of(L).settings();
+    const std::string key = luaL_checkstring(L, 1);
+    const auto declared = st.declared().find(key);
+    if (declared == st.declared().end() && st.namespace_declared(key)) {
+        std::string names;
+        for (const auto& [k, v] : st.declared())
+            if (setting_namespace(k) == setting_namespace(key)) names += (names.empty() ? "" : ", ") + k;
+        return luaL_error(L, "rs.setting: '%s' is not declared (declared: %s); add it to rs.settings{...}",
+                          key.c_str(), names.c_str());
+    }
+    if (const ParamValue* v = st.find(key)) {
         push_param(L, *v);
         return 1;
     }
-    if (lua_gettop(L) < 2) return luaL_error(L, "setting '%s' is required: pass --set %s=VALUE", key, key);
+    if (declared != st.declared().end()) {
+        push_param(L, declared->second);
+        return 1;
+    }
+    if (lua_gettop(L) < 2) return luaL_error(L, "setting '%s' is required: pass --set %s=VALUE", key.c_str(), key.c_str());
     lua_settop(L, 2);
     return 1;
 }

@@ -3,6 +3,7 @@
 
 #include <lua.hpp>
 
+#include <initializer_list>
 #include <string>
 
 #include "runtime/lua/api.hpp"
@@ -28,6 +29,9 @@ inline void protect_metatable(lua_State* L) {
     lua_setfield(L, -2, "__metatable");
 }
 
+// Raises "CALL: unknown option 'velocty' (options: velocity, ...)" for a key of
+// the option table at `table` that is not in `valid` (nothing when it is no table).
+void check_options(lua_State* L, int table, const char* call, std::initializer_list<const char*> valid);
 double opt_field_number(lua_State* L, int table, const char* key, double fallback);
 bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback);
 std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback);

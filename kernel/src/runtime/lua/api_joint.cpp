@@ -52,6 +52,7 @@ double default_timeout(const Joint& j, double goal, double velocity, double acce
 int l_move(lua_State* L) {
     Joint& j = check_joint(L, 1);
     const double goal = luaL_checknumber(L, 2);
+    check_options(L, 3, "move", {"velocity", "acceleration", "mode", "current", "wait", "timeout_ms", "tolerance"});
     JointCommand c;
     c.mode = position_mode_of(j.info);
     c.position = goal;
@@ -119,6 +120,7 @@ int l_torque(lua_State* L) {
 // j:wait({timeout_ms=, tolerance=}): until the present goal is reached.
 int l_wait_arrived(lua_State* L) {
     Joint& j = check_joint(L, 1);
+    check_options(L, 2, "wait", {"timeout_ms", "tolerance"});
     const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
     const double tol = opt_field_number(L, 2, "tolerance", 0.5);
     return wait_arrival(L, {&j}, timeout_ms / 1000.0, tol, "joint '" + j.name + "' to arrive");
@@ -220,6 +222,7 @@ int l_wait_joints(lua_State* L) {
         names += (names.empty() ? "" : ", ") + j.name;
         lua_pop(L, 1);
     }
+    check_options(L, 2, "rs.wait_joints", {"timeout_ms", "tolerance"});
     const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
     const double tol = opt_field_number(L, 2, "tolerance", 0.5);
     return wait_arrival(L, std::move(list), timeout_ms / 1000.0, tol, "joints " + names + " to arrive");

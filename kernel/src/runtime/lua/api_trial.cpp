@@ -26,6 +26,7 @@ void read_trial_key(lua_State* L, TrialInfo& info) {
 // rs.trial_id{object=, speed=, repetition=} → the id rs.trial{} gives such a trial
 int l_trial_id(lua_State* L) {
     TrialInfo info;
+    check_options(L, 1, "rs.trial_id", {"object", "speed", "repetition"});
     read_trial_key(L, info);
     if (info.object.empty()) return luaL_error(L, "rs.trial_id: give an object (and speed, repetition)");
     lua_pushstring(L, trial_id(info.object, info.speed, info.repetition).c_str());
@@ -35,6 +36,7 @@ int l_trial_id(lua_State* L) {
 // rs.trial{object=, speed=, repetition=, id=, extra={k=v}} → id
 int l_trial(lua_State* L) {
     TrialInfo info;
+    check_options(L, 1, "rs.trial", {"object", "speed", "repetition", "id", "extra"});
     read_trial_key(L, info);
     info.id = opt_field_string(L, 1, "id", "");
     if (info.id.empty()) {

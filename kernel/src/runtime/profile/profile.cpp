@@ -35,6 +35,25 @@ std::vector<std::string> Settings::unused() const {
     return out;
 }
 
+bool Settings::namespace_declared(const std::string& key) const {
+    const auto ns = setting_namespace(key);
+    for (const auto& [k, v] : declared_)
+        if (setting_namespace(k) == ns) return true;
+    return false;
+}
+
+std::string setting_namespace(const std::string& key) {
+    const auto dot = key.find('.');
+    return dot == std::string::npos ? std::string() : key.substr(0, dot);
+}
+
+bool is_profile_path(const std::string& key) {
+    static const std::set<std::string> entries = {"description", "clock",         "sample_rate_hz", "control_rate_hz",
+                                                  "plugin_path", "devices",       "joints",         "record_joints",
+                                                  "controllers", "safety"};
+    return key.find('.') != std::string::npos && entries.count(setting_namespace(key)) > 0;
+}
+
 fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir) {
     if (name.find('/') != std::string::npos || (name.size() > 4 && name.substr(name.size() - 4) == ".lua"))
         return fs::path(name);
@@ -373,7 +392,7 @@ Status read_profile_table(lua_State* L, const Settings& settings, Profile& p) {
 // Apply dotted --set keys (devices.tactile.params.x=1) to the profile table.
 Status apply_dotted_settings(lua_State* L, const Settings& settings, const std::string& file) {
     for (const auto& [key, value] : settings.values()) {
-        if (key.find('.') == std::string::npos) continue;
+        if (!is_profile_path(key)) continue;
         settings.mark_used(key);
         std::vector<std::string> parts;
         std::string cur;

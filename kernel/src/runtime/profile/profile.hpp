@@ -76,9 +76,12 @@ struct Profile {
     std::optional<GpioLine> trigger;
 };
 
-// Command-line settings (--set key=value). Plain keys are read by profiles
-// (`setting`) and scripts (`rs.setting`); dotted keys override a profile path,
-// e.g. devices.tactile.params.kernel_fwhm=5.
+// Command-line settings (--set key=value). One namespace rule (docs/scripting.md,
+// "Settings"): a dotted key whose first part is a profile entry (devices.,
+// joints., controllers., safety., ...) overrides that path of the profile, so a
+// plugin parameter is devices.NAME.params.KEY; every other key is a script
+// setting: plain for the script (and a profile's `setting`), MODULE.KEY for a
+// Lua module (etroll.clamp_current).
 class Settings {
 public:
     Status add(const std::string& key_equals_value);
@@ -87,11 +90,25 @@ public:
     const std::map<std::string, ParamValue>& values() const { return values_; }
     std::vector<std::string> unused() const;
     void mark_used(const std::string& key) const { used_.insert(key); }
+    bool used(const std::string& key) const { return used_.count(key) > 0; }
+
+    // Declared settings (rs.settings): once a namespace ("" for plain keys,
+    // "etroll" for etroll.*) declares its settings, reading an undeclared key
+    // of it is an error. The declared default stands in for a missing --set.
+    void declare(const std::string& key, ParamValue fallback) { declared_[key] = std::move(fallback); }
+    const std::map<std::string, ParamValue>& declared() const { return declared_; }
+    bool namespace_declared(const std::string& key) const;
 
 private:
     std::map<std::string, ParamValue> values_;
+    std::map<std::string, ParamValue> declared_;
     mutable std::set<std::string> used_;
 };
+
+// "etroll" for etroll.clamp_current, "" for a plain key.
+std::string setting_namespace(const std::string& key);
+// True for a dotted key whose first part is a profile entry (devices.tactile.params.x).
+bool is_profile_path(const std::string& key);
 
 // Where profiles named without a path are looked up: <share>/profiles/<name>.lua.
 std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);

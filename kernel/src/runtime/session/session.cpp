@@ -85,6 +85,7 @@ Status Session::open_dataset() {
     info.profile = profile_.name;
     info.seed = options_.seed;
     info.software_version = ROLLSENSE_VERSION;
+    info.run_config = options_.run_config;
     std::size_t every = options_.commit_every;
     if (every == 0) every = profile_.virtual_clock ? 64 : 1;
     return recorder_->open_dataset(options_.out_dir, info, options_.resume, every);
@@ -110,7 +111,8 @@ RunSummary Session::run() {
         write_run_info(s, wall_start);
     }
     for (const auto& key : options_.settings.unused())
-        log_warning("kernel", "--set " + key + " was not used by the profile or the script (a typo?)");
+        if (prepared_ && !options_.settings.namespace_declared(key))  // declared ones were checked at once
+            log_warning("kernel", "--set " + key + " was not used by the profile or the script (a typo?)");
 
     summary.status = s;
     summary.trials_saved = recorder_ ? recorder_->trials_saved() : 0;

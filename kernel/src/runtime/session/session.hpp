@@ -44,6 +44,7 @@ struct SessionOptions {
     std::size_t commit_every = 0;             // 0: 1 on hardware, 64 in simulation
     bool progress = true;                     // a progress bar when stderr is a terminal
     std::string command_line;                 // for run-info.csv
+    RunConfig run_config;                     // for run-config.csv; --resume refuses another
     DigitalLines digital_lines;               // opens the profile's e-stop and trigger lines
 };
 
@@ -82,6 +83,7 @@ public:
     const Profile& profile() const { return profile_; }
     const std::atomic<bool>& interrupt_flag() { return safety_.interrupt_flag(); }  // Ctrl-C, for long C++ work
     const SessionOptions& options() const { return options_; }
+    Settings& settings() { return options_.settings; }  // rs.settings declares into it
     Sandbox& sandbox() { return *sandbox_; }
     PluginRegistry& registry() { return *registry_; }
 

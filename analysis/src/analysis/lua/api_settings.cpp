@@ -1,0 +1,94 @@
+// rs.settings{...} / rs.settings("module", {...}): a script or module declares
+// its settings, so that every --set is checked before the first trial: the
+// values against their declarations (types, ranges, catalogue objects), and,
+// in the script's own call, every --set key against what is declared
+// (docs/scripting.md, "Settings"). The kernel's rs.setting then refuses an
+// undeclared key of a declaring namespace. Registered into the kernel's Lua
+// module as an extension, beside rs.analyse: the object catalogue is not the
+// kernel's business.
+#include <optional>
+
+#include "analysis/lua/script_settings.hpp"
+#include "runtime/lua/api_internal.hpp"
+
+namespace rollsense::runtime::lua_api {
+namespace {
+
+using script_settings::Declaration;
+
+[[noreturn]] void refuse(lua_State* L, const std::string& message) {
+    raise_status(L, Status{ErrorCode::invalid_argument, message});
+}
+
+// The catalogue the run's objects come from: a device's 'catalogue'
+// parameter (the sim sensor's), else the stock one.
+std::filesystem::path catalogue_path(const Session& s) {
+    for (const auto& device : s.profile().devices)
+        if (auto it = device.params.find("catalogue"); it != device.params.end())
+            if (auto* text = std::get_if<std::string>(&it->second)) {
+                std::filesystem::path p(*text);
+                return p.is_relative() ? s.options().share_dir / p : p;
+            }
+    return s.options().share_dir / kStockCatalogue;
+}
+
+std::string known_settings(const Settings& st) {
+    std::string names;
+    for (const auto& [k, v] : st.declared()) names += (names.empty() ? "" : ", ") + k;
+    return names;
+}
+
+int l_settings(lua_State* L) {
+    Session& s = Session::of(L);
+    const bool module = lua_type(L, 1) == LUA_TSTRING;
+    const std::string ns = module ? lua_tostring(L, 1) : "";
+    if (module && (ns.empty() || ns.find('.') != std::string::npos || is_profile_path(ns + ".x")))
+        refuse(L, "rs.settings('" + ns + "', {...}): a module's settings live under one plain name that is not a "
+                  "profile entry (devices, joints, ...); use the module's name, e.g. rs.settings('etroll', {...})");
+    const auto declarations = script_settings::read_declarations(L, module ? 2 : 1, ns);
+    Settings& st = s.settings();
+
+    std::optional<ObjectCatalogue> catalogue;
+    for (const auto& d : declarations)
+        if ((d.list == script_settings::ListKind::object || d.list == script_settings::ListKind::objects) &&
+            !catalogue) {
+            auto loaded = ObjectCatalogue::load(catalogue_path(s));
+            if (!loaded) raise_status(L, Status{loaded.error()}.with_context("rs.settings: kind 'objects'"));
+            catalogue = std::move(*loaded);
+        }
+    for (const auto& d : declarations) {
+        if (st.declared().count(d.key)) refuse(L, "rs.settings: " + d.key + " is declared twice");
+        const auto given = st.values().find(d.key);
+        if (given == st.values().end()) {
+            if (!d.fallback)
+                refuse(L, "setting '" + d.key + "' is required: pass --set " + d.key + "=VALUE" +
+                              (d.spec.doc.empty() ? "" : " (" + d.spec.doc + ")"));
+            st.declare(d.key, *d.fallback);
+            continue;
+        }
+        auto value = script_settings::check_value(d, given->second, catalogue ? &*catalogue : nullptr);
+        if (!value) raise_status(L, value.status());
+        st.declare(d.key, *value);
+        st.set(d.key, *value);
+    }
+    // Every --set must mean something: in a module's call, those of its
+    // namespace; in the script's, all (its modules have declared by now).
+    for (const auto& [key, value] : st.values()) {
+        if (is_profile_path(key) || st.used(key) || st.declared().count(key)) continue;
+        if (module && setting_namespace(key) != ns) continue;
+        refuse(L, "--set " + key + ": no such setting. Settings here: " + known_settings(st) +
+                      "; a profile entry is overridden by its path, e.g. devices.NAME.params.KEY "
+                      "(rollsense run SCRIPT --help lists them; docs/scripting.md, Settings)");
+    }
+    return 0;
+}
+
+void register_settings(lua_State* L) {
+    lua_pushcfunction(L, l_settings);
+    lua_setfield(L, -2, "settings");
+}
+
+const ExtraRegistration registration{&register_settings};
+
+}  // namespace
+}  // namespace rollsense::runtime::lua_api

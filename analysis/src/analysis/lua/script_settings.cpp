@@ -1,0 +1,233 @@
+#include "analysis/lua/script_settings.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "rollsense/csv.hpp"
+#include "runtime/lua/api_internal.hpp"
+#include "runtime/lua/lua_values.hpp"
+#include "runtime/lua/sandbox.hpp"
+
+namespace rollsense::script_settings {
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (char c : text + ",") {
+        if (c == ',' || c == ' ' || c == '\t') {
+            if (!cur.empty()) out.push_back(cur);
+            cur.clear();
+        } else {
+            cur.push_back(c);
+        }
+    }
+    return out;
+}
+
+// A value as the user would type it after `--set key=`.
+std::string typed_text(const ParamValue& v) {
+    if (auto* s = std::get_if<std::string>(&v)) return *s;
+    return format_param_value(v);
+}
+
+std::string range_text(const ParamSpec& s) {
+    if (s.min && s.max) return " " + csv::format_number(*s.min) + ".." + csv::format_number(*s.max);
+    if (s.min) return " >= " + csv::format_number(*s.min);
+    if (s.max) return " <= " + csv::format_number(*s.max);
+    return "";
+}
+
+std::string kind_text(const Declaration& d) {
+    switch (d.list) {
+        case ListKind::object: return "object (a catalogue id)";
+        case ListKind::objects: return "objects (catalogue ids, comma-separated)";
+        case ListKind::numbers: return "numbers (comma-separated)" + range_text(d.spec);
+        case ListKind::none: break;
+    }
+    return std::string(to_string(d.spec.type)) + range_text(d.spec);
+}
+
+void set_kind(lua_State* L, Declaration& d, const std::string& kind) {
+    if (kind == "number") d.spec.type = ParamType::number;
+    else if (kind == "integer") d.spec.type = ParamType::integer;
+    else if (kind == "boolean") d.spec.type = ParamType::boolean;
+    else if (kind == "string") d.spec.type = ParamType::string;
+    else if (kind == "object") d.spec.type = ParamType::string, d.list = ListKind::object;
+    else if (kind == "objects") d.spec.type = ParamType::string, d.list = ListKind::objects;
+    else if (kind == "numbers") d.spec.type = ParamType::string, d.list = ListKind::numbers;
+    else luaL_error(L, "rs.settings: %s: kind '%s' is not one of: %s", d.key.c_str(), kind.c_str(), kKinds);
+}
+
+}  // namespace
+
+std::vector<Declaration> read_declarations(lua_State* L, int index, const std::string& ns) {
+    luaL_checktype(L, index, LUA_TTABLE);
+    index = lua_absindex(L, index);
+    std::vector<Declaration> out;
+    for (lua_pushnil(L); lua_next(L, index); lua_pop(L, 1)) {
+        if (lua_type(L, -2) != LUA_TSTRING) luaL_error(L, "rs.settings: the keys are setting names (strings)");
+        Declaration d;
+        d.key = (ns.empty() ? "" : ns + ".") + lua_tostring(L, -2);
+        d.spec.name = d.key;
+        if (!lua_istable(L, -1))
+            luaL_error(L, "rs.settings: %s must be a table { default = ..., kind = ..., help = ... }", d.key.c_str());
+        const std::string call = "rs.settings: " + d.key;
+        runtime::lua_api::check_options(L, -1, call.c_str(), {"default", "kind", "min", "max", "help"});
+        const int entry = lua_absindex(L, -1);
+        lua_getfield(L, entry, "default");
+        if (!lua_isnil(L, -1)) {
+            auto v = runtime::lua_to_param(L, -1, call + ".default");
+            if (!v) luaL_error(L, "%s", v.status().message().c_str());
+            d.fallback = *v;
+        }
+        lua_pop(L, 1);
+        const std::string kind = runtime::lua_api::opt_field_string(L, entry, "kind", "");
+        if (!kind.empty()) {
+            set_kind(L, d, kind);
+        } else if (!d.fallback) {
+            luaL_error(L, "rs.settings: %s needs a default or a kind (%s)", d.key.c_str(), kKinds);
+        } else if (std::holds_alternative<bool>(*d.fallback)) {
+            d.spec.type = ParamType::boolean;
+        } else if (std::holds_alternative<std::string>(*d.fallback)) {
+            d.spec.type = ParamType::string;
+        } else if (!std::holds_alternative<std::int64_t>(*d.fallback) && !std::holds_alternative<double>(*d.fallback)) {
+            luaL_error(L, "rs.settings: %s: the default must be a number, boolean or string", d.key.c_str());
+        }
+        lua_getfield(L, entry, "min");
+        if (!lua_isnil(L, -1)) d.spec.min = luaL_checknumber(L, -1);
+        lua_getfield(L, entry, "max");
+        if (!lua_isnil(L, -1)) d.spec.max = luaL_checknumber(L, -1);
+        lua_pop(L, 2);
+        d.spec.doc = runtime::lua_api::opt_field_string(L, entry, "help", "");
+        if (d.fallback)
+            if (auto ok = check_value(d, *d.fallback, nullptr); !ok)
+                luaL_error(L, "rs.settings: %s: the default does not fit the declaration: %s", d.key.c_str(),
+                           ok.status().message().c_str());
+        out.push_back(std::move(d));
+    }
+    std::sort(out.begin(), out.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
+    return out;
+}
+
+Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue) {
+    const std::string where = "--set " + d.key + "=" + typed_text(given);
+    const std::string about = d.spec.doc.empty() ? "" : " (" + d.key + ": " + d.spec.doc + ")";
+    // A string setting takes any text, numbers included (--set model=2026.rsm).
+    const ParamValue value = d.spec.type == ParamType::string ? ParamValue{typed_text(given)} : given;
+    if (d.list != ListKind::none) {
+        const auto items = split_list(std::get<std::string>(value));
+        if (items.empty()) return Error{ErrorCode::invalid_argument, where + ": give at least one item" + about};
+        if (d.list == ListKind::object && items.size() != 1)
+            return Error{ErrorCode::invalid_argument, where + ": give one object" + about};
+        for (const auto& item : items) {
+            if (d.list != ListKind::numbers && catalogue && !catalogue->find(item))
+                return Error{ErrorCode::invalid_argument,
+                             where + ": '" + item + "' is not an object of " + catalogue->path().string() +
+                                 " (objects: " + catalogue->ids() + ")"};
+            if (d.list != ListKind::numbers) continue;
+            auto n = csv::parse_number(item, d.key);
+            const bool in_range = n && (!d.spec.min || *n >= *d.spec.min) && (!d.spec.max || *n <= *d.spec.max);
+            if (!in_range)
+                return Error{ErrorCode::invalid_argument, where + ": '" + item + "' is not a number" +
+                                                              range_text(d.spec) + about};
+        }
+        return value;
+    }
+    ParamSpec spec = d.spec;
+    spec.default_value.reset();
+    auto checked = validate_params({spec}, {{d.key, value}}, "--set");
+    if (!checked) return Error{ErrorCode::invalid_argument, checked.error().message + about};
+    // A number keeps the type it was given in (150 stays a Lua integer, as the default would be).
+    if (d.spec.type == ParamType::number) return value;
+    return checked->values().at(d.key);
+}
+
+std::string describe(const std::vector<Declaration>& declarations) {
+    std::size_t width = 0;
+    std::vector<std::string> heads;
+    for (const auto& d : declarations) {
+        heads.push_back(d.key + "=" + (d.fallback ? typed_text(*d.fallback) : "(required)"));
+        width = std::max(width, heads.back().size());
+    }
+    std::string out;
+    for (std::size_t i = 0; i < declarations.size(); ++i) {
+        const auto& d = declarations[i];
+        out += "  " + heads[i] + std::string(width - heads[i].size() + 2, ' ') + kind_text(d) +
+               (d.spec.doc.empty() ? "" : ": " + d.spec.doc) + "\n";
+    }
+    return out;
+}
+
+// ----------------------------------------------------------------- probe --
+namespace {
+
+const char kStop = 0;  // its address marks "the script went past its declarations"
+
+std::vector<Declaration>& probe_of(lua_State* L) {
+    return *static_cast<std::vector<Declaration>*>(lua_touserdata(L, lua_upvalueindex(1)));
+}
+
+int probe_stop(lua_State* L) {
+    lua_pushlightuserdata(L, const_cast<char*>(&kStop));
+    return lua_error(L);
+}
+
+int probe_settings(lua_State* L) {
+    const bool module = lua_type(L, 1) == LUA_TSTRING;
+    auto found = read_declarations(L, module ? 2 : 1, module ? lua_tostring(L, 1) : "");
+    auto& all = probe_of(L);
+    all.insert(all.end(), found.begin(), found.end());
+    return 0;
+}
+
+// rs.setting while probing: the declared default (what a run without --set reads).
+int probe_setting(lua_State* L) {
+    const std::string key = luaL_checkstring(L, 1);
+    for (const auto& d : probe_of(L))
+        if (d.key == key && d.fallback) {
+            runtime::push_param(L, *d.fallback);
+            return 1;
+        }
+    if (lua_gettop(L) < 2) return probe_stop(L);
+    lua_settop(L, 2);
+    return 1;
+}
+
+int probe_index(lua_State* L) {
+    lua_pushcfunction(L, probe_stop);
+    return 1;
+}
+
+}  // namespace
+
+Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
+                                             const std::filesystem::path& share_dir) {
+    std::vector<Declaration> found;
+    runtime::Sandbox sandbox(runtime::SandboxLimits{},
+                             {script.parent_path().empty() ? std::filesystem::path(".") : script.parent_path(),
+                              share_dir / "lua"});
+    lua_State* L = sandbox.state();
+    lua_newtable(L);
+    lua_pushlightuserdata(L, &found);
+    lua_pushcclosure(L, probe_settings, 1);
+    lua_setfield(L, -2, "settings");
+    lua_pushlightuserdata(L, &found);
+    lua_pushcclosure(L, probe_setting, 1);
+    lua_setfield(L, -2, "setting");
+    lua_newtable(L);
+    lua_pushcfunction(L, probe_index);
+    lua_setfield(L, -2, "__index");
+    lua_setmetatable(L, -2);
+    sandbox.set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
+    if (auto s = sandbox.load_file(script); !s.ok()) return s.error();
+    sandbox.start_slice();
+    if (lua_pcall(L, 0, 0, 0) != LUA_OK && lua_touserdata(L, -1) != &kStop) {
+        const char* msg = lua_tostring(L, -1);
+        return Error{ErrorCode::invalid_argument, std::string(msg ? msg : "(error object is not a string)")};
+    }
+    std::sort(found.begin(), found.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
+    return found;
+}
+
+}  // namespace rollsense::script_settings

@@ -1,0 +1,62 @@
+// Declared script settings: what rs.settings{...} declares at the top of a
+// script (or rs.settings("module", {...}) in a Lua module), how a --set value
+// is checked against its declaration, and the text `rollsense run SCRIPT
+// --help` prints. docs/scripting.md ("Settings") is the user's description.
+//
+//   rs.settings{
+//     runs    = { default = 50, kind = "integer", min = 1, help = "repetitions of each object and speed" },
+//     objects = { default = "C1,C2", kind = "objects", help = "catalogue ids, comma-separated" },
+//   }
+//
+// A declaration is a ParamSpec (the SDK's parameter schema entry, so the
+// types, ranges and their messages are the plugins' own) plus two kinds of
+// text checked item by item: "object" (one id of the object catalogue),
+// "objects" (comma-separated ids, as the scripts split them) and "numbers".
+#pragma once
+
+#include <lua.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rollsense/object_catalogue.hpp"
+#include "rollsense/params.hpp"
+
+namespace rollsense::script_settings {
+
+enum class ListKind { none, object, objects, numbers };
+
+struct Declaration {
+    std::string key;          // as --set names it: "runs", "etroll.clamp_current"
+    ParamSpec spec;           // type, default (nullopt: required), min/max, help in spec.doc
+    ListKind list = ListKind::none;
+    std::optional<ParamValue> fallback;  // the default exactly as the script wrote it
+};
+
+// The kinds a declaration may name, for messages.
+inline constexpr const char* kKinds = "number, integer, boolean, string, object, objects, numbers";
+
+// Reads the declaration table at `index` for namespace `ns` ("" for the
+// script's own settings). A bad declaration raises a Lua error naming the
+// setting and what is accepted.
+std::vector<Declaration> read_declarations(lua_State* L, int index, const std::string& ns);
+
+// A --set value checked against its declaration: the value to hand the
+// script, or an error naming the setting, the value and what is accepted
+// (for "objects": the catalogue's ids). `catalogue` may be null when no
+// declaration needs it.
+Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue);
+
+// One line per setting: "  runs=50   integer >= 1: repetitions of ...".
+std::string describe(const std::vector<Declaration>& declarations);
+
+// The settings a script declares, found without running it: its top is run
+// with a stand-in rollsense module that records rs.settings declarations
+// and stops at the first other rs.* call (that is where trials could begin).
+// Its modules (require) load as in a run, so theirs are included.
+Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
+                                             const std::filesystem::path& share_dir);
+
+}  // namespace rollsense::script_settings

@@ -1,0 +1,41 @@
+// The run configuration of a dataset (<dir>/run-config.csv): what decides the
+// trials a run records (script and its digest, profile and its digest, every
+// --set, the seed, the software version), so that --resume cannot mix two
+// experiments in one dataset. What legitimately differs between a part of a
+// run and the whole (--out, --resume, a shard of the trials, progress and
+// logging options, time and memory limits) is not part of it.
+//
+//   key,value
+//   rollsense_version,0.1.0
+//   script,paper_experiment.lua
+//   script_fnv1a,9c0e...
+//   profile,sim
+//   profile_fnv1a,41a7...
+//   seed,11
+//   set.runs,2                       one row per --set, sorted by key
+//
+// docs/dataset-format.md documents the file.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense {
+
+using RunConfig = std::vector<std::pair<std::string, std::string>>;
+
+inline constexpr const char* kRunConfigFile = "run-config.csv";
+
+std::string format_run_config(const RunConfig& config);
+// Reads <dir>/run-config.csv; an empty config when the dataset has none
+// (recorded before the file existed).
+Result<RunConfig> read_run_config(const std::filesystem::path& dir);
+// The differences between the configuration a dataset was recorded with and
+// this run's, one "KEY: recorded X, this run Y" per key (empty: the same).
+std::vector<std::string> run_config_differences(const RunConfig& recorded, const RunConfig& now);
+
+}  // namespace rollsense

@@ -1,0 +1,296 @@
+// Issue #24, settings and resume, through the `rollsense` binary: declared
+// settings checked before the first trial (rs.settings), one namespace rule
+// for --set, misspelled options of Lua calls, run-config.csv and a --resume
+// that cannot mix two experiments, the resume command of an interrupted run,
+// no empty folder after a failure, truncated trials recorded again, and the
+// live-identification example rolling trials it was not trained on.
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <sstream>
+
+#include "cli_helpers.hpp"
+
+namespace {
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+std::string script(const char* name) {
+    return shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / name);
+}
+const std::string kPaper = script("paper_experiment.lua");
+// A small experiment: 2 objects x 1 speed x 3 runs, no analysis.
+const std::string kSmall = " --set runs=3 --set objects=C1,P2 --set speeds=10 --set analyse=false --no-progress -q";
+
+// Column `col` (0-based) of every data row of a CSV file.
+std::vector<std::string> column(const fs::path& csv, std::size_t col) {
+    std::istringstream in(read_file(csv));
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> out;
+    while (std::getline(in, line)) {
+        std::stringstream ss(line);
+        std::string field;
+        for (std::size_t i = 0; i <= col; ++i) std::getline(ss, field, ',');
+        out.push_back(field);
+    }
+    return out;
+}
+
+bool same_files(const fs::path& a, const fs::path& b) { return read_file(a) == read_file(b); }
+
+}  // namespace
+
+// ------------------------------------------------------------- settings --
+
+TEST_CASE("the documented --set etroll.clamp_current=150 --set runs=2 runs the stock experiment") {
+    TempDir dir("rollsense-settings");
+    const auto r = run_rollsense("run " + kPaper + " --set etroll.clamp_current=150 --set runs=2 --no-progress -q --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(column(dir / "out" / "manifest.csv", 0).size() == 54);
+    CHECK(read_file(dir / "out" / "run-config.csv").find("set.etroll.clamp_current,150\n") != std::string::npos);
+}
+
+TEST_CASE("run SCRIPT --help lists the settings of the script and its modules without running a trial") {
+    TempDir dir("rollsense-settings");
+    const auto r = run_command("cd " + shell_quoted(dir.path()) + " && " + rollsense_bin() + " run " + kPaper + " --help");
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("usage: rollsense run SCRIPT") != std::string::npos);
+    CHECK(r.output.find("runs=50") != std::string::npos);
+    CHECK(r.output.find("integer >= 1: repetitions of each object at each speed") != std::string::npos);
+    CHECK(r.output.find("objects=C1,C2,C3,S1,S2,P1,P2,H1,H2") != std::string::npos);
+    CHECK(r.output.find("etroll.clamp_current=120") != std::string::npos);
+    CHECK(fs::is_empty(dir.path()));  // no runs/ folder: nothing ran
+    for (const char* s : {"compare_methods.lua", "demo_roll.lua", "examples/identify.lua", "examples/back_and_forth.lua",
+                          "examples/speed_sweep.lua"}) {
+        INFO(s);
+        const auto h = run_rollsense("run " + script(s) + " --help");
+        CHECK(h.status == 0);
+        CHECK(h.output.find("settings of ") != std::string::npos);
+    }
+}
+
+TEST_CASE("unknown keys, unknown objects and out-of-range values are errors before the first trial, naming the valid ones") {
+    TempDir dir("rollsense-settings");
+    struct Case {
+        const char* set;
+        const char* says;
+    };
+    for (const Case c : {Case{"runz=2", "--set runz: no such setting. Settings here: analyse, etroll.clamp_current"},
+                         Case{"etroll.clamp_curent=150", "--set etroll.clamp_curent: no such setting"},
+                         Case{"objects=C1,X9", "'X9' is not an object of"},
+                         Case{"objects=X9", "(objects: C1, C2, C3, S1, S2, P1, P2, H1, H2)"},
+                         Case{"runs=0", "'runs': 0 is outside the allowed range [1, inf]"},
+                         Case{"runs=two", "'runs' must be an integer"},
+                         Case{"speeds=10,0", "'0' is not a number >= 1"},
+                         Case{"etroll.clamp_current=-5", "'etroll.clamp_current': -5 is outside the allowed range"}}) {
+        INFO(c.set);
+        const auto out = dir / "out";
+        const auto r = run_rollsense("run " + kPaper + " --set " + shell_quoted(c.set) + " --no-progress --out " + shell_quoted(out));
+        INFO(r.output);
+        CHECK(r.status == 1);
+        CHECK(r.output.find(c.says) != std::string::npos);
+        CHECK(r.output.find("0 trials saved") != std::string::npos);
+        CHECK(count_of(r.output, c.says) == 1);
+        CHECK_FALSE(fs::exists(out));  // failed before any trial: no folder left behind
+    }
+}
+
+TEST_CASE("in a script that declares its settings, reading an undeclared one is an error; required ones must be given") {
+    TempDir dir("rollsense-settings");
+    write_file(dir / "s.lua", "local rs = require 'rollsense'\n"
+                              "rs.settings{ speed = { default = 10, min = 1, help = 'roll speed' },\n"
+                              "             model = { kind = 'string', help = 'a saved model' } }\n"
+                              "rs.log('speed', rs.setting('speed'), 'model', rs.setting('model'))\n"
+                              "rs.setting('sped', 3)\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --set model=m.rsm --out " +
+                                 shell_quoted(dir / "a"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(r.output.find("speed 10 model m.rsm") != std::string::npos);
+    CHECK(r.output.find("rs.setting: 'sped' is not declared (declared: model, speed)") != std::string::npos);
+    const auto missing = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --out " + shell_quoted(dir / "b"));
+    INFO(missing.output);
+    CHECK(missing.status == 1);
+    CHECK(missing.output.find("setting 'model' is required: pass --set model=VALUE (a saved model)") != std::string::npos);
+    // A bad declaration names the setting and what is accepted.
+    write_file(dir / "bad.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 5, knd = 'integer' } }\n");
+    const auto bad = run_rollsense("run " + shell_quoted(dir / "bad.lua") + " --profile mock --out " + shell_quoted(dir / "c"));
+    INFO(bad.output);
+    CHECK(bad.output.find("rs.settings: runs: unknown option 'knd' (options: default, kind, min, max, help)") != std::string::npos);
+}
+
+TEST_CASE("a script that declares nothing keeps working, with the end-of-run warning for an unused --set") {
+    TempDir dir("rollsense-settings");
+    write_file(dir / "plain.lua", "local rs = require 'rollsense'\nrs.log('runs is', rs.setting('runs', 1))\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "plain.lua") + " --profile mock --set runs=4 --set typo=1 --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("runs is 4") != std::string::npos);
+    CHECK(r.output.find("--set typo was not used by the profile or the script (a typo?)") != std::string::npos);
+}
+
+TEST_CASE("a misspelled option of a Lua call is an error at the call, naming the valid options") {
+    TempDir dir("rollsense-settings");
+    struct Case {
+        const char* code;
+        const char* says;
+    };
+    for (const Case c :
+         {Case{"rs.joint('sensing_finger'):move(10, { velocty = 20 })",
+               "move: unknown option 'velocty' (options: velocity, acceleration, mode, current, wait, timeout_ms, tolerance)"},
+          Case{"rs.joint('sensing_finger'):wait({ timeout = 5 })", "wait: unknown option 'timeout' (options: timeout_ms, tolerance)"},
+          Case{"rs.wait_joints({ rs.joint('palm') }, { tolerence = 1 })", "rs.wait_joints: unknown option 'tolerence'"},
+          Case{"rs.trial{ objet = 'C1' }", "rs.trial: unknown option 'objet' (options: object, speed, repetition, id, extra)"},
+          Case{"rs.trial_id{ object = 'C1', sped = 10 }", "rs.trial_id: unknown option 'sped'"},
+          Case{"rs.analyse{ fold = 3 }", "rs.analyse: unknown option 'fold'"},
+          Case{"rs.classifier{ modle = 'x.rsm' }", "rs.classifier: unknown option 'modle' (options: model, classifier)"}}) {
+        INFO(c.code);
+        write_file(dir / "typo.lua", std::string("local rs = require 'rollsense'\n") + c.code + "\n");
+        const auto r = run_rollsense("run " + shell_quoted(dir / "typo.lua") + " --profile mock --out " + shell_quoted(dir / "out"));
+        INFO(r.output);
+        CHECK(r.status == 1);
+        CHECK(r.output.find(c.says) != std::string::npos);
+        CHECK(r.output.find("typo.lua:2:") != std::string::npos);
+    }
+}
+
+// --------------------------------------------------------------- resume --
+
+TEST_CASE("run-config.csv records what decides the trials; --resume refuses any difference, naming it") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    const auto first = run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(out));
+    INFO(first.output);
+    REQUIRE(first.status == 0);
+    const auto config = read_file(out / "run-config.csv");
+    CHECK(config.find("key,value\nrollsense_version,") == 0);
+    CHECK(config.find("\nscript,paper_experiment.lua\nscript_fnv1a,") != std::string::npos);
+    CHECK(config.find("\nprofile,sim\nprofile_fnv1a,") != std::string::npos);
+    CHECK(config.find("\nseed,5\nset.analyse,false\nset.objects,\"C1,P2\"\nset.runs,3\nset.speeds,10\n") != std::string::npos);
+    CHECK(config.find("out") == std::string::npos);  // --out is not part of it
+
+    const auto other = run_rollsense("run " + kPaper + kSmall + " --set runs=4 --seed 5 --resume --out " + shell_quoted(out));
+    INFO(other.output);
+    CHECK(other.status == 1);
+    CHECK(other.output.find("cannot resume") != std::string::npos);
+    CHECK(other.output.find("set.runs: recorded '3', this run '4'") != std::string::npos);
+    const auto missing = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,P2 --set speeds=10 --no-progress -q "
+                                       "--seed 5 --resume --out " + shell_quoted(out));
+    CHECK(missing.status == 1);
+    CHECK(missing.output.find("set.analyse: recorded 'false', this run (not given)") != std::string::npos);
+    CHECK(column(out / "manifest.csv", 0).size() == 6);  // nothing was added
+
+    const auto same = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out));
+    INFO(same.output);
+    CHECK(same.status == 0);
+    CHECK(same.output.find("0 trials saved, 6 already on disk") != std::string::npos);
+}
+
+TEST_CASE("an interrupted run prints the exact command that resumes it, --set options quoted") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    const std::string options = " --set runs=3 --set 'objects=C1, P2' --set speeds=10 --set analyse=false --seed 5";
+    const auto cut = run_rollsense("run " + kPaper + options + " --no-progress --time-limit 40 --out " + shell_quoted(out));
+    INFO(cut.output);
+    REQUIRE(cut.status == 130);
+    const auto at = cut.output.find("continue with: rollsense run ");
+    REQUIRE(at != std::string::npos);
+    const auto line = cut.output.substr(at + 15, cut.output.find('\n', at) - at - 15);
+    CHECK(line.find("--resume --seed 5 --set runs=3 --set 'objects=C1, P2' --set speeds=10 --set analyse=false") !=
+          std::string::npos);
+    const auto resumed = run_command(rollsense_bin() + line.substr(9) + " --no-progress -q");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+    const auto whole = run_rollsense("run " + kPaper + options + " --no-progress -q --out " + shell_quoted(dir / "whole"));
+    REQUIRE(whole.status == 0);
+    CHECK(same_files(out / "manifest.csv", dir / "whole" / "manifest.csv"));
+    CHECK(same_files(out / "run-config.csv", dir / "whole" / "run-config.csv"));
+}
+
+TEST_CASE("a run that fails before any trial removes the folder it created, never one that existed") {
+    TempDir dir("rollsense-resume");
+    write_file(dir / "fail.lua", "error('before any trial')\n");
+    const auto created = run_rollsense("run " + shell_quoted(dir / "fail.lua") + " --profile mock --out " + shell_quoted(dir / "new"));
+    INFO(created.output);
+    CHECK(created.status == 1);
+    CHECK_FALSE(fs::exists(dir / "new"));
+    CHECK(created.output.find("results:") == std::string::npos);
+
+    fs::create_directories(dir / "mine");
+    const auto existing = run_rollsense("run " + shell_quoted(dir / "fail.lua") + " --profile mock --out " + shell_quoted(dir / "mine"));
+    CHECK(existing.status == 1);
+    CHECK(fs::is_directory(dir / "mine"));
+
+    // A failure after a trial keeps the folder and its trial.
+    write_file(dir / "late.lua", "local rs = require 'rollsense'\nrs.trial{ object = 'C1', speed = 10, repetition = 1 }\n"
+                                 "rs.record_start()\nrs.wait(200)\nrs.record_stop()\nrs.save_trial()\nrs.end_trial()\n"
+                                 "error('after a trial')\n");
+    const auto late = run_rollsense("run " + shell_quoted(dir / "late.lua") + " --profile mock --out " + shell_quoted(dir / "late"));
+    INFO(late.output);
+    CHECK(late.status == 1);
+    CHECK(fs::exists(dir / "late" / "trials" / "C1-v10-r001.csv"));
+}
+
+TEST_CASE("a resumed run records again a trial whose file is truncated or that the manifest does not list") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(out)).status == 0);
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(dir / "whole")).status == 0);
+    const auto cut = out / "trials" / "C1-v10-r002.csv";
+    const auto text = read_file(cut);
+    write_file(cut, text.substr(0, text.size() / 2));  // cut mid-row, as a crash would
+    const auto last = out / "trials" / "P2-v10-r003.csv";
+    const auto before = read_file(last);
+    write_file(last, before.substr(0, before.find('\n', before.size() / 2) + 1));  // cut at a row's end
+    // a trial file on disk that the manifest does not list
+    const auto manifest = read_file(out / "manifest.csv");
+    const auto row = manifest.find("P2-v10-r001,");
+    write_file(out / "manifest.csv", manifest.substr(0, row) + manifest.substr(manifest.find('\n', row) + 1));
+
+    const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out));
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("3 trials saved, 3 already on disk") != std::string::npos);
+    CHECK(r.output.find("trial 'C1-v10-r002' is recorded again") != std::string::npos);
+    CHECK(r.output.find("trial 'P2-v10-r003' is recorded again") != std::string::npos);
+    for (const auto& id : column(dir / "whole" / "manifest.csv", 0)) {
+        INFO(id);
+        CHECK(same_files(out / "trials" / (id + ".csv"), dir / "whole" / "trials" / (id + ".csv")));
+    }
+    const auto ids = column(out / "manifest.csv", 0);
+    CHECK(std::set<std::string>(ids.begin(), ids.end()).size() == 6);
+}
+
+// ------------------------------------------------- live identification --
+
+TEST_CASE("the live-identification example rolls trials the model was not trained on") {
+    TempDir dir("rollsense-identify");
+    const auto train = run_rollsense("run " + kPaper + " --set runs=2 --seed 11 --no-progress -q --out " + shell_quoted(dir / "train"));
+    INFO(train.output);
+    REQUIRE(train.status == 0);
+    std::set<std::string> trained_ids, trained_seeds;
+    for (const auto& id : column(dir / "train" / "manifest.csv", 0)) trained_ids.insert(id);
+    for (const auto& seed : column(dir / "train" / "manifest.csv", 5)) trained_seeds.insert(seed);
+    REQUIRE(trained_ids.count("P2-v20-r001") == 1);
+
+    // The same seed, object and speed as trials of the training set.
+    const auto live = run_rollsense("run " + script("examples/identify.lua") + " --seed 11 --set object=P2 --set speed=20 "
+                                    "--set save=true --set model=" + shell_quoted(dir / "train" / "model.rsm") +
+                                    " --no-progress --out " + shell_quoted(dir / "live"));
+    INFO(live.output);
+    REQUIRE(live.status == 0);
+    const auto ids = column(dir / "live" / "manifest.csv", 0);
+    REQUIRE_FALSE(ids.empty());
+    for (const auto& id : ids) {
+        INFO(id);
+        CHECK(id.rfind("identify-P2-v20-a", 0) == 0);
+        CHECK(trained_ids.count(id) == 0);
+    }
+    for (const auto& seed : column(dir / "live" / "manifest.csv", 5)) CHECK(trained_seeds.count(seed) == 0);
+    CHECK(live.output.find("roll identify-P2-v20-a1") != std::string::npos);
+}

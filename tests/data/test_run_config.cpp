@@ -1,0 +1,83 @@
+// run-config.csv: written with the dataset, read back, compared key by key;
+// DatasetWriter::open in resume mode refuses another configuration and drops
+// a listed trial whose file is cut short.
+#include <catch2/catch.hpp>
+
+#include "rollsense/dataset.hpp"
+#include "rollsense/run_config.hpp"
+#include "temp_dir.hpp"
+
+using namespace rollsense;
+using rollsense::testing::TempDir;
+
+namespace {
+DatasetInfo info_with(RunConfig config) {
+    DatasetInfo info;
+    info.channels = {"ch1"};
+    info.profile = "sim";
+    info.seed = 5;
+    info.run_config = std::move(config);
+    return info;
+}
+TrialData samples(std::size_t n) {
+    TrialData d;
+    for (std::size_t i = 0; i < n; ++i) {
+        d.time.push_back(0.1 * static_cast<double>(i));
+        d.valid.push_back(1);
+    }
+    d.channels.push_back(std::vector<double>(n, 1.5));
+    return d;
+}
+TrialRecord record(const std::string& object) {
+    TrialRecord r;
+    r.info.id = object + "-v10-r001";
+    r.info.object = object;
+    r.info.speed = "10";
+    r.info.repetition = 1;
+    return r;
+}
+}  // namespace
+
+TEST_CASE("run-config.csv round-trips, and its differences name each key with both values", "[run_config]") {
+    TempDir dir("rollsense-run-config");
+    const RunConfig config{{"script", "a.lua"}, {"seed", "5"}, {"set.objects", "C1, C2"}};
+    {
+        auto w = DatasetWriter::open(dir.path(), info_with(config), DatasetOpenMode::create);
+        REQUIRE(w.ok());
+    }
+    auto back = read_run_config(dir.path());
+    REQUIRE(back.ok());
+    CHECK(*back == config);
+    CHECK(run_config_differences(config, *back).empty());
+    const RunConfig other{{"script", "a.lua"}, {"seed", "6"}, {"set.runs", "2"}};
+    CHECK(run_config_differences(config, other) ==
+          std::vector<std::string>{"seed: recorded '5', this run '6'", "set.objects: recorded 'C1, C2', this run (not given)",
+                                   "set.runs: recorded (not given), this run '2'"});
+    auto none = read_run_config(dir / "nowhere");
+    REQUIRE(none.ok());
+    CHECK(none->empty());
+}
+
+TEST_CASE("resume refuses another run configuration and records a cut-short trial again", "[run_config]") {
+    TempDir dir("rollsense-run-config");
+    const RunConfig config{{"script", "a.lua"}, {"set.runs", "3"}};
+    {
+        auto w = DatasetWriter::open(dir.path(), info_with(config), DatasetOpenMode::create);
+        REQUIRE(w.ok());
+        REQUIRE((*w)->add_trial(record("C1"), samples(20)).ok());
+        REQUIRE((*w)->add_trial(record("C2"), samples(20)).ok());
+        REQUIRE((*w)->flush().ok());
+    }
+    auto refused = DatasetWriter::open(dir.path(), info_with({{"script", "a.lua"}, {"set.runs", "4"}}),
+                                       DatasetOpenMode::resume);
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().message, Catch::Contains("set.runs: recorded '3', this run '4'"));
+
+    const auto file = dir / "trials" / "C2-v10-r001.csv";
+    const auto text = rollsense::testing::read_file(file);
+    rollsense::testing::write_file(file, text.substr(0, text.size() - 20));
+    auto resumed = DatasetWriter::open(dir.path(), info_with(config), DatasetOpenMode::resume);
+    REQUIRE(resumed.ok());
+    CHECK((*resumed)->has_trial("C1-v10-r001"));
+    CHECK_FALSE((*resumed)->has_trial("C2-v10-r001"));  // recorded again by the run
+}
