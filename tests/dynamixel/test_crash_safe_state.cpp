@@ -23,7 +23,7 @@
 #include <new>
 #include <thread>
 
-#include "rollsense/etroll_hand/clamped_object.hpp"
+#include "etroll_bus.hpp"
 #include "rollsense/hal/dynamixel/bus.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
@@ -82,17 +82,7 @@ struct Outcome {
 };
 
 Outcome clamp_then(const char* name, lua_CFunction fault) {
-    BusEmulator bus;
-    for (auto s : etroll_servos()) {
-        s.baud_index = *index_from_baud(1'000'000);
-        s.return_delay = 0;
-        bus.add_servo(s);
-    }
-    REQUIRE(etroll::clamp_object(bus, etroll::ClampedObject{}).ok());
-    PtyEmulatorOptions emulator_options;
-    emulator_options.wire_baud_from_line = true;
-    auto emu = PtyBusEmulator::start(std::move(bus), emulator_options);
-    REQUIRE(emu.ok());
+    auto emu = etroll_bus::start();
 
     const testing::TempDir tmp("rollsense-crash");
     std::ofstream(tmp.path() / "script.lua") << "local rs = require 'rollsense'\n"
@@ -106,7 +96,7 @@ Outcome clamp_then(const char* name, lua_CFunction fault) {
     runtime::SessionOptions o;
     o.script = tmp.path() / "script.lua";
     o.profile = "etroll-emulated";
-    REQUIRE(o.settings.add("dxl_device=" + (*emu)->device()).ok());
+    REQUIRE(o.settings.add("dxl_device=" + emu->device()).ok());
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = tmp.path() / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
@@ -132,7 +122,7 @@ Outcome clamp_then(const char* name, lua_CFunction fault) {
     if (WIFEXITED(status)) out.exit_code = WEXITSTATUS(status);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the serving thread takes the last bytes
     if (fs::exists(tmp.path() / "out" / "run-info.csv")) out.run_info = read_file(tmp.path() / "out" / "run-info.csv");
-    auto port = hal::SerialPort::open((*emu)->device(), 1'000'000);
+    auto port = hal::SerialPort::open(emu->device(), 1'000'000);
     REQUIRE(port.ok());
     Bus client(std::move(port).value(), BusOptions{std::chrono::milliseconds(100), 3});
     for (std::uint8_t id : {1, 2, 3, 4}) {
@@ -140,7 +130,7 @@ Outcome clamp_then(const char* name, lua_CFunction fault) {
         auto current = client.read_value(id, addr::present_current, 2);
         REQUIRE(torque.ok());
         REQUIRE(current.ok());
-        const auto* model = (*emu)->with_bus([id](BusEmulator& b) { return &b.servo(id)->model(); });
+        const auto* model = emu->with_bus([id](BusEmulator& b) { return &b.servo(id)->model(); });
         out.torque[id] = *torque != 0;
         out.current_ma[id] = std::abs(current_units_to_ma(*model, *current));
     }

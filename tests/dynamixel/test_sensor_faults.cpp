@@ -13,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "rollsense/etroll_hand/clamped_object.hpp"
+#include "etroll_bus.hpp"
 #include "rollsense/hal/dynamixel/bus.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
@@ -90,17 +90,7 @@ TEST_CASE("a sensor fault mid-run ends it with a typed error, complete trials on
 TEST_CASE("a sensor fault mid-roll: every servo on the bus ends safe, read back over the bus", "[fault][sensor][safety]") {
     for (const char* kind : {"nack", "stuck"}) {
         INFO(kind);
-        BusEmulator bus;
-        for (auto s : etroll_servos()) {
-            s.baud_index = *index_from_baud(1'000'000);
-            s.return_delay = 0;
-            bus.add_servo(s);
-        }
-        REQUIRE(etroll::clamp_object(bus, etroll::ClampedObject{}).ok());
-        PtyEmulatorOptions emulator_options;
-        emulator_options.wire_baud_from_line = true;
-        auto emu = PtyBusEmulator::start(std::move(bus), emulator_options);
-        REQUIRE(emu.ok());
+        auto emu = etroll_bus::start();
 
         const testing::TempDir tmp("rollsense-sensor-fault-rt");
         // The fault comes while the pushing finger clamps and the roll records.
@@ -116,7 +106,7 @@ etroll.roll(10)  -- about 7 s: the fault ends the run well before
 error("the run should have ended with the sensor's fault")
 )";
         write_profile(tmp.path() / "faulty.lua", "etroll-emulated", std::string("e2e-rt-") + kind,
-                      std::string("ch2:") + kind + ":3", (*emu)->device());
+                      std::string("ch2:") + kind + ":3", emu->device());
         {
             runtime::Session session(options(tmp.path(), tmp.path() / "script.lua", {}));
             const auto summary = session.run();
@@ -124,7 +114,7 @@ error("the run should have ended with the sensor's fault")
             CHECK(summary.trials_saved == 0);
         }
         // The run is over and its port closed: a fresh client reads every servo.
-        auto port = hal::SerialPort::open((*emu)->device(), 1'000'000);
+        auto port = hal::SerialPort::open(emu->device(), 1'000'000);
         REQUIRE(port.ok());
         Bus client(std::move(port).value(), BusOptions{std::chrono::milliseconds(100), 3});
         for (std::uint8_t id : {1, 2, 3, 4}) {
@@ -135,7 +125,7 @@ error("the run should have ended with the sensor's fault")
             REQUIRE(current.ok());
             REQUIRE(moving.ok());
             REQUIRE(hardware.ok());
-            const auto* model = (*emu)->with_bus([id](BusEmulator& b) { return &b.servo(id)->model(); });
+            const auto* model = emu->with_bus([id](BusEmulator& b) { return &b.servo(id)->model(); });
             CHECK(std::abs(current_units_to_ma(*model, *current)) <= kSafeCurrentMa);  // the finger stopped pushing
             CHECK(*moving == 0);
             CHECK(*hardware == 0);

@@ -114,27 +114,35 @@ assert(string.find(string.rep('a', 1000) .. 'b', 'a-b') == 1)
 }
 
 // A C function a test adds to the sandbox: it never returns to Lua, as a
-// binding stuck in C++ would. `signals` SIGINTs are raised first.
+// binding stuck in C++ would. `signals` SIGINTs are raised first. A
+// last-resort action (rollsense/last_resort.hpp) registered in the child
+// writes "sent" to dir/last-resort.txt if the kernel runs it.
 namespace {
 int g_signals = 1;
+int g_marker_fd = -1;
+void mark_last_resort(void*) noexcept { (void)!::write(g_marker_fd, "sent\n", 5); }
+
 int l_stuck(lua_State*) {
     for (int i = 0; i < g_signals; ++i) ::raise(SIGINT);
     for (;;) ::pause();
 }
 
-sandbox_test::ChildResult run_stuck(kt::TempDir& dir, int signals) {
+sandbox_test::ChildResult run_stuck(kt::TempDir& dir, int signals, lua_CFunction stuck = l_stuck) {
     auto o = kt::options_for(dir, "stuck()\n");
     o.sandbox.cancel_grace_ms = 300;
     g_signals = signals;
     return sandbox_test::run_limited(sandbox_test::kTwoGiB, 60, [&] {
+        g_marker_fd = ::open((dir / "last-resort.txt").c_str(), O_CREAT | O_WRONLY | O_TRUNC, 0644);
+        const int slot = add_last_resort(&mark_last_resort, nullptr);
         runtime::Session session(o);
         if (auto s = session.prepare(); !s.ok()) return s.message();
         lua_State* L = session.sandbox().state();
         lua_rawgeti(L, LUA_REGISTRYINDEX, session.sandbox().env_ref());
-        lua_pushcfunction(L, l_stuck);
+        lua_pushcfunction(L, stuck);
         lua_setfield(L, -2, "stuck");
         lua_pop(L, 1);
         auto s = session.run().status;
+        remove_last_resort(slot);
         return "returned: " + s.message();
     });
 }
@@ -166,41 +174,18 @@ TEST_CASE("the third Ctrl-C ends the process with run-info written", "[sandbox][
 // ever, and the watchdog must then neither wait for ever (a deadlock) nor
 // talk to the bus beside it: it sends the prepared last resort instead.
 namespace {
-int g_marker_fd = -1;
-void mark_last_resort(void*) noexcept { (void)!::write(g_marker_fd, "sent\n", 5); }
-
 // A binding stuck inside a plugin call: the devices' lock held, no return.
 int l_stuck_in_plugin_call(lua_State* L) {
     const auto devices = runtime::Session::of(L).robot().lock_devices();
     ::raise(SIGINT);
     for (;;) ::pause();
 }
-
-sandbox_test::ChildResult run_stuck_holding_devices(kt::TempDir& dir, lua_CFunction stuck) {
-    auto o = kt::options_for(dir, "stuck()\n");
-    o.sandbox.cancel_grace_ms = 300;
-    g_signals = 1;
-    return sandbox_test::run_limited(sandbox_test::kTwoGiB, 60, [&] {
-        g_marker_fd = ::open((dir / "last-resort.txt").c_str(), O_CREAT | O_WRONLY | O_TRUNC, 0644);
-        const int slot = add_last_resort(&mark_last_resort, nullptr);
-        runtime::Session session(o);
-        if (auto s = session.prepare(); !s.ok()) return s.message();
-        lua_State* L = session.sandbox().state();
-        lua_rawgeti(L, LUA_REGISTRYINDEX, session.sandbox().env_ref());
-        lua_pushcfunction(L, stuck);
-        lua_setfield(L, -2, "stuck");
-        lua_pop(L, 1);
-        auto s = session.run().status;
-        remove_last_resort(slot);
-        return "returned: " + s.message();
-    });
-}
 }  // namespace
 
 TEST_CASE("a script stuck inside a plugin call: the watchdog does not wait for the bus, it sends the last resort",
           "[sandbox][watchdog]") {
     kt::TempDir dir;
-    auto r = run_stuck_holding_devices(dir, l_stuck_in_plugin_call);
+    auto r = run_stuck(dir, 1, l_stuck_in_plugin_call);
     INFO(r.text);
     REQUIRE(r.exited);  // not killed by the alarm: no deadlock
     CHECK(r.code == 130);
@@ -214,7 +199,7 @@ TEST_CASE("a script stuck inside a plugin call: the watchdog does not wait for t
 TEST_CASE("a script stuck outside any plugin call: the watchdog takes the devices and makes the hand safe itself",
           "[sandbox][watchdog]") {
     kt::TempDir dir;
-    auto r = run_stuck_holding_devices(dir, l_stuck);
+    auto r = run_stuck(dir, 1);
     INFO(r.text);
     REQUIRE(r.exited);
     CHECK(r.code == 130);
