@@ -38,13 +38,22 @@ std::atomic<bool> g_heap_fails{false};
 
 // malloc/free underneath, consistently: GCC cannot see that the pairs match.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+// Every plain form, so that no pair mixes this heap with the library's (ASan checks).
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+    return g_heap_fails.load(std::memory_order_relaxed) ? nullptr : std::malloc(size ? size : 1);
+}
 void* operator new(std::size_t size) {
-    if (g_heap_fails.load(std::memory_order_relaxed)) throw std::bad_alloc();
-    if (void* p = std::malloc(size ? size : 1)) return p;
+    if (void* p = operator new(size, std::nothrow)) return p;
     throw std::bad_alloc();
 }
+void* operator new[](std::size_t size) { return operator new(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return operator new(size, std::nothrow); }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace rollsense;
 using namespace rollsense::hal::dxl;
