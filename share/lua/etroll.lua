@@ -168,11 +168,13 @@ end
 -- Before long work on the script thread (rs.analyse: seconds, minutes with
 -- optimisation), when no control period runs and the servos hear nothing:
 -- park the hand and turn its servos' Bus Watchdog off, so a healthy run never
--- trips it. A hand without one (the mock, the simulation) has nothing to turn off.
+-- trips it; the plugin re-arms it by itself when control resumes (a script
+-- that rolls again after the analysis is guarded again). A hand without one
+-- (the mock, the simulation) has nothing to turn off.
 function M.rest()
   M.park()
-  local ok, err = pcall(function() return rs.device("hand"):call("watchdog", { ms = 0 }) end)
-  if not ok and not tostring(err):find("no operation 'watchdog'", 1, true)
+  local ok, err = pcall(function() return rs.device("hand"):call("rest") end)
+  if not ok and not tostring(err):find("no operation 'rest'", 1, true)
      and not tostring(err):find("no device 'hand'", 1, true) then
     error(err, 0)
   end

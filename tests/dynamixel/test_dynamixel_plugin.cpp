@@ -443,6 +443,46 @@ TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one firs
     REQUIRE(a.on_deactivate().ok());
 }
 
+TEST_CASE("rest turns every Bus Watchdog off until control resumes: the next write re-arms it (issue 22)") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    auto raw = etroll_raw(emu->device());
+    raw["bus_watchdog_ms"] = std::int64_t{500};  // 25 units
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    auto watchdog_units = [&](std::uint8_t id) {
+        return on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->item(addr::bus_watchdog, 1); });
+    };
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto rest = a.invoke("rest", {});
+    REQUIRE(rest.ok());
+    CHECK(std::get<std::int64_t>(rest->at("rearm_ms")) == 500);
+    for (std::uint8_t id : {1, 2, 3, 4}) CHECK(watchdog_units(id) == 0);
+    // Long work on the script thread: no read, no write, for longer than the watchdog.
+    on_bus(*emu, [](BusEmulator& b) {
+        b.advance(1.0);
+        return 0;
+    });
+    for (std::uint8_t id : {1, 2, 3, 4}) CHECK_FALSE(on_bus(*emu, [id](BusEmulator& b) { return b.servo(id)->watchdog_tripped(); }));
+    // Reading alone is not control: the script may inspect the hand while at rest.
+    REQUIRE(a.read(1.0, s).ok());
+    CHECK(watchdog_units(1) == 0);
+    REQUIRE(a.write(1.0, hold_all(a, s)).ok());  // the first control period after the rest
+    for (std::uint8_t id : {1, 2, 3, 4}) CHECK(watchdog_units(id) == 25);
+    // Read back through the plugin, in ms, as a script does: device:call('watchdog').
+    auto back = a.invoke("watchdog", {});
+    REQUIRE(back.ok());
+    for (const char* joint : {"sensing_finger", "pushing_finger", "palm", "winch"})
+        CHECK(std::get<std::int64_t>(back->at(joint)) == 500);
+    // An explicit setting is kept: no re-arm behind the script's back.
+    REQUIRE(a.invoke("rest", {}).ok());
+    REQUIRE(a.invoke("watchdog", {{"ms", std::int64_t{0}}}).ok());
+    REQUIRE(a.write(1.1, hold_all(a, s)).ok());
+    CHECK(watchdog_units(1) == 0);
+    REQUIRE(a.on_deactivate().ok());
+}
+
 TEST_CASE("a crash (SIGABRT) with the hand active sends torque-off to every servo from the signal handler") {
     auto emu = start_emulator(false);
     const pid_t pid = ::fork();

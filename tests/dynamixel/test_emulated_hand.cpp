@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <unistd.h>
 
+#include "etroll_bus.hpp"
 #include "rollsense/etroll_hand/clamped_object.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
@@ -23,21 +24,6 @@ using rollsense::testing::read_file;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::unique_ptr<PtyBusEmulator> start_etroll_bus() {
-    BusEmulator bus;
-    for (auto s : etroll_servos()) {
-        s.baud_index = *index_from_baud(1'000'000);  // as rollsense-dxl-emu's default bus
-        s.return_delay = 0;
-        bus.add_servo(s);
-    }
-    REQUIRE(etroll::clamp_object(bus, etroll::ClampedObject{}).ok());
-    PtyEmulatorOptions options;
-    options.wire_baud_from_line = true;
-    auto emu = PtyBusEmulator::start(std::move(bus), options);
-    REQUIRE(emu.ok());
-    return std::move(emu).value();
-}
 
 runtime::SessionOptions options_for(const fs::path& script, const std::string& profile, const fs::path& out,
                                     std::initializer_list<const char*> settings) {
@@ -56,7 +42,7 @@ runtime::SessionOptions options_for(const fs::path& script, const std::string& p
 }  // namespace
 
 TEST_CASE("Table I on the emulated E-TRoll: clamp with the palm-parallel controller, roll, record") {
-    auto emu = start_etroll_bus();
+    auto emu = etroll_bus::start();
     const testing::TempDir tmp("rollsense-emulated-hand");
     const fs::path& dir = tmp.path();
     std::ofstream(dir / "script.lua") << R"(
@@ -164,7 +150,7 @@ TEST_CASE("long work on the script thread: etroll.rest() parks the hand and keep
     // rest() they would (the second run shows the test can tell).
     for (bool rest : {true, false}) {
         INFO((rest ? "with etroll.rest()" : "without"));
-        auto emu = start_etroll_bus();
+        auto emu = etroll_bus::start();
         const testing::TempDir tmp("rollsense-rest");
         std::ofstream(tmp.path() / "script.lua") << "local rs = require 'rollsense'\n"
                                                     "local etroll = require 'etroll'\n"

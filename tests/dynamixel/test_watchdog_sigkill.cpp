@@ -17,7 +17,7 @@
 #include <fstream>
 #include <thread>
 
-#include "rollsense/etroll_hand/clamped_object.hpp"
+#include "etroll_bus.hpp"
 #include "rollsense/hal/dynamixel/bus.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
@@ -33,17 +33,7 @@ constexpr double kSafeCurrentMa = 20.0;  // a stopped finger draws next to nothi
 }
 
 TEST_CASE("a SIGKILLed run leaves every torqued servo stopped by its Bus Watchdog", "[safety][watchdog]") {
-    BusEmulator bus;
-    for (auto s : etroll_servos()) {
-        s.baud_index = *index_from_baud(1'000'000);
-        s.return_delay = 0;
-        bus.add_servo(s);
-    }
-    REQUIRE(etroll::clamp_object(bus, etroll::ClampedObject{}).ok());
-    PtyEmulatorOptions options;
-    options.wire_baud_from_line = true;
-    auto emu = PtyBusEmulator::start(std::move(bus), options);
-    REQUIRE(emu.ok());
+    auto emu = etroll_bus::start();
 
     const testing::TempDir tmp("rollsense-sigkill");
     std::ofstream(tmp.path() / "script.lua") << R"(
@@ -57,7 +47,7 @@ etroll.roll(5)   -- slow: the kill comes well before its end
     const std::string exe = std::string(ROLLSENSE_BIN_DIR) + "/rollsense";
     const std::string script = (tmp.path() / "script.lua").string();
     const std::string out = (tmp.path() / "out").string();
-    const std::string device = "dxl_device=" + (*emu)->device();
+    const std::string device = "dxl_device=" + emu->device();
     const pid_t pid = ::fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
@@ -71,7 +61,7 @@ etroll.roll(5)   -- slow: the kill comes well before its end
     const auto give_up = Clock::now() + std::chrono::seconds(60);
     while (!rolling && Clock::now() < give_up) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        rolling = (*emu)->with_bus([](BusEmulator& b) {
+        rolling = emu->with_bus([](BusEmulator& b) {
             return std::abs(b.servo(2)->current_ma()) > 100 && std::abs(b.servo(1)->velocity_ticks_s()) > 1;
         });
         int status = 0;
@@ -80,7 +70,7 @@ etroll.roll(5)   -- slow: the kill comes well before its end
     if (!rolling) ::kill(pid, SIGKILL);
     REQUIRE(rolling);
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
-    const auto torqued = (*emu)->with_bus([](BusEmulator& b) {
+    const auto torqued = emu->with_bus([](BusEmulator& b) {
         std::vector<std::uint8_t> ids;
         for (auto id : b.ids())
             if (b.servo(id)->torque_enabled()) ids.push_back(id);
@@ -95,7 +85,7 @@ etroll.roll(5)   -- slow: the kill comes well before its end
 
     // The default watchdog is 500 ms; read back after it, well within 2.54 s.
     std::this_thread::sleep_until(killed + std::chrono::milliseconds(800));
-    auto port = hal::SerialPort::open((*emu)->device(), 1'000'000);
+    auto port = hal::SerialPort::open(emu->device(), 1'000'000);
     REQUIRE(port.ok());
     Bus client(std::move(port).value(), BusOptions{std::chrono::milliseconds(100), 3});
     for (auto id : torqued) {
@@ -106,7 +96,7 @@ etroll.roll(5)   -- slow: the kill comes well before its end
     }
     auto current = client.read_value(2, addr::present_current, 2);
     REQUIRE(current.ok());
-    const auto* model = (*emu)->with_bus([](BusEmulator& b) { return &b.servo(2)->model(); });
+    const auto* model = emu->with_bus([](BusEmulator& b) { return &b.servo(2)->model(); });
     CHECK(std::abs(current_units_to_ma(*model, *current)) <= kSafeCurrentMa);
     CHECK(Clock::now() - killed < std::chrono::milliseconds(2540));
 }

@@ -158,3 +158,116 @@ TEST_CASE("no baseline can be taken from a dead chip: start_recording fails, nam
     CHECK(st.code() == ErrorCode::hardware_fault);
     CHECK_THAT(st.message(), Catch::Contains("no baseline for channel ch1") && Catch::Contains("NACK"));
 }
+
+// ---- issue 22: faults injected from the profile (inject = {...}) into the
+// strip the plugin models itself (simulate = true), and the run-ending fault.
+
+namespace {
+
+rollsense::ParamSet simulated(const std::string& bus_name, rollsense::ValueMap extra) {
+    rollsense::hal::FakeI2cBus::get(bus_name)->reset();
+    extra["simulate"] = true;
+    return params("fake:" + bus_name, std::move(extra));
+}
+
+rollsense::Status read_at(rollsense::Sensor& s, double t, rollsense::Frame& f) {
+    rollsense::SampleInput in;
+    in.time = t;
+    f = {};
+    f.time = t;
+    f.values.assign(s.channels().size(), 0.0);
+    return s.read(in, f);
+}
+
+}  // namespace
+
+TEST_CASE("inject: a chip that NACKs from time T; fault_after samples later the run ends naming it",
+          "[mpl115a][faults][inject]") {
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(simulated("inject-nack", {{"inject", std::vector<std::string>{"ch2:nack:1.0"}},
+                                                     {"fault_after", 3}}),
+                           {})
+                .ok());
+    REQUIRE(s.on_activate().ok());
+    REQUIRE(s.start_recording({}).ok());
+    rollsense::Frame f;
+    REQUIRE(read_at(s, 0.9, f).ok());
+    CHECK(f.valid);  // not yet due
+    for (double t : {1.0, 1.1}) {
+        INFO("t = " << t);
+        REQUIRE(read_at(s, t, f).ok());  // a glitch so far: the sample is invalid, the run goes on
+        CHECK_FALSE(f.valid);
+        CHECK(is_nan(f.values[1]));
+        CHECK(std::isfinite(f.values[0]));
+    }
+    const auto st = read_at(s, 1.2, f);
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(st.message(), Catch::Contains("channel ch2, strip 0 slot 1 (select 0x01)") &&
+                                 Catch::Contains("no valid reading for 3 samples in a row") &&
+                                 Catch::Contains("NACK") && Catch::Contains("rollsense probe i2c fake:inject-nack"));
+    // The model goes with the sensor: a new configure finds a healthy strip.
+    REQUIRE(s.on_cleanup().ok());
+    plugins::Mpl115aSensor again;
+    REQUIRE(again.on_configure(params("fake:inject-nack", {{"simulate", true}}), {}).ok());
+    REQUIRE(again.start_recording({}).ok());
+    CHECK(read_frame(again, 2.0).valid);
+}
+
+TEST_CASE("inject: a stuck ADC is flagged after stuck_samples, across recordings, then ends the run",
+          "[mpl115a][faults][inject]") {
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(simulated("inject-stuck", {{"inject", std::vector<std::string>{"ch1:stuck:0.5"}},
+                                                      {"stuck_samples", 8},
+                                                      {"fault_after", 4}}),
+                           {})
+                .ok());
+    REQUIRE(s.on_activate().ok());
+    REQUIRE(s.start_recording({}).ok());
+    rollsense::Frame f;
+    double t = 0;
+    for (; t < 0.5; t += 0.1) REQUIRE(read_at(s, t, f).ok());
+    CHECK(f.valid);  // the model's ADC noise (0.5 counts): healthy readings change
+    // A short recording (a roll shorter than stuck_samples) does not hide it:
+    // the count goes on across the next start of a recording.
+    for (int i = 0; i < 5; ++i, t += 0.1) REQUIRE(read_at(s, t, f).ok());
+    CHECK(f.valid);
+    REQUIRE(s.start_recording({}).ok());
+    rollsense::Status st;
+    int reads = 5;
+    for (; reads < 40 && st.ok(); ++reads, t += 0.1) st = read_at(s, t, f);
+    REQUIRE_FALSE(st.ok());
+    // From the fault on (read 0) every read repeats the last good words:
+    // read r is repeat r + 1, flagged from repeat 8 (read 7), and the 4th
+    // failing sample (read 10) ends it.
+    CHECK(reads == 11);
+    CHECK(st.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(st.message(), Catch::Contains("channel ch1") && Catch::Contains("ADC stuck") &&
+                                 Catch::Contains("no valid reading for 4 samples in a row"));
+}
+
+TEST_CASE("inject: malformed entries and a strip the sensor does not model are refused, naming the entry",
+          "[mpl115a][faults][inject]") {
+    for (const char* bad : {"ch2:nack", "ch9:nack:1", "ch2:melt:1", "ch2:nack:-1", "ch2:nack:soon"}) {
+        INFO(bad);
+        plugins::Mpl115aSensor s;
+        auto st = s.on_configure(simulated("inject-bad", {{"inject", std::vector<std::string>{bad}}}), {});
+        REQUIRE_FALSE(st.ok());
+        CHECK(st.code() == ErrorCode::invalid_argument);
+        CHECK_THAT(st.message(), Catch::StartsWith(std::string("inject '") + bad + "'"));
+    }
+    Rig rig("inject-rig");  // a strip attached by the test, not by the sensor
+    plugins::Mpl115aSensor s;
+    auto st = s.on_configure(params(rig.spec, {{"inject", std::vector<std::string>{"ch1:nack:1"}}}), {});
+    REQUIRE_FALSE(st.ok());
+    CHECK_THAT(st.message(), Catch::Contains("simulate = true"));
+}
+
+TEST_CASE("fault_after = 0 keeps the old behaviour: invalid samples, the run goes on", "[mpl115a][faults]") {
+    Rig rig("fault-after-off");
+    plugins::Mpl115aSensor s;
+    REQUIRE(s.on_configure(params(rig.spec, {{"fault_after", 0}}), {}).ok());
+    REQUIRE(s.start_recording({}).ok());
+    rig.strip->chip(0).set_fault(Mpl115aFault::nack);
+    for (int i = 0; i < 200; ++i) CHECK_FALSE(read_frame(s).valid);
+}

@@ -6,7 +6,12 @@
 // runs in a child with an alarm, so a dodge fails instead of hanging.
 #include <catch2/catch.hpp>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <csignal>
+
+#include "rollsense/last_resort.hpp"
 
 #include "limited_child.hpp"
 
@@ -109,27 +114,35 @@ assert(string.find(string.rep('a', 1000) .. 'b', 'a-b') == 1)
 }
 
 // A C function a test adds to the sandbox: it never returns to Lua, as a
-// binding stuck in C++ would. `signals` SIGINTs are raised first.
+// binding stuck in C++ would. `signals` SIGINTs are raised first. A
+// last-resort action (rollsense/last_resort.hpp) registered in the child
+// writes "sent" to dir/last-resort.txt if the kernel runs it.
 namespace {
 int g_signals = 1;
+int g_marker_fd = -1;
+void mark_last_resort(void*) noexcept { (void)!::write(g_marker_fd, "sent\n", 5); }
+
 int l_stuck(lua_State*) {
     for (int i = 0; i < g_signals; ++i) ::raise(SIGINT);
     for (;;) ::pause();
 }
 
-sandbox_test::ChildResult run_stuck(kt::TempDir& dir, int signals) {
+sandbox_test::ChildResult run_stuck(kt::TempDir& dir, int signals, lua_CFunction stuck = l_stuck) {
     auto o = kt::options_for(dir, "stuck()\n");
     o.sandbox.cancel_grace_ms = 300;
     g_signals = signals;
     return sandbox_test::run_limited(sandbox_test::kTwoGiB, 60, [&] {
+        g_marker_fd = ::open((dir / "last-resort.txt").c_str(), O_CREAT | O_WRONLY | O_TRUNC, 0644);
+        const int slot = add_last_resort(&mark_last_resort, nullptr);
         runtime::Session session(o);
         if (auto s = session.prepare(); !s.ok()) return s.message();
         lua_State* L = session.sandbox().state();
         lua_rawgeti(L, LUA_REGISTRYINDEX, session.sandbox().env_ref());
-        lua_pushcfunction(L, l_stuck);
+        lua_pushcfunction(L, stuck);
         lua_setfield(L, -2, "stuck");
         lua_pop(L, 1);
         auto s = session.run().status;
+        remove_last_resort(slot);
         return "returned: " + s.message();
     });
 }
@@ -153,6 +166,47 @@ TEST_CASE("the third Ctrl-C ends the process with run-info written", "[sandbox][
     CHECK(r.code == 130);
     REQUIRE(kt::fs::exists(dir / "out" / "run-info.csv"));
     CHECK_THAT(kt::read_file(dir / "out" / "run-info.csv"), Catch::Contains("interrupted three times"));
+}
+
+// Issue 22, item 3: the watchdog's safe state runs on its own thread while
+// the script's thread may be inside a plugin call, on the bus. It takes the
+// devices' lock first; a script thread stuck inside a plugin call holds it for
+// ever, and the watchdog must then neither wait for ever (a deadlock) nor
+// talk to the bus beside it: it sends the prepared last resort instead.
+namespace {
+// A binding stuck inside a plugin call: the devices' lock held, no return.
+int l_stuck_in_plugin_call(lua_State* L) {
+    const auto devices = runtime::Session::of(L).robot().lock_devices();
+    ::raise(SIGINT);
+    for (;;) ::pause();
+}
+}  // namespace
+
+TEST_CASE("a script stuck inside a plugin call: the watchdog does not wait for the bus, it sends the last resort",
+          "[sandbox][watchdog]") {
+    kt::TempDir dir;
+    auto r = run_stuck(dir, 1, l_stuck_in_plugin_call);
+    INFO(r.text);
+    REQUIRE(r.exited);  // not killed by the alarm: no deadlock
+    CHECK(r.code == 130);
+    CHECK(kt::read_file(dir / "last-resort.txt") == "sent\n");
+    const auto info = kt::read_file(dir / "out" / "run-info.csv");
+    CHECK_THAT(info, Catch::Contains("did not stop within 300 ms") &&
+                         Catch::Contains("held the devices (stuck inside a plugin call)") &&
+                         Catch::Contains("last-resort safe state went out instead"));
+}
+
+TEST_CASE("a script stuck outside any plugin call: the watchdog takes the devices and makes the hand safe itself",
+          "[sandbox][watchdog]") {
+    kt::TempDir dir;
+    auto r = run_stuck(dir, 1);
+    INFO(r.text);
+    REQUIRE(r.exited);
+    CHECK(r.code == 130);
+    CHECK(kt::read_file(dir / "last-resort.txt").empty());  // the ordinary safe state was enough
+    const auto info = kt::read_file(dir / "out" / "run-info.csv");
+    CHECK_THAT(info, Catch::Contains("did not stop within 300 ms"));
+    CHECK_THAT(info, !Catch::Contains("held the devices"));
 }
 
 TEST_CASE("the sandbox's xpcall still lets a procedure wait and runs its handler on ordinary errors", "[sandbox][cancel]") {

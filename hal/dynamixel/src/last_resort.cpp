@@ -7,6 +7,8 @@
 #include <atomic>
 #include <mutex>
 
+#include "rollsense/last_resort.hpp"
+
 namespace rollsense::hal::dxl {
 namespace {
 
@@ -21,12 +23,16 @@ constexpr int kSignals[] = {SIGSEGV, SIGBUS, SIGABRT, SIGFPE};
 struct sigaction g_previous[sizeof kSignals / sizeof kSignals[0]];
 std::mutex g_register;
 
-extern "C" void on_crash(int sig) {
+void send_prepared(void*) noexcept {
     for (auto& s : g_slots) {
         const int fd = s.fd.load();
         if (fd < 0) continue;
         for (int copy = 0; copy < 2; ++copy) (void)!::write(fd, s.bytes, s.length);
     }
+}
+
+extern "C" void on_crash(int sig) {
+    send_prepared(nullptr);
     static const char msg[] = "\nrollsense: crashed; torque-off sent to every Dynamixel bus\n";
     (void)!::write(STDERR_FILENO, msg, sizeof msg - 1);
     // Hand the signal on: the previous handler, or the default action.
@@ -56,6 +62,10 @@ int register_last_resort(int fd, std::span<const std::uint8_t> packet) {
     if (fd < 0 || packet.size() > kLastResortPacketMax) return -1;
     std::lock_guard lock(g_register);
     install();
+    // The kernel's own last resort (Lua panic, std::terminate, std::bad_alloc,
+    // a watchdog that cannot get the bus) sends the same packets.
+    static const int kernel_slot = add_last_resort(&send_prepared, nullptr);
+    (void)kernel_slot;
     for (int i = 0; i < kSlots; ++i) {
         auto& s = g_slots[i];
         if (s.fd.load() >= 0) continue;

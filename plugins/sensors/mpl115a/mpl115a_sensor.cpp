@@ -1,6 +1,8 @@
 #include "mpl115a_sensor.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 
 #include "rollsense/hal/fake_i2c_bus.hpp"
@@ -38,6 +40,14 @@ ParamSchema mpl115a_schema() {
                   "mark a sensor invalid after this many identical raw readings in a row (ADC stopped); 0 = off", 0,
                   100000),
         param_int("retries", 1, "extra attempts at a failed sensor read within one sample", 0, 5),
+        param_int("fault_after", 31,
+                  "end the run (hardware fault) when one channel has had no valid reading for this many samples in "
+                  "a row (NACK, bus error, stuck ADC; 31 ≈ 1 s at 31.1 Hz); 0 = only mark the samples invalid",
+                  0, 100000),
+        param_string_list("inject", std::vector<std::string>{},
+                          "faults to inject into the modelled strip (simulate = true only), each "
+                          "'CHANNEL:KIND:AFTER_S' (run-clock seconds); KIND nack (the chip stops answering) or "
+                          "stuck (its ADC stops converting: the same raw words forever)"),
         param_bool("raw_channels", false, "also output <name>_kpa (compensated kPa) and <name>_tadc (raw temperature count)"),
         param_bool("simulate", false,
                    "with a fake: bus on which no strip answers, attach a modelled TakkStrip at ambient pressure "
@@ -46,6 +56,27 @@ ParamSchema mpl115a_schema() {
 }
 
 namespace {
+
+// "ch2:nack:1.5" → channel index, fault, time; names the entry when it is not one.
+Status parse_injection(const std::string& spec, const std::vector<std::string>& channels, std::size_t& channel,
+                       hal::Mpl115aFault& fault, double& after) {
+    const auto a = spec.find(':'), b = spec.rfind(':');
+    const std::string where = "inject '" + spec + "'";
+    if (a == std::string::npos || a == b)
+        return {ErrorCode::invalid_argument, where + ": expected CHANNEL:KIND:AFTER_S, e.g. ch2:nack:1.5"};
+    const std::string name = spec.substr(0, a), kind = spec.substr(a + 1, b - a - 1), time = spec.substr(b + 1);
+    const auto it = std::find(channels.begin(), channels.end(), name);
+    if (it == channels.end()) return {ErrorCode::invalid_argument, where + ": no channel '" + name + "'"};
+    channel = static_cast<std::size_t>(it - channels.begin());
+    if (kind != "nack" && kind != "stuck")
+        return {ErrorCode::invalid_argument, where + ": unknown kind '" + kind + "' (the strip model knows nack and stuck)"};
+    fault = kind == "nack" ? hal::Mpl115aFault::nack : hal::Mpl115aFault::stuck;
+    char* end = nullptr;
+    after = std::strtod(time.c_str(), &end);
+    if (time.empty() || *end != '\0' || !std::isfinite(after) || after < 0)
+        return {ErrorCode::invalid_argument, where + ": AFTER_S must be a number of seconds >= 0"};
+    return {};
+}
 
 std::string join_reasons(const std::vector<std::string>& reasons) {
     std::string s;
@@ -67,6 +98,7 @@ Status Mpl115aSensor::on_configure(const ParamSet& params, const PluginContext& 
     baseline_samples_ = static_cast<int>(params.get_int("baseline_samples"));
     stuck_samples_ = static_cast<int>(params.get_int("stuck_samples"));
     retries_ = static_cast<int>(params.get_int("retries"));
+    fault_after_ = static_cast<int>(params.get_int("fault_after"));
     raw_channels_ = params.get_bool("raw_channels");
 
     // Which sensors, in channel order.
@@ -127,7 +159,8 @@ Status Mpl115aSensor::on_configure(const ParamSet& params, const PluginContext& 
             hal::TakkStripModelConfig cfg;
             cfg.strip = strip;
             cfg.noise_counts = 0.5;
-            fake->attach(hal::make_takkstrip_model(cfg));  // not make_shared: see its header
+            models_.push_back(hal::make_takkstrip_model(cfg));  // not make_shared: see its header
+            fake->attach(models_.back());
         }
         log_info("mpl115a", "attached a modelled TakkStrip to " + bus_->name() + " (simulate = true)");
         all = host_->deselect_all();
@@ -147,6 +180,18 @@ Status Mpl115aSensor::on_configure(const ParamSet& params, const PluginContext& 
         log_debug("mpl115a", who + ": " + ms::describe(ch.coefficients));
     }
 
+    std::vector<std::string> names_in_order;
+    for (const auto& ch : channels_) names_in_order.push_back(ch.name);
+    for (const auto& spec : params.get_string_list("inject")) {
+        Injection inj;
+        if (auto st = parse_injection(spec, names_in_order, inj.channel, inj.fault, inj.after); !st.ok()) return st;
+        if (!modelled_chip(channels_[inj.channel].select))
+            return {ErrorCode::invalid_argument,
+                    "inject '" + spec + "': faults go into the modelled strip, which this sensor did not attach; use "
+                    "bus = 'fake:<name>' with simulate = true"};
+        injections_.push_back(inj);
+    }
+
     channel_info_.clear();
     for (const auto& ch : channels_)
         channel_info_.push_back({ch.name, "1",
@@ -161,8 +206,31 @@ Status Mpl115aSensor::on_configure(const ParamSet& params, const PluginContext& 
     return {};
 }
 
+hal::Mpl115aChip* Mpl115aSensor::modelled_chip(std::uint8_t select) {
+    for (auto& m : models_)
+        if (m->strip() == select / 8 && select % 8 < m->sensor_count()) return &m->chip(select % 8);
+    return nullptr;
+}
+
+void Mpl115aSensor::apply_due_injections(double time) {
+    for (auto& inj : injections_) {
+        if (inj.applied || time < inj.after) continue;
+        inj.applied = true;
+        modelled_chip(channels_[inj.channel].select)->set_fault(inj.fault);
+        log_info("mpl115a", "injected fault: channel " + channels_[inj.channel].name + " now " +
+                                (inj.fault == hal::Mpl115aFault::nack ? "NACKs" : "has a stuck ADC") +
+                                " (inject, t = " + std::to_string(time) + " s)");
+    }
+}
+
 void Mpl115aSensor::release() {
     if (host_) (void)host_->deselect_all();
+    // The strips this sensor attached leave the process-wide fake bus with it:
+    // the next configure starts from a fresh, healthy model.
+    if (auto fake = std::dynamic_pointer_cast<hal::FakeI2cBus>(bus_))
+        for (auto& m : models_) fake->detach(m);
+    models_.clear();
+    injections_.clear();
     host_.reset();
     bus_.reset();
     channels_.clear();
@@ -175,6 +243,7 @@ Status Mpl115aSensor::on_activate() {
     for (auto& ch : channels_) {
         ch.has_baseline = false;
         ch.repeats = 0;
+        ch.failed_samples = 0;
     }
     return {};
 }
@@ -259,22 +328,23 @@ Status Mpl115aSensor::take_baseline() {
                           "no baseline for channel " + channels_[i].name + ": every read failed (" + last_reason[i] + ")");
         channels_[i].baseline_kpa = sum[i] / good[i];
         channels_[i].has_baseline = true;
-        channels_[i].repeats = 0;
+        // The stuck count is not reset: a chip that stopped converting stays
+        // stopped across recordings, and a roll may be shorter than stuck_samples.
     }
     return {};
 }
 
 Status Mpl115aSensor::start_recording(const SampleInput& input) {
-    (void)input;
     std::lock_guard lock(mutex_);
     if (!host_) return Status(ErrorCode::state_error, "start_recording before configure");
+    apply_due_injections(input.time);
     return take_baseline();
 }
 
 Status Mpl115aSensor::read(const SampleInput& input, Frame& out) {
-    (void)input;
     std::lock_guard lock(mutex_);
     if (!host_) return Status(ErrorCode::state_error, "read before configure");
+    apply_due_injections(input.time);
     // Reading outside a recording still gives meaningful values: baseline now.
     bool need_baseline = false;
     for (const auto& ch : channels_) need_baseline = need_baseline || !ch.has_baseline;
@@ -283,7 +353,7 @@ Status Mpl115aSensor::read(const SampleInput& input, Frame& out) {
             out.values.assign(channel_info_.size(), std::nan(""));
             out.valid = false;
             out.reason = s.message();
-            return {};
+            return check_failing_channels(out);
         }
 
     const auto samples = sample_all();
@@ -319,6 +389,22 @@ Status Mpl115aSensor::read(const SampleInput& input, Frame& out) {
     }
     out.valid = reasons.empty();
     out.reason = join_reasons(reasons);
+    return check_failing_channels(out);
+}
+
+// A channel with no valid reading for fault_after samples in a row is not a
+// glitch but a dead or stuck chip: the run ends with a hardware fault naming
+// it (the kernel then makes the hand safe), rather than recording trials of NaN.
+Status Mpl115aSensor::check_failing_channels(const Frame& out) {
+    for (std::size_t i = 0; i < channels_.size(); ++i) {
+        auto& ch = channels_[i];
+        ch.failed_samples = std::isnan(out.values[i]) ? ch.failed_samples + 1 : 0;
+        if (fault_after_ > 0 && ch.failed_samples >= fault_after_)
+            return {ErrorCode::hardware_fault,
+                    "channel " + ch.name + ", " + ts::describe_select(ch.select) + ": no valid reading for " +
+                        std::to_string(ch.failed_samples) + " samples in a row (" + out.reason +
+                        "); check the strip's wiring and power, then 'rollsense probe i2c " + bus_->name() + "'"};
+    }
     return {};
 }
 

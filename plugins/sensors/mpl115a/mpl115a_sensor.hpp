@@ -23,6 +23,7 @@
 #include "rollsense/hal/i2c.hpp"
 #include "rollsense/hal/mpl115a.hpp"
 #include "rollsense/hal/takkstrip.hpp"
+#include "rollsense/hal/takkstrip_model.hpp"
 #include "rollsense/sensor.hpp"
 
 namespace rollsense::plugins {
@@ -52,6 +53,13 @@ private:
         // stuck-ADC detection: identical raw words in a row
         hal::mpl115a::AdcReading last{};
         int repeats = 0;
+        int failed_samples = 0;  // samples in a row without a valid reading
+    };
+    struct Injection {
+        std::size_t channel = 0;
+        hal::Mpl115aFault fault = hal::Mpl115aFault::none;
+        double after = 0.0;  // run-clock seconds
+        bool applied = false;
     };
     struct SensorSample {
         bool ok = false;
@@ -63,6 +71,10 @@ private:
     // One sample cycle for every channel (no baseline, no stuck check).
     std::vector<SensorSample> sample_all();
     Status take_baseline();
+    Status check_failing_channels(const Frame& out);
+    // The chip behind a select address in a strip this sensor attached (simulate), or null.
+    hal::Mpl115aChip* modelled_chip(std::uint8_t select);
+    void apply_due_injections(double time);
     void release();
 
     mutable std::mutex mutex_;
@@ -75,6 +87,9 @@ private:
     int baseline_samples_ = 4;
     int stuck_samples_ = 100;
     int retries_ = 1;
+    int fault_after_ = 31;
+    std::vector<std::shared_ptr<hal::TakkStripModel>> models_;  // attached by simulate = true
+    std::vector<Injection> injections_;
     bool raw_channels_ = false;
 };
 

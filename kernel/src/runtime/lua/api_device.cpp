@@ -32,7 +32,11 @@ int l_call(lua_State* L) {
     const char* verb = luaL_checkstring(L, 2);
     auto args = lua_to_param_map(L, 3, std::string("call('") + verb + "') arguments");
     if (!args) raise_status(L, args.status());
-    auto result = h.invoke(verb, *args);
+    // The devices' lock only around the plugin call: a raised Lua error unwinds past this frame.
+    auto result = [&] {
+        const auto devices = Session::of(L).robot().lock_devices();
+        return h.invoke(verb, *args);
+    }();
     if (!result) raise_status(L, result.status());
     push_param_map(L, *result);
     return 1;
@@ -46,7 +50,10 @@ int l_state(lua_State* L) {
 
 int l_recover(lua_State* L) {
     ComponentHandle& h = check_device(L, 1);
-    auto s = h.recover();
+    auto s = [&] {
+        const auto devices = Session::of(L).robot().lock_devices();
+        return h.recover();
+    }();
     if (!s.ok()) raise_status(L, s);
     return 0;
 }

@@ -4,8 +4,9 @@
 // unless something no hook reaches holds it: C++ work that takes long, a C
 // library call. If Lua has not handed control back `grace_ms` after the
 // cancel was seen, or at once on the third Ctrl-C, the watchdog calls
-// `last_resort` on its own thread, which makes the hand safe, writes
-// run-info and ends the process (Session::last_resort).
+// `last_resort` on its own thread: the hand made safe under the robot's device
+// lock (or by the prepared last resort if the script's thread holds it),
+// run-info written, the process ended (Session::last_resort).
 #pragma once
 
 #include <atomic>

@@ -196,6 +196,7 @@ std::vector<std::string> Robot::device_names() const {
 }
 
 Status Robot::activate(double time) {
+    const auto devices = lock_devices();
     for (auto& s : sensors_)
         if (s.handle->state() == LifecycleState::inactive)
             if (auto st = s.handle->activate(); !st.ok()) return st;
@@ -230,6 +231,7 @@ Status Robot::write_actuators(double time) {
 }
 
 Status Robot::control_tick(double time, double dt) {
+    const auto devices = lock_devices();
     if (auto s = read_actuators(time); !s.ok()) return s;
     for (auto& c : controllers_) {
         if (!c.enabled) continue;
@@ -260,6 +262,7 @@ void Robot::safe_commands(const ActuatorHandle& actuator, std::vector<JointComma
 // second safe_state() tries again. Inactive and unconfigured devices are not
 // driving anything.
 void Robot::safe_state(double time) noexcept {
+    const auto devices = lock_devices();
     try {
         disable_all_controllers(time);
     } catch (...) {
@@ -292,6 +295,7 @@ void Robot::safe_state(double time) noexcept {
 }
 
 void Robot::shutdown(double time) noexcept {
+    const auto devices = lock_devices();
     safe_state(time);
     for (auto& a : actuators_) {
         if (a.handle->state() == LifecycleState::active) (void)a.handle->deactivate();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,13 @@ public:
     void safe_state(double time) noexcept;
     // Refuse every command until released (emergency stop).
     void set_commands_locked(bool locked, std::string reason = {});
+
+    // Held on the script's thread around actuator I/O (activate, control_tick,
+    // safe_state, shutdown; device:call and :recover), and by the cancel
+    // watchdog's thread, with a timeout, for its safe state (Session::last_resort).
+    // Sensors are not under it: the safe state never reads them.
+    std::unique_lock<std::recursive_timed_mutex> lock_devices() { return std::unique_lock(devices_mutex_); }
+    std::recursive_timed_mutex& devices_mutex() { return devices_mutex_; }
 
     // One control period: read all actuators, run enabled controllers, write.
     Status control_tick(double time, double dt);
@@ -131,6 +139,7 @@ private:
     std::vector<std::size_t> recorded_joint_index_;
     bool locked_ = false;
     std::string lock_reason_;
+    std::recursive_timed_mutex devices_mutex_;
 };
 
 }  // namespace rollsense::runtime

@@ -8,6 +8,13 @@
 #include <ctime>
 #include <limits>
 
+#include <unistd.h>
+
+#include <atomic>
+#include <exception>
+#include <new>
+
+#include "rollsense/last_resort.hpp"
 #include "rollsense/log.hpp"
 #include "runtime/lua/api.hpp"
 #include "runtime/lua/cancel_watchdog.hpp"
@@ -31,7 +38,42 @@ double wall_seconds() {
     return duration<double>(steady_clock::now().time_since_epoch()).count();
 }
 
+// The session whose run() is on, for the crash handlers below.
+std::atomic<Session*> g_running{nullptr};
+
+int on_lua_panic(lua_State* L) {
+    Session::end_in_crash(ErrorCode::script_error, "Lua panic (an error outside any protected call)",
+                          lua_tostring(L, -1));  // a pointer into the state: no allocation
+}
+
+void on_terminate() {
+    Session::end_in_crash(ErrorCode::plugin_error,
+                          "std::terminate (an exception nobody could catch, or one thrown while stopping)", nullptr);
+}
+
+// Lua panics and std::terminate end the process through end_in_crash while a run is on.
+struct CrashHandlers {
+    std::terminate_handler previous = std::set_terminate(&on_terminate);
+    explicit CrashHandlers(Session* session) { g_running = session; }
+    ~CrashHandlers() { g_running = nullptr, std::set_terminate(previous); }
+};
+
 }  // namespace
+
+void Session::end_in_crash(ErrorCode code, const char* what, const char* detail) noexcept {
+    const int sent = run_last_resort();
+    static const char msg[] = "\nrollsense: fatal error; the prepared last-resort safe state was sent\n";
+    (void)!::write(STDERR_FILENO, msg, sizeof msg - 1);
+    if (Session* s = g_running.exchange(nullptr)) try {
+            const std::string why = std::string(what) + (detail ? std::string(": ") + detail : std::string()) +
+                                    " (" + std::to_string(sent) + " last-resort actions sent)";
+            log_error("kernel", why);
+            if (s->recorder_ && s->recorder_->has_dataset() && ((void)s->recorder_->flush(), true))
+                s->write_run_info(Status(code, why), s->wall_start_);  // flushed or not: complete trials only
+        } catch (...) {}  // no heap left: the hand is safe already, run-info cannot be written
+    std::fflush(stderr);
+    std::_Exit(134);
+}
 
 Session::Session(SessionOptions options) : options_(std::move(options)) {}
 
@@ -60,6 +102,7 @@ Status Session::prepare() {
     if (!options_.script.empty()) modules.push_back(options_.script.parent_path().empty() ? fs::path(".") : options_.script.parent_path());
     modules.push_back(options_.share_dir / "lua");
     sandbox_ = std::make_unique<Sandbox>(options_.sandbox, modules);
+    lua_atpanic(sandbox_->state(), &on_lua_panic);
     sandbox_->watch_flag(&safety_.interrupt_flag(), "interrupted (Ctrl-C)");
     scheduler_ = std::make_unique<Scheduler>(*clock_, *robot_, *recorder_, safety_, *sandbox_,
                                              clock_->quantize(1.0 / profile_.control_rate_hz), loop_timing_.get());
@@ -93,16 +136,23 @@ Status Session::open_dataset() {
 
 RunSummary Session::run() {
     RunSummary summary;
-    const double wall_start = wall_seconds();
+    const double wall_start = wall_start_ = wall_seconds();
     InterruptGuard interrupts(safety_.interrupt_flag());
+    CrashHandlers crash_handlers(this);
 
     Status s = prepare();
     if (s.ok()) {
         progress_ = std::make_unique<Progress>(options_.progress);
-        CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
-                                [this, wall_start](const std::string& why) { last_resort(why, wall_start); });
-        s = run_main_chunk();
-        run_cleanup();
+        try {
+            CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
+                                    [this, wall_start](const std::string& why) { last_resort(why, wall_start); });
+            s = run_main_chunk();
+            run_cleanup();
+        } catch (const std::bad_alloc&) {  // in the kernel's own work: the last resort needs no heap,
+            const int sent = run_last_resort();  // then shutdown (below) tries the ordinary safe state
+            s = Status(ErrorCode::limit_violation, "out of memory (std::bad_alloc) during the run; " +
+                                                       std::to_string(sent) + " last-resort actions sent");
+        }
         if (progress_) progress_->finish();
     }
     if (robot_) robot_->shutdown(clock_ ? clock_->now() : 0.0);
@@ -128,12 +178,28 @@ RunSummary Session::run() {
 // (in Lua or in long C++ work, past the grace period): it is not in a control
 // tick or a recorder call then, which run between resumes; the robot calls a
 // binding makes are short and bounded by the devices' own timeouts.
+// Unless it is inside a plugin call, holding the devices' lock, maybe mid-packet:
+// a healthy call ends within the devices' timeouts, so the lock is awaited up to
+// kDeviceWait; one stuck in C code never lets go, and the prepared last resort
+// (whole packets, no lock) goes out instead. Held until the exit; no other wait: no deadlock.
 void Session::last_resort(const std::string& why, double wall_start) {
+    constexpr auto kDeviceWait = std::chrono::seconds(1);
     log_error("kernel", why);
-    if (robot_) robot_->safe_state(clock_ ? clock_->now() : 0.0);
+    std::string how = why;
+    std::unique_lock<std::recursive_timed_mutex> devices;
+    if (robot_) {
+        devices = std::unique_lock(robot_->devices_mutex(), std::defer_lock);
+        if (devices.try_lock_for(kDeviceWait)) {
+            robot_->safe_state(clock_ ? clock_->now() : 0.0);
+        } else {
+            how += "; the script's thread held the devices (stuck inside a plugin call), so the prepared "
+                   "last-resort safe state went out instead (" + std::to_string(run_last_resort()) + " actions)";
+            log_error("kernel", how);
+        }
+    }
     if (recorder_ && recorder_->has_dataset()) {
         (void)recorder_->flush();
-        write_run_info(Status(ErrorCode::cancelled, why), wall_start);
+        write_run_info(Status(ErrorCode::cancelled, how), wall_start);
     }
     std::fflush(stderr);
     std::_Exit(130);

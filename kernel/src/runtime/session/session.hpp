@@ -74,6 +74,9 @@ public:
 
     // -------- used by the Lua bindings --------
     static Session& of(lua_State* L);
+    // After a Lua panic or std::terminate in a run: the prepared last resort
+    // (no heap, no Lua), then run-info if the heap still serves; exit 134.
+    [[noreturn]] static void end_in_crash(ErrorCode code, const char* what, const char* detail) noexcept;
     double now() const { return clock_->now(); }
     // Round a duration to the virtual clock's grid (Clock::quantize).
     double quantize(double t) const { return clock_ ? clock_->quantize(t) : t; }
@@ -136,8 +139,10 @@ private:
     Status open_dataset();
     void run_cleanup();
     void write_run_info(const Status& status, double wall_start);
-    // The cancel watchdog's way out (its own thread): safe state, run-info, exit 130.
+    // The cancel watchdog's way out (its own thread): safe state (the prepared
+    // last resort if the script's thread holds the devices), run-info, exit 130.
     [[noreturn]] void last_resort(const std::string& why, double wall_start);
+    double wall_start_ = 0.0;  // of the current run(), for run-info on the way out
 
     // Declared in the order they depend on each other: the scheduler (whose
     // Lua tasks hold references into the sandbox) goes first, the robot last.

@@ -237,6 +237,7 @@ Status DynamixelActuator::on_activate() {
 }
 
 Status DynamixelActuator::on_deactivate() {
+    rearm_watchdog_ = false;
     if (!bus_ || !config_.torque_off_on_deactivate) return {};
     Status first;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
@@ -398,6 +399,14 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
         if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok()) return st;
     for (auto i : enable_after)
         if (auto st = set_torque(i, true); !st.ok()) failed(std::move(st));
+    // Control has resumed after a rest (invoke "rest"): the goals are out, now
+    // the servos guard themselves again.
+    if (rearm_watchdog_ && first.ok()) {
+        for (std::size_t i = 0; i < ids_.size() && first.ok(); ++i)
+            if (auto st = set_watchdog(i, config_.bus_watchdog_ms); !st.ok()) failed(std::move(st));
+        rearm_watchdog_ = !first.ok();
+        if (!rearm_watchdog_) log_debug(kLog, "Bus Watchdog re-armed: control has resumed");
+    }
     return first;
 }
 
@@ -443,14 +452,36 @@ Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueM
         if (auto st = reboot_joint(*i); !st.ok()) return st;
         return ValueMap{{"joint", config_.joints[*i].name}, {"rebooted", true}};
     }
-    if (verb == "watchdog") {
-        // {ms = N}: every servo's Bus Watchdog (0 = off), e.g. off before the
-        // script blocks for long (rs.analyse) and back on after.
+    if (verb == "rest") {
+        // Before long work on the script thread (rs.analyse), when no control
+        // period runs: every servo's Bus Watchdog off, so a healthy run never
+        // trips it, and back to bus_watchdog_ms by the first write after, when
+        // control resumes (a script that rolls again is guarded again).
+        if (!bus_) return Error{ErrorCode::state_error, "rest: the bus is not open (configure first)"};
+        for (std::size_t i = 0; i < ids_.size(); ++i)
+            if (auto st = set_watchdog(i, 0); !st.ok()) return st;
+        rearm_watchdog_ = config_.bus_watchdog_ms > 0;
+        return ValueMap{{"rearm_ms", static_cast<std::int64_t>(config_.bus_watchdog_ms)}};
+    }
+    if (verb == "watchdog" && args.empty()) {
+        // {}: read every servo's Bus Watchdog back (address 98), in ms; -1 = tripped.
         if (!bus_) return Error{ErrorCode::state_error, "watchdog: the bus is not open (configure first)"};
+        ValueMap out;
+        for (std::size_t i = 0; i < ids_.size(); ++i) {
+            auto now = bus_->read_value(ids_[i], addr::bus_watchdog, 1);
+            if (!now.ok()) return with_joint(i, now.status());
+            out[config_.joints[i].name] = static_cast<std::int64_t>(*now < 0 ? -1 : *now * 20);
+        }
+        return out;
+    }
+    if (verb == "watchdog") {
+        // {ms = N}: every servo's Bus Watchdog (0 = off), until changed again.
+        if (!bus_) return Error{ErrorCode::state_error, "watchdog: the bus is not open (configure first)"};
+        rearm_watchdog_ = false;
         auto it = args.find("ms");
         const auto* ms = it == args.end() ? nullptr : std::get_if<std::int64_t>(&it->second);
         if (!ms || *ms < 0 || *ms > 2540)
-            return Error{ErrorCode::invalid_argument, "watchdog: needs {ms = 0..2540} (0 = off)"};
+            return Error{ErrorCode::invalid_argument, "watchdog: needs {ms = 0..2540} (0 = off), or {} to read it back"};
         for (std::size_t i = 0; i < ids_.size(); ++i)
             if (auto st = set_watchdog(i, static_cast<int>(*ms)); !st.ok()) return st;
         return ValueMap{{"ms", *ms}};
@@ -475,7 +506,7 @@ Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueM
                         {"bytes_sent", static_cast<std::int64_t>(s.bytes_sent)},
                         {"bytes_received", static_cast<std::int64_t>(s.bytes_received)}};
     }
-    return Error{ErrorCode::unsupported, "no operation '" + verb + "' (dynamixel knows: reboot, ping, watchdog, statistics)"};
+    return Error{ErrorCode::unsupported, "no operation '" + verb + "' (dynamixel knows: reboot, ping, watchdog, rest, statistics)"};
 }
 
 }  // namespace rollsense::dynamixel

@@ -65,6 +65,8 @@ private:
     void arm_last_resort();
     void disarm_last_resort();
     int last_resort_slot_ = -1;
+    // Set by invoke("rest"): the next write re-arms every servo's Bus Watchdog.
+    bool rearm_watchdog_ = false;
 
     BusConfig config_;
     std::vector<JointInfo> infos_;

@@ -4,7 +4,10 @@
 // no locks, no Lua), then the signal takes its course (the previous handler,
 // or the default action: a core dump). Best effort: a bus mid-packet may
 // garble the first bytes, so the packet is sent twice. The Bus Watchdog
-// covers what this cannot (SIGKILL, power loss).
+// covers what this cannot (SIGKILL, power loss). The same packets are the
+// SDK's last resort (rollsense/last_resort.hpp), which the kernel runs on a Lua
+// panic, std::terminate, an escaping std::bad_alloc, or when its cancel
+// watchdog cannot get the bus from a stuck script thread.
 #pragma once
 
 #include <cstddef>
