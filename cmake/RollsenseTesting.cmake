@@ -8,7 +8,8 @@
 function(rollsense_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBRARIES;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE Catch2::Catch2WithMain rollsense_test_support ${ARG_LIBRARIES})
+  # rollsense_hands: the controllers the stock E-TRoll profiles name, as the program has them.
+  target_link_libraries(${name} PRIVATE Catch2::Catch2WithMain rollsense_test_support rollsense_hands ${ARG_LIBRARIES})
   rollsense_warnings(${name})
   if(ARG_DEPENDS)
     add_dependencies(${name} ${ARG_DEPENDS})

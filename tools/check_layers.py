@@ -6,6 +6,7 @@ The layers, bottom to top (docs/architecture.md):
   data      data/                            dataset, CSV, atomic files
   hal       hal/                             Linux I/O and its fakes
   kernel    kernel/src/runtime               plugins, robot, control, session, profile, clock, Lua
+  hands     hands/                           what belongs to one hand (the E-TRoll's palm-parallel controller)
   analysis  analysis/                        features, learning, tuning, report, the pipeline
   plugins   plugins/                         sensors, actuators, classifiers
   cli       cli/                             the rollsense program
@@ -27,6 +28,7 @@ LAYERS = [  # (name, path prefix); the first prefix that matches wins
     ("kernel", "kernel/src/"),
     ("data", "data/"),
     ("hal", "hal/"),
+    ("hands", "hands/"),
     ("analysis", "analysis/"),
     ("plugins", "plugins/"),
     ("cli", "cli/"),
@@ -37,9 +39,10 @@ ALLOWED = {
     "data": {"sdk", "data"},
     "hal": {"sdk", "hal"},
     "kernel": {"sdk", "data", "kernel"},
+    "hands": {"sdk", "data", "kernel", "hands"},
     "analysis": {"sdk", "data", "kernel", "analysis"},
     "plugins": {"sdk", "data", "hal", "plugins"},
-    "cli": {"sdk", "data", "hal", "kernel", "analysis", "cli"},
+    "cli": {"sdk", "data", "hal", "kernel", "hands", "analysis", "cli"},
 }
 
 KERNEL_LINE_BUDGET = 6000

@@ -182,12 +182,12 @@ Status Mpl115aSensor::on_configure(const ParamSet& params, const PluginContext& 
 
     std::vector<std::string> names_in_order;
     for (const auto& ch : channels_) names_in_order.push_back(ch.name);
-    for (const auto& spec : params.get_string_list("inject")) {
+    for (const auto& text : params.get_string_list("inject")) {
         Injection inj;
-        if (auto st = parse_injection(spec, names_in_order, inj.channel, inj.fault, inj.after); !st.ok()) return st;
+        if (auto st = parse_injection(text, names_in_order, inj.channel, inj.fault, inj.after); !st.ok()) return st;
         if (!modelled_chip(channels_[inj.channel].select))
             return {ErrorCode::invalid_argument,
-                    "inject '" + spec + "': faults go into the modelled strip, which this sensor did not attach; use "
+                    "inject '" + text + "': faults go into the modelled strip, which this sensor did not attach; use "
                     "bus = 'fake:<name>' with simulate = true"};
         injections_.push_back(inj);
     }
