@@ -195,4 +195,24 @@ std::string format_sample(double value) {
     return std::string(buf, static_cast<std::size_t>(n));
 }
 
+Result<KeyValues> read_key_values(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) return KeyValues{};
+    auto reader = Reader::open(file);
+    if (!reader) return reader.error();
+    auto key = reader->column("key");
+    if (!key) return key.error();
+    auto value = reader->column("value");
+    if (!value) return value.error();
+    KeyValues out;
+    std::vector<std::string> fields;
+    for (;;) {
+        auto more = reader->next(fields);
+        if (!more) return more.error();
+        if (!*more) break;
+        out.emplace_back(fields[*key], fields[*value]);
+    }
+    return out;
+}
+
 }  // namespace rollsense::csv

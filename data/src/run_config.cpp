@@ -14,25 +14,7 @@ std::string format_run_config(const RunConfig& config) {
     return out;
 }
 
-Result<RunConfig> read_run_config(const fs::path& dir) {
-    std::error_code ec;
-    if (!fs::exists(dir / kRunConfigFile, ec)) return RunConfig{};
-    auto reader = csv::Reader::open(dir / kRunConfigFile);
-    if (!reader) return reader.error();
-    auto key = reader->column("key");
-    if (!key) return key.error();
-    auto value = reader->column("value");
-    if (!value) return value.error();
-    RunConfig config;
-    std::vector<std::string> f;
-    for (;;) {
-        auto more = reader->next(f);
-        if (!more) return more.error();
-        if (!*more) break;
-        config.emplace_back(f[*key], f[*value]);
-    }
-    return config;
-}
+Result<RunConfig> read_run_config(const fs::path& dir) { return csv::read_key_values(dir / kRunConfigFile); }
 
 std::vector<std::string> run_config_differences(const RunConfig& recorded, const RunConfig& now) {
     std::map<std::string, std::pair<const std::string*, const std::string*>> both;

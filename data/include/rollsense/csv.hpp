@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rollsense/status.hpp"
@@ -62,6 +63,11 @@ Result<double> parse_number(std::string_view text, const std::string& where);
 // Parse a whole number field in [min, max] / [0, max]; `where` goes in the error.
 Result<std::int64_t> parse_integer(std::string_view text, std::int64_t min, std::int64_t max, const std::string& where);
 Result<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t max, const std::string& where);
+
+// The "key,value" files of a dataset (run-info.csv, run-config.csv), in file
+// order. A missing file reads as empty: older datasets have none.
+using KeyValues = std::vector<std::pair<std::string, std::string>>;
+Result<KeyValues> read_key_values(const std::filesystem::path& file);
 
 // Quote a field if it needs quoting.
 std::string escape(std::string_view field);

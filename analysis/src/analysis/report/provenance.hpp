@@ -8,12 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/status.hpp"
 
 namespace rollsense::report {
 
-using KeyValues = std::vector<std::pair<std::string, std::string>>;
+using KeyValues = csv::KeyValues;
 
 // run-info.csv as written by the recorder; a dataset without one (made by
 // hand) gives an empty list. A malformed file is an error naming its line.
