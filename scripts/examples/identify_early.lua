@@ -9,8 +9,9 @@
 -- 1. Trains one model per fraction f of the nominal roll (10 %, 20 %, ... 100 %)
 --    on the prefixes of the training recording (rs.prefix_models).
 -- 2. For each object and speed, `runs` times: an early-stopping roll (the
---    finger holds as soon as the rule fires) and, beside it, a full roll of the
---    same object identified by the full-roll model (the reference accuracy).
+--    finger holds as soon as the rule fires) and the same trial again (same id,
+--    same seed) rolled fully and identified by the full-roll model (the
+--    reference accuracy, paired).
 -- The rule: at every new sample, the model of the largest trained fraction
 -- the recording has reached classifies the recording so far (the series rule,
 -- with the contact it has seen so far); stop when its top score is ≥
@@ -109,9 +110,10 @@ local function full_roll(speed)
   return a and a.object, seconds
 end
 
-local function trial(object, speed, repetition, kind, body)
-  rs.trial{ object = object, speed = tonumber(speed), repetition = repetition,
-            id = string.format("%s-%s-v%s-r%03d", kind, object, speed, repetition) }
+-- The early and the full roll are the same trial (the same id, so the same
+-- seed: the same object placement and noise), so the two answers are paired.
+local function trial(object, speed, repetition, body)
+  rs.trial{ object = object, speed = tonumber(speed), repetition = repetition }
   etroll.open()
   etroll.clamp()
   local results = table.pack(body())
@@ -131,9 +133,9 @@ for _, object in ipairs(objects) do
   for _, speed in ipairs(speeds) do
     local nominal = trained.nominal[speed].samples
     for repetition = 1, runs do
-      local e_answer, stopped, e_s, e_f = trial(object, speed, repetition, "early",
+      local e_answer, stopped, e_s, e_f = trial(object, speed, repetition,
         function() return early_roll(speed, nominal) end)
-      local f_answer, f_s = trial(object, speed, repetition, "full", function() return full_roll(speed) end)
+      local f_answer, f_s = trial(object, speed, repetition, function() return full_roll(speed) end)
       csv[#csv + 1] = string.format("%s,%s,%d,%s,%s,%.3f,%.3f,%s,%.3f", object, speed, repetition,
         e_answer or "", stopped and "true" or "false", e_s, e_f, f_answer or "", f_s)
       by_speed[speed] = by_speed[speed] or { n = 0, early_ok = 0, full_ok = 0, early_s = 0, full_s = 0, stopped = 0 }
