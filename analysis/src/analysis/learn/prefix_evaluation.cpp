@@ -59,6 +59,22 @@ Result<std::vector<TrialData>> load_trials(const DatasetReader& ds, const std::f
     return data;
 }
 
+// A dataset with the channels a series classifier reads, and their column indices.
+struct SeriesDataset {
+    DatasetReader reader;
+    std::vector<std::string> channels;
+    std::vector<std::size_t> channel_idx;
+};
+Result<SeriesDataset> open_series_dataset(const std::filesystem::path& dataset_dir) {
+    auto ds = DatasetReader::open(dataset_dir);
+    if (!ds) return ds.error();
+    auto channels = series_channels(ds->info());
+    if (!channels) return channels.error();
+    auto channel_idx = series::channel_indices(ds->info(), *channels);
+    if (!channel_idx) return channel_idx.error();
+    return SeriesDataset{std::move(*ds), std::move(*channels), std::move(*channel_idx)};
+}
+
 Status check_fractions(const std::vector<double>& fractions) {
     if (fractions.empty()) return Error{ErrorCode::invalid_argument, "prefixes: no fraction given"};
     for (double f : fractions)
@@ -98,12 +114,11 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
     if (dataset_dir.empty() || !std::filesystem::is_directory(dataset_dir, ec))
         return Error{ErrorCode::invalid_argument, "prefixes need the recorded trials, but '" + dataset_dir.string() +
                                                       "' is not a dataset folder (a features CSV has no prefixes)"};
-    auto ds = DatasetReader::open(dataset_dir);
-    if (!ds) return ds.error();
-    auto channels = series_channels(ds->info());
-    if (!channels) return channels.error();
-    auto channel_idx = series::channel_indices(ds->info(), *channels);
-    if (!channel_idx) return channel_idx.error();
+    auto opened = open_series_dataset(dataset_dir);
+    if (!opened) return opened.error();
+    const DatasetReader* ds = &opened->reader;
+    const std::vector<std::string>* channels = &opened->channels;
+    const std::vector<std::size_t>* channel_idx = &opened->channel_idx;
 
     // The evaluation's trials, loaded once.
     std::map<std::string, const TrialRecord*> record_of;
@@ -280,12 +295,11 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
         return Error{ErrorCode::unsupported, "prefix models: classifier '" + classifier.spec.name +
                                                  "' takes features; prefix models are implemented for series "
                                                  "classifiers (e.g. minirocket)"};
-    auto ds = DatasetReader::open(dataset_dir);
-    if (!ds) return ds.error();
-    auto channels = series_channels(ds->info());
-    if (!channels) return channels.error();
-    auto channel_idx = series::channel_indices(ds->info(), *channels);
-    if (!channel_idx) return channel_idx.error();
+    auto opened = open_series_dataset(dataset_dir);
+    if (!opened) return opened.error();
+    const DatasetReader* ds = &opened->reader;
+    const std::vector<std::string>* channels = &opened->channels;
+    const std::vector<std::size_t>* channel_idx = &opened->channel_idx;
     const std::vector<TrialRecord> records(ds->trials().begin(), ds->trials().end());
     if (records.empty()) return Error{ErrorCode::invalid_argument, dataset_dir.string() + ": no trials to train on"};
     auto loaded = load_trials(*ds, dataset_dir, records, inputs.threads);
