@@ -22,7 +22,7 @@
 -- one row per roll (columns in docs/identification.md).
 --
 -- Settings (--set key=value): train (required: a dataset folder), runs (5),
--- objects (all nine), speeds (10,15,20), threshold (0.5), k (3), from (0.5: no
+-- objects (all nine), speeds (10,15,20), threshold (0.4), k (3), from (0.5: no
 -- stop before this share of the nominal roll), classifier (minirocket).
 local rs = require "rollsense"
 local etroll = require "etroll"
@@ -41,7 +41,7 @@ end
 local runs = math.tointeger(rs.setting("runs", 5)) or error("--set runs=N expects a whole number")
 local objects = list(rs.setting("objects", "C1,C2,C3,S1,S2,P1,P2,H1,H2"))
 local speeds = list(rs.setting("speeds", "10,15,20"))
-local threshold = tonumber(rs.setting("threshold", 0.5)) or error("--set threshold=X expects a number")
+local threshold = tonumber(rs.setting("threshold", 0.4)) or error("--set threshold=X expects a number")
 local k_needed = math.tointeger(rs.setting("k", 3)) or error("--set k=N expects a whole number")
 -- No stop before this share of the nominal roll: the earliest prefix models are
 -- sure and wrong too often (their cross-validated accuracy is below 50 % up to
