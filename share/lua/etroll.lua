@@ -102,6 +102,10 @@ end
 
 -- Step 3: roll and record at `speed` profile-velocity units. Returns the
 -- number of samples recorded.
+-- opts.stop_when = fn: called once per control period while the finger rolls;
+-- when it returns true the finger holds where it is and the roll ends early
+-- (identification before the roll ends, scripts/examples/identify_early.lua).
+-- The second result is then true.
 function M.roll(speed, opts)
   joints()
   local c = M.config
@@ -113,12 +117,26 @@ function M.roll(speed, opts)
   end
   rs.record_start()
   rs.wait(margin)
-  sensing:move(opts.to or c.sensing_end, {
+  local goal = opts.to or c.sensing_end
+  local motion = {
     velocity = speed * M.DXL_VELOCITY_UNIT_DPS,
     acceleration = speed * M.DXL_VELOCITY_UNIT_DPS / (c.roll_ramp_ms / 1000),
-  })
+  }
+  local stopped = false
+  if opts.stop_when then
+    motion.wait = false
+    sensing:move(goal, motion)
+    local sweep_ms = 1000 * math.abs(goal - sensing:position()) / motion.velocity
+    rs.wait_until(function()
+      if opts.stop_when() then stopped = true return true end
+      return not sensing:moving() and math.abs(sensing:position() - goal) < 0.5
+    end, 2 * sweep_ms + 2000)
+    if stopped then sensing:hold() else sensing:wait() end
+  else
+    sensing:move(goal, motion)
+  end
   rs.wait(margin)
-  return rs.record_stop()
+  return rs.record_stop(), stopped
 end
 
 -- Step 4: return, still clamped, so the object does not swing.

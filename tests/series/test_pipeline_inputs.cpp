@@ -13,27 +13,18 @@
 #include "analysis/series/series_table.hpp"
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 #include "rollsense/minirocket/minirocket.hpp"
+#include "classifier_factory.hpp"
 #include "stock_run.hpp"
 
 using namespace rollsense;
 using namespace rollsense::learn;
 using rollsense::testing::Json;
 using rollsense::testing::JsonReader;
+using rollsense::testing::factory_of;
 using rollsense::testing::stock_run;
 using rollsense::testing::stock_run_dir;
 
 namespace {
-
-template <typename T>
-ClassifierFactory factory_of(ParamSchema schema) {
-    return [schema](const ParamSet& raw) -> Result<ClassifierPtr> {
-        auto params = validate_params(schema, raw.values(), "test");
-        if (!params) return params.error();
-        auto c = std::make_shared<T>();
-        if (auto s = c->on_configure(*params, {}); !s) return s;
-        return ClassifierPtr(c);
-    };
-}
 
 PreparedClassifier trees() {
     ParamSet p;

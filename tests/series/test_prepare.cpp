@@ -213,6 +213,24 @@ TEST_CASE("a prefix: the contact visible so far, and the full length equals no p
     CHECK(before.reason.find("within the prefix") != std::string::npos);
 }
 
+TEST_CASE("open_end: a recording still going is prepared as the prefix of the same length", "[series]") {
+    const auto t = make_trial({.noise = 0.005, .seed = 9});
+    // The recording so far, 100 samples, the contact still running at its end.
+    auto so_far = t;
+    so_far.time.resize(100);
+    so_far.valid.resize(100);
+    for (auto& ch : so_far.channels) ch.resize(100);
+    const auto closed = prepare(so_far);
+    CHECK(closed.refusal == Refusal::incomplete_contact);  // a finished recording may not end mid-contact
+    SeriesSettings live;
+    live.open_end = true;
+    const auto open = prepare(so_far, live);
+    REQUIRE(open.ok);
+    SeriesSettings prefix;
+    prefix.prefix = 100;
+    CHECK(open.values == prepare(t, prefix).values);  // what the prefix models were trained on
+}
+
 TEST_CASE("roll_relative resamples the whole recording, and differs from the contact rule", "[series]") {
     const auto t = make_trial({});
     SeriesSettings roll;

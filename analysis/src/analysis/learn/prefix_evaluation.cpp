@@ -44,6 +44,46 @@ std::size_t prefix_samples(double fraction, double nominal, std::size_t samples)
     return std::min(n, samples);
 }
 
+// The recordings of `records`, loaded on `threads` threads; the first error names the file.
+Result<std::vector<TrialData>> load_trials(const DatasetReader& ds, const std::filesystem::path& dataset_dir,
+                                           const std::vector<TrialRecord>& records, unsigned threads) {
+    std::vector<TrialData> data(records.size());
+    std::vector<Status> errors(records.size());
+    parallel_for(records.size(), threads, [&](std::size_t i) {
+        auto d = ds.load(records[i]);
+        if (!d) errors[i] = Status(d.error()).with_context((dataset_dir / records[i].file).string());
+        else data[i] = std::move(d).value();
+    });
+    for (const auto& st : errors)
+        if (!st) return st.error();
+    return data;
+}
+
+// A dataset with the channels a series classifier reads, and their column indices.
+struct SeriesDataset {
+    DatasetReader reader;
+    std::vector<std::string> channels;
+    std::vector<std::size_t> channel_idx;
+};
+Result<SeriesDataset> open_series_dataset(const std::filesystem::path& dataset_dir) {
+    auto ds = DatasetReader::open(dataset_dir);
+    if (!ds) return ds.error();
+    auto channels = series_channels(ds->info(), dataset_dir.string());
+    if (!channels) return channels.error();
+    auto channel_idx = series::channel_indices(ds->info(), *channels);
+    if (!channel_idx) return channel_idx.error();
+    return SeriesDataset{std::move(*ds), std::move(*channels), std::move(*channel_idx)};
+}
+
+Status check_fractions(const std::vector<double>& fractions) {
+    if (fractions.empty()) return Error{ErrorCode::invalid_argument, "prefixes: no fraction given"};
+    for (double f : fractions)
+        if (!(f > 0.0 && f <= 1.0))
+            return Error{ErrorCode::invalid_argument,
+                         "prefixes: fraction " + std::to_string(f) + " is outside (0, 1] (1 = the whole roll)"};
+    return {};
+}
+
 }  // namespace
 
 std::vector<NominalLength> nominal_lengths(const std::vector<TrialRecord>& records,
@@ -67,23 +107,18 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                                    const std::vector<PreparedClassifier>& classifiers,
                                    const features::FeatureSettings& feature_settings, const InputOptions& inputs,
                                    const PrefixOptions& options) {
-    if (options.fractions.empty()) return Error{ErrorCode::invalid_argument, "prefixes: no fraction given"};
-    for (double f : options.fractions)
-        if (!(f > 0.0 && f <= 1.0))
-            return Error{ErrorCode::invalid_argument,
-                         "prefixes: fraction " + std::to_string(f) + " is outside (0, 1] (1 = the whole roll)"};
+    if (auto st = check_fractions(options.fractions); !st) return st.error();
     if (classifiers.size() != ev.classifiers.size())
         return Error{ErrorCode::invalid_argument, "prefixes: the classifiers are not the evaluation's"};
     std::error_code ec;
     if (dataset_dir.empty() || !std::filesystem::is_directory(dataset_dir, ec))
         return Error{ErrorCode::invalid_argument, "prefixes need the recorded trials, but '" + dataset_dir.string() +
                                                       "' is not a dataset folder (a features CSV has no prefixes)"};
-    auto ds = DatasetReader::open(dataset_dir);
-    if (!ds) return ds.error();
-    auto channels = series_channels(ds->info(), dataset_dir.string());
-    if (!channels) return channels.error();
-    auto channel_idx = series::channel_indices(ds->info(), *channels);
-    if (!channel_idx) return channel_idx.error();
+    auto opened = open_series_dataset(dataset_dir);
+    if (!opened) return opened.error();
+    const DatasetReader* ds = &opened->reader;
+    const std::vector<std::string>* channels = &opened->channels;
+    const std::vector<std::size_t>* channel_idx = &opened->channel_idx;
 
     // The evaluation's trials, loaded once.
     std::map<std::string, const TrialRecord*> record_of;
@@ -97,15 +132,9 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                                                    "/manifest.csv (evaluation and dataset out of step?)"};
         records.push_back(*it->second);
     }
-    std::vector<TrialData> data(n);
-    std::vector<Status> load_errors(n);
-    parallel_for(n, options.threads, [&](std::size_t i) {
-        auto d = ds->load(records[i]);
-        if (!d) load_errors[i] = Status(d.error()).with_context((dataset_dir / records[i].file).string());
-        else data[i] = std::move(d).value();
-    });
-    for (const auto& st : load_errors)
-        if (!st) return st.error();
+    auto loaded = load_trials(*ds, dataset_dir, records, options.threads);
+    if (!loaded) return loaded.error();
+    const std::vector<TrialData>& data = *loaded;
 
     PrefixCurves out;
     out.fractions = options.fractions;
@@ -254,6 +283,82 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
         for (const auto& p : curve.points)
             if (p.accuracy() >= 0.95 * full && (!best || p.fraction < *best)) best = p.fraction;
         curve.fraction_95 = best;
+    }
+    return out;
+}
+
+Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_dir,
+                                         const PreparedClassifier& classifier, const InputOptions& inputs,
+                                         const std::vector<double>& fractions) {
+    if (auto st = check_fractions(fractions); !st) return st.error();
+    if (classifier.input != ClassifierInput::series)
+        return Error{ErrorCode::unsupported, "prefix models: classifier '" + classifier.spec.name +
+                                                 "' takes features; prefix models are implemented for series "
+                                                 "classifiers (e.g. minirocket)"};
+    auto opened = open_series_dataset(dataset_dir);
+    if (!opened) return opened.error();
+    const DatasetReader* ds = &opened->reader;
+    const std::vector<std::string>* channels = &opened->channels;
+    const std::vector<std::size_t>* channel_idx = &opened->channel_idx;
+    const std::vector<TrialRecord> records(ds->trials().begin(), ds->trials().end());
+    if (records.empty()) return Error{ErrorCode::invalid_argument, dataset_dir.string() + ": no trials to train on"};
+    auto loaded = load_trials(*ds, dataset_dir, records, inputs.threads);
+    if (!loaded) return loaded.error();
+    const std::vector<TrialData>& data = *loaded;
+
+    PrefixModels out;
+    out.nominal = nominal_lengths(records, data);
+    std::map<std::string, double> nominal_samples;
+    for (const auto& nl : out.nominal) nominal_samples[nl.speed] = nl.samples;
+    std::set<std::string> objects;
+    for (const auto& r : records) objects.insert(r.info.object);
+    const std::vector<std::string> class_names(objects.begin(), objects.end());
+
+    for (double f : fractions) {
+        std::vector<std::vector<double>> values(records.size());
+        std::vector<Status> errors(records.size());
+        parallel_for(records.size(), inputs.threads, [&](std::size_t i) {
+            series::SeriesSettings s = inputs.series;
+            const std::size_t keep = prefix_samples(f, nominal_samples.at(records[i].info.speed), data[i].samples());
+            s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
+            auto p = series::prepare_series(data[i], *channel_idx, s);
+            if (!p) errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
+            else if (p->ok) values[i] = std::move(p->values);
+        });
+        for (const auto& st : errors)
+            if (!st) return st.error();
+        FeatureTable table;
+        table.channel_names = *channels;
+        table.series_length = inputs.series.length;
+        table.class_names = class_names;
+        PrefixModel pm;
+        pm.fraction = f;
+        std::set<int> classes_seen;
+        for (std::size_t i = 0; i < records.size(); ++i) {
+            if (values[i].empty()) {
+                ++pm.refused;
+                continue;
+            }
+            const int y = static_cast<int>(
+                std::lower_bound(class_names.begin(), class_names.end(), records[i].info.object) - class_names.begin());
+            table.x.insert(table.x.end(), values[i].begin(), values[i].end());
+            table.y.push_back(y);
+            classes_seen.insert(y);
+            ++table.rows;
+        }
+        pm.trained = table.rows;
+        if (classes_seen.size() < 2) {  // too early in the roll to tell objects apart: no model
+            if (f >= 1.0)
+                return Error{ErrorCode::invalid_argument,
+                             "prefix models: the series rule accepts whole trials of fewer than two objects in " +
+                                 dataset_dir.string() + "; record more objects"};
+            out.models.push_back(std::move(pm));
+            continue;
+        }
+        auto model = train_classifier(table, classifier.factory, classifier.spec.params);
+        if (!model) return Status(model.error()).with_context("prefix model at " + std::to_string(f));
+        pm.model = std::move(model).value();
+        out.models.push_back(std::move(pm));
     }
     return out;
 }

@@ -27,4 +27,21 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                                    const features::FeatureSettings& feature_settings, const InputOptions& inputs,
                                    const PrefixOptions& options);
 
+// Models for identification before the roll ends (scripts/examples/identify_early.lua):
+// for each fraction, `classifier` (a series classifier) trained on the prefix of
+// every trial of the dataset that the series rule accepts at that fraction.
+struct PrefixModel {
+    double fraction = 1.0;
+    std::size_t trained = 0;  // prefixes trained on
+    std::size_t refused = 0;  // prefixes the series rule refused (e.g. no contact yet)
+    ClassifierPtr model;      // empty when the accepted prefixes show fewer than two objects
+};
+struct PrefixModels {
+    std::vector<NominalLength> nominal;  // what the fractions are fractions of, per speed
+    std::vector<PrefixModel> models;     // in the order of `fractions`
+};
+Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_dir,
+                                         const PreparedClassifier& classifier, const InputOptions& inputs,
+                                         const std::vector<double>& fractions);
+
 }  // namespace rollsense::learn

@@ -287,11 +287,14 @@ void push_prediction(lua_State* L, const Classifier& clf, const Prediction& p) {
 // A series model (minirocket) identifies from the recording prepared by the
 // one series rule, with the settings it was trained with: the documented
 // defaults, or clf:identify{series_amplitude = "z_per_channel"}.
+// clf:identify{open_end = true} during the roll (before rs.record_stop) treats
+// the recording so far as a prefix: a contact it cuts off is not refused.
 int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
                     const std::array<std::size_t, features::kChannels>& columns) {
     series::SeriesSettings settings;
     if (lua_istable(L, 2)) {
-        check_options(L, 2, "identify", {"series_amplitude"});
+        check_options(L, 2, "identify", {"series_amplitude", "open_end"});
+        settings.open_end = opt_field_bool(L, 2, "open_end", false);
         const std::string amplitude = opt_field_string(L, 2, "series_amplitude", "");
         if (!amplitude.empty()) {
             auto a = learn::parse_amplitude(amplitude);

@@ -140,8 +140,9 @@ Result<PreparedSeries> prepare_series(const TrialData& trial, std::span<const st
                                                       " entries but the time column has " + std::to_string(total)};
 
     // The prefix only truncates: everything after it is the same rule.
-    const bool cut = settings.prefix > 0 && settings.prefix < total;
-    const std::size_t n = cut ? settings.prefix : total;
+    const bool truncated = settings.prefix > 0 && settings.prefix < total;
+    const bool cut = truncated || settings.open_end;
+    const std::size_t n = truncated ? settings.prefix : total;
     if (n < kMinSamples)
         return refused(Refusal::too_short, std::to_string(n) + " samples" + (cut ? " in the prefix" : "") + " < " +
                                                std::to_string(kMinSamples));

@@ -52,6 +52,8 @@ struct SeriesSettings {
     double max_invalid_fraction = 0.10;  // refuse a trial with more invalid samples than this
     std::size_t max_gap = 5;             // refuse a trial with a run of more invalid samples than this
     std::size_t prefix = 0;              // > 0: use only samples [0, prefix) (identification before the roll ends)
+    bool open_end = false;               // the roll is still going (live, before it ends): the recording's
+                                         // end is a cut like a prefix's, so a contact it cuts is not refused
     TimeAxis time_axis = TimeAxis::contact;
 };
 
