@@ -21,9 +21,8 @@
 -- Outputs in --out: the prefix models (prefix-fNNN.rsm) and identify-early.csv,
 -- one row per roll (columns in docs/identification.md).
 --
--- Settings (--set key=value): train (required: a dataset folder), runs (5),
--- objects (all nine), speeds (10,15,20), threshold (0.4), k (3), from (0.5: no
--- stop before this share of the nominal roll), classifier (minirocket).
+-- Settings (--set key=value): declared below (`rollsense run
+-- scripts/examples/identify_early.lua --help` lists them); train is required.
 local rs = require "rollsense"
 local etroll = require "etroll"
 
@@ -33,21 +32,27 @@ local function list(text)
   return out
 end
 
-local train = rs.setting("train", "")
-if train == "" then
-  error("identify_early: give --set train=DIR, a recording to train the prefix models on " ..
-        "(e.g. rollsense run scripts/paper_experiment.lua --seed 11 --out DIR)")
-end
-local runs = math.tointeger(rs.setting("runs", 5)) or error("--set runs=N expects a whole number")
-local objects = list(rs.setting("objects", "C1,C2,C3,S1,S2,P1,P2,H1,H2"))
-local speeds = list(rs.setting("speeds", "10,15,20"))
-local threshold = tonumber(rs.setting("threshold", 0.4)) or error("--set threshold=X expects a number")
-local k_needed = math.tointeger(rs.setting("k", 3)) or error("--set k=N expects a whole number")
--- No stop before this share of the nominal roll: the earliest prefix models are
--- sure and wrong too often (their cross-validated accuracy is below 50 % up to
--- 40 % of the roll, docs/identification.md).
-local from = tonumber(rs.setting("from", 0.5)) or error("--set from=X expects a number in (0, 1]")
-local classifier = rs.setting("classifier", "minirocket")
+rs.settings{
+  train = { kind = "string", help = "a recorded dataset folder to train the prefix models on (required)" },
+  runs = { default = 5, kind = "integer", min = 1, help = "paired rolls of each object at each speed" },
+  objects = { default = "C1,C2,C3,S1,S2,P1,P2,H1,H2", kind = "objects", help = "the objects to roll" },
+  speeds = { default = "10,15,20", kind = "numbers", min = 1, help = "roll speeds (profile-velocity units)" },
+  threshold = { default = 0.4, kind = "number", min = 0, max = 1, help = "top score the prefix model must reach" },
+  k = { default = 3, kind = "integer", min = 1, help = "samples in a row the same sure answer must hold" },
+  -- The earliest prefix models are sure and wrong too often (their
+  -- cross-validated accuracy is below 50 % up to 40 % of the roll, docs/identification.md).
+  from = { default = 0.5, kind = "number", min = 0, max = 1, help = "no stop before this share of the nominal roll" },
+  classifier = { default = "minirocket", kind = "string", help = "a series classifier for the prefix models" },
+}
+
+local train = rs.setting("train")
+local runs = rs.setting("runs")
+local objects = list(rs.setting("objects"))
+local speeds = list(rs.setting("speeds"))
+local threshold = rs.setting("threshold")
+local k_needed = rs.setting("k")
+local from = rs.setting("from")
+local classifier = rs.setting("classifier")
 rs.on_cleanup(etroll.park)
 
 -- 1. The prefix models, and what their fractions are fractions of.

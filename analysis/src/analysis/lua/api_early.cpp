@@ -47,6 +47,7 @@ std::vector<double> fractions_from(lua_State* L, int opts) {
 int l_prefix_models(lua_State* L) {
     Session& s = Session::of(L);
     luaL_checktype(L, 1, LUA_TTABLE);
+    check_options(L, 1, "rs.prefix_models", {"dataset", "classifier", "fractions", "name", "series_amplitude"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.prefix_models saves models: run with --out DIR");
     const std::string dataset = opt_field_string(L, 1, "dataset", "");
     if (dataset.empty())
