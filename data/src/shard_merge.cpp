@@ -161,10 +161,11 @@ std::string listed(const std::vector<std::string>& problems, const std::string& 
 // Shards 0..N-1 of one N, each once; returns them ordered by K.
 Result<std::vector<ShardDataset>> order_shards(std::vector<ShardDataset> shards) {
     const std::size_t n = shards.front().shard.count;
+    const std::string first = shards.front().label();  // before it is moved into place
     std::vector<std::optional<ShardDataset>> by_k(n);
     for (auto& s : shards) {
         if (s.shard.count != n)
-            return refused(s.label() + " and " + shards.front().label() +
+            return refused(s.label() + " and " + first +
                            " come from different splits of a run (N = " + std::to_string(s.shard.count) + " and " +
                            std::to_string(n) + "); merge the N shards of one run");
         auto& slot = by_k[s.shard.index];
@@ -201,8 +202,8 @@ Status check_same_run(const std::vector<ShardDataset>& shards) {
                 return i < plan.size() ? "'" + plan[i] + "'" : std::string("the end of its plan");
             };
             return refused(s.label() + " planned other trials than " + first.label() + " (shard-plan.csv): trial " +
-                           std::to_string(i) + " of the run is " + at(s.plan) + " there and " + at(first.plan) +
-                           " here; the script or its settings changed between the shards");
+                           std::to_string(i) + " of the run is " + at(s.plan) + " in the one, " + at(first.plan) +
+                           " in the other; the script or its settings changed between the shards");
         }
     }
     return {};
@@ -299,6 +300,13 @@ Status check_out_folder(const fs::path& out) {
 Result<MergeSummary> merge_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
     if (dirs.empty()) return refused("no shard folders given");
     if (auto s = check_out_folder(out); !s) return s.error();
+    std::map<fs::path, fs::path> given;  // each folder once (it is locked while read)
+    for (const auto& dir : dirs) {
+        std::error_code ec;
+        const auto canonical = fs::weakly_canonical(dir, ec);
+        if (auto [it, added] = given.emplace(ec ? dir : canonical, dir); !added)
+            return refused(dir.string() + " is given twice (also as " + it->second.string() + ")");
+    }
     std::vector<ShardDataset> opened;
     for (const auto& dir : dirs) {
         auto s = open_shard(dir);
