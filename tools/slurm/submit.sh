@@ -58,6 +58,7 @@ mkdir -p "$out/logs"
 out=$(realpath "$out")
 
 export ROLLSENSE=$rollsense
+unset ROLLSENSE_SHARD_COUNT  # the array below is the whole 0-(N-1): shard.sbatch reads N from Slurm
 shards_job=$(sbatch --parsable --array="0-$((n - 1))" --output="$out/logs/%x-%A_%a.out" \
   "${sbatch_options[@]}" "$here/shard.sbatch" "$out" "$script" "$@")
 shards_job=${shards_job%%;*}  # "id;cluster" on a federation
