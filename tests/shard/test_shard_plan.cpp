@@ -9,7 +9,7 @@
 using namespace rollsense;
 namespace rt = rollsense::testing;
 
-TEST_CASE("--shard K/N: whole numbers with 0 <= K < N", "[shard]") {
+TEST_CASE("the shard K/N: whole numbers with 0 <= K < N", "[shard]") {
     auto s = parse_shard("2/4", "--shard");
     REQUIRE(s.ok());
     CHECK(s->index == 2);

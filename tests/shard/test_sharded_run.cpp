@@ -79,7 +79,7 @@ TEST_CASE("a shard stopped halfway is refused by the merge, and resumed it equal
     CHECK(rt::same_trials(dir / "uninterrupted", dir / "shard") == 18);
 }
 
-TEST_CASE("--shard is checked before anything runs", "[shard]") {
+TEST_CASE("a bad shard K/N is refused before anything runs", "[shard]") {
     rt::TempDir dir;
     for (const char* bad : {"3/3", "1/0", "x", "-1/2"}) {
         INFO(bad);
