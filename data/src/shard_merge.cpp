@@ -10,6 +10,7 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/directory_lock.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/shard.hpp"
 
 namespace rollsense {
@@ -17,11 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The run configuration a run writes beside its dataset (issue #24's
-// run-config.csv: script and profile with their digests, seed, every --set).
-// When the shards have it, it is what they must agree on, and the merged
-// dataset keeps it so that --resume on the merged dataset checks against it.
-constexpr const char* kRunConfiguration = "run-config.csv";
 // Problems listed in one refusal before the rest are only counted.
 constexpr std::size_t kProblemsShown = 10;
 // Trial files written per group commit.
@@ -127,9 +123,11 @@ Result<KeyValues> configuration(const ShardDataset& s) {
         return {};
     };
     if (auto st = add_file("dataset-info.csv"); !st) return st.error();
+    // The run configuration --resume checks (script and profile with their
+    // digests, seed, every --set): when the shards have it, it says it all.
     std::error_code ec;
-    if (fs::exists(s.dir / kRunConfiguration, ec)) {
-        if (auto st = add_file(kRunConfiguration); !st) return st.error();
+    if (fs::exists(s.dir / kRunConfigFile, ec)) {
+        if (auto st = add_file(kRunConfigFile); !st) return st.error();
         return out;
     }
     for (const char* key : {"script", "profile", "seed"}) out.emplace_back(std::string("run-info.csv ") + key, s.value(key));
@@ -353,7 +351,7 @@ Result<MergeSummary> merge_shards(const fs::path& out, const std::vector<fs::pat
         const auto k = static_cast<std::size_t>(p.shard - shards.data());
         csv::append_row(manifest, manifests[k].by_id.at(p.record->info.id));
     }
-    for (const char* name : {"dataset-info.csv", kRunConfiguration}) {
+    for (const char* name : {"dataset-info.csv", kRunConfigFile}) {
         if (!fs::exists(shards.front().dir / name, ec)) continue;
         auto bytes = read_bytes(shards.front().dir / name);
         if (!bytes) return bytes.error();

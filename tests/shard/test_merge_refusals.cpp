@@ -88,6 +88,11 @@ TEST_CASE("rollsense merge refuses shards of different configurations", "[merge]
         const auto odd = shard(dir, 1, 3, "--set speeds=20");
         refused(merge(dir / "merged", {s0, odd, s2}), dir / "merged",
                 {odd.string() + " (shard 1/3) was recorded with another configuration",
+                 "run-config.csv set.speeds: '20' vs '10'"});
+        // Datasets recorded before run-config.csv existed: the settings of run-info.csv's command line.
+        for (const auto& s : {s0, odd, s2}) fs::remove(s / "run-config.csv");
+        refused(merge(dir / "merged", {s0, odd, s2}), dir / "merged",
+                {odd.string() + " (shard 1/3) was recorded with another configuration",
                  "run-info.csv command line --set speeds: '20' vs '10'"});
     }
     SECTION("the same settings but another plan of trials (the script changed)") {
