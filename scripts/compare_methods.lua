@@ -57,6 +57,11 @@ if dataset == "" then
     end
   end
   rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))
+  local shard, shards = rs.shard()
+  if shards > 1 then  -- a part of the trials: the comparison runs on the merged dataset (docs/cluster.md)
+    rs.log(string.format("shard %d/%d: its trials are recorded; compare on the merged dataset", shard, shards))
+    return
+  end
 end
 
 local common = {

@@ -7,6 +7,9 @@
 --
 -- At the end the dataset is analysed (rs.analyse): features.csv, the evaluation
 -- (evaluation.txt, printed), a trained model (model.rsm) in the output folder.
+-- Sharded (--shard K/N: this process records every Nth trial, see docs/cluster.md)
+-- it records its trials and stops; the merged dataset is analysed after
+-- `rollsense merge`, by this script resumed on it.
 --
 -- Settings (--set key=value; `rollsense run scripts/paper_experiment.lua --help`
 -- lists them with the etroll module's): declared below, checked before the first trial.
@@ -50,7 +53,11 @@ for _, object in ipairs(objects) do
 end
 rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))
 
-if rs.setting("analyse") then
+local shard, shards = rs.shard()
+if shards > 1 then
+  rs.log(string.format("shard %d/%d: its trials are recorded; the analysis runs on the merged dataset "
+    .. "(rollsense merge, then this script with --resume on it)", shard, shards))
+elseif rs.setting("analyse") then
   etroll.rest()  -- parked, Bus Watchdog off: no control period runs while the analysis works
   local result = rs.analyse{ folds = 5, optimize = rs.setting("optimize") }
   rs.log(string.format("%d trials, %d clean; 5-fold CV accuracy %.1f %% (95 %% interval %.1f-%.1f %%)",

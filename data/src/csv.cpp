@@ -215,4 +215,11 @@ Result<KeyValues> read_key_values(const std::filesystem::path& file) {
     return out;
 }
 
+std::string format_key_values(const KeyValues& entries) {
+    std::string out;
+    append_row(out, {"key", "value"});
+    for (const auto& [k, v] : entries) append_row(out, {k, v});
+    return out;
+}
+
 }  // namespace rollsense::csv

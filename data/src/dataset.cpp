@@ -547,10 +547,7 @@ Status DatasetWriter::flush() {
 }
 
 Status DatasetWriter::write_run_info(const std::vector<std::pair<std::string, std::string>>& entries) {
-    std::string out;
-    csv::append_row(out, {"key", "value"});
-    for (const auto& [k, v] : entries) csv::append_row(out, {k, v});
-    return write_file_atomic(dir_ / "run-info.csv", out);
+    return write_file_atomic(dir_ / "run-info.csv", csv::format_key_values(entries));
 }
 
 }  // namespace rollsense

@@ -12,6 +12,7 @@
 #include "analysis/lua/script_settings.hpp"
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/shard.hpp"
 #include "runtime/session/session.hpp"
 
 namespace rollsense::cli {
@@ -35,6 +36,9 @@ options:
                         from the run that recorded it (run-config.csv)
   --seed N              run seed (per-trial seeds derive from it); default: 1,
                         or, replaying a dataset, the seed it was recorded with
+  --shard K/N           record only shard K of N (0 <= K < N): the trials whose
+                        index in the run is K mod N; the shards' datasets are
+                        joined with 'rollsense merge' (docs/cluster.md)
   --set KEY=VALUE       a setting (repeatable): a key starting with a profile
                         entry overrides it (plugin parameters:
                         devices.NAME.params.KEY, e.g. devices.tactile.params.kernel_fwhm=5);
@@ -76,11 +80,11 @@ int print_script_help(const std::vector<std::string>& positionals) {
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const std::vector<std::string> valued = {"--profile", "--out", "--seed", "--set", "--plugin-path",
+    const std::vector<std::string> valued = {"--profile", "--out", "--seed", "--shard", "--set", "--plugin-path",
                                              "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every"};
     auto pos = args.positionals(valued);
     if (args.wants_help()) return print_script_help(pos);
-    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--set", "--plugin-path", "--time-limit",
+    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--shard", "--set", "--plugin-path", "--time-limit",
                          "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
                          "--verbose", "-q", "--quiet"});
     if (pos.size() != 1) throw UsageError("expects one SCRIPT (see --help)");
@@ -95,10 +99,16 @@ int run(const std::vector<std::string>& argv) {
     if (out.empty() && o.resume) throw UsageError("--resume needs --out DIR (the dataset to continue)");
     o.out_dir = out.empty() ? default_out(o.script) : out;
     o.seed = args.unsigned_option("--seed", 1, 0, UINT64_MAX);
+    if (auto shard = args.option("--shard"); !shard.empty()) {
+        auto parsed = parse_shard(shard, "--shard");
+        if (!parsed) throw UsageError(parsed.error().message);
+        o.shard = *parsed;
+    }
     // The options that decide what is recorded: in run-config.csv and in the resume command.
     std::vector<std::pair<std::string, std::string>> deciding;
     if (!args.option("--profile").empty()) deciding.emplace_back("--profile", args.option("--profile"));
     if (!args.option("--seed").empty()) deciding.emplace_back("--seed", args.option("--seed"));
+    if (o.shard) deciding.emplace_back("--shard", o.shard->text());  // not in run-config.csv: a part of the run
     SetOptions sets;
     for (const auto& kv : args.options("--set")) {
         if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());

@@ -68,6 +68,8 @@ Result<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t max, c
 // order. A missing file reads as empty: older datasets have none.
 using KeyValues = std::vector<std::pair<std::string, std::string>>;
 Result<KeyValues> read_key_values(const std::filesystem::path& file);
+// "key,value\n" and one row per entry: the content of such a file.
+std::string format_key_values(const KeyValues& entries);
 
 // Quote a field if it needs quoting.
 std::string escape(std::string_view field);

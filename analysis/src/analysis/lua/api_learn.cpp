@@ -107,6 +107,10 @@ int l_analyse(lua_State* L) {
         return luaL_error(L, "rs.analyse: tag '%s' must be a plain name (no '/', no leading '.')", tag.c_str());
     const std::string suffix = tag.empty() ? "" : "-" + tag;
     const std::filesystem::path dataset_dir = dataset.empty() ? s.output_dir() : std::filesystem::path(dataset);
+    if (const auto& shard = s.options().shard; shard && dataset.empty())
+        return luaL_error(L, "rs.analyse: this run is shard %s and holds only its part of the trials; analyse the "
+                             "merged dataset instead (rollsense merge, docs/cluster.md): skip the analysis when "
+                             "rs.shard() returns n > 1", shard->text().c_str());
 
     learn::PipelineRequest request;
     request.input = dataset_dir;

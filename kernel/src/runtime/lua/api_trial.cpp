@@ -1,5 +1,5 @@
 // Trials and recording from Lua: rs.trial{...}, rs.trial_id{...}, rs.record_start/stop,
-// rs.save_trial, rs.end_trial, rs.has_trial (for --resume), rs.recorded().
+// rs.save_trial, rs.end_trial, rs.has_trial (for --resume and --shard), rs.shard(), rs.recorded().
 #include <algorithm>
 
 #include "rollsense/trial_id.hpp"
@@ -82,6 +82,14 @@ int l_has_trial(lua_State* L) {
     return 1;
 }
 
+// rs.shard() → k, n: this process records the trials whose index ≡ k (mod n); 0, 1 unsharded.
+int l_shard(lua_State* L) {
+    const auto shard = Session::of(L).options().shard.value_or(Shard{});
+    lua_pushinteger(L, static_cast<lua_Integer>(shard.index));
+    lua_pushinteger(L, static_cast<lua_Integer>(shard.count));
+    return 2;
+}
+
 int l_record_start(lua_State* L) {
     check(L, Session::of(L).record_start());
     return 0;
@@ -137,6 +145,7 @@ int l_recorded(lua_State* L) {
 
 void register_trials(lua_State* L) {
     static const luaL_Reg fns[] = {{"trial", l_trial},           {"trial_id", l_trial_id},     {"has_trial", l_has_trial},
+                                   {"shard", l_shard},
                                    {"record_start", l_record_start}, {"record_stop", l_record_stop},
                                    {"save_trial", l_save_trial}, {"end_trial", l_end_trial},
                                    {"recorded", l_recorded},     {nullptr, nullptr}};

@@ -96,6 +96,8 @@ Status Recorder::save_trial() {
     if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR to save trials"};
     if (recording_) return {ErrorCode::state_error, "stop recording before saving the trial"};
     if (data_.samples() == 0) return {ErrorCode::state_error, "trial '" + trial_.id + "' recorded no samples"};
+    if (plan_)
+        if (auto s = plan_->check_save(trial_.id); !s.ok()) return s;
     TrialRecord rec;
     rec.info = trial_;
     auto s = dataset_->add_trial(rec, data_);
@@ -122,6 +124,7 @@ std::size_t Recorder::trials_saved() const {
 }
 
 bool Recorder::has_trial(const std::string& id) {
+    if (plan_ && !plan_->claim(id)) return true;  // another shard records it
     if (!dataset_ || !dataset_->has_trial(id)) return false;
     ++trials_skipped_;
     return true;
@@ -129,6 +132,7 @@ bool Recorder::has_trial(const std::string& id) {
 
 void Recorder::write_run_info(const std::vector<std::pair<std::string, std::string>>& fields) {
     if (dataset_) (void)dataset_->write_run_info(fields);
+    if (dataset_ && plan_) (void)write_file_atomic(dataset_->dir() / kShardPlanFile, plan_->csv());
 }
 
 }  // namespace rollsense::runtime

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rollsense/dataset.hpp"
+#include "rollsense/shard.hpp"
 
 namespace rollsense::runtime {
 
@@ -32,6 +33,8 @@ public:
     Status open_dataset(const std::filesystem::path& dir, const DatasetInfo& info, bool resume,
                         std::size_t commit_every);
     bool has_dataset() const { return dataset_ != nullptr; }
+    // Record only one shard's trials (rollsense/shard.hpp); its plan is written with run-info.
+    void set_shard(const Shard& shard) { plan_ = std::make_unique<ShardPlan>(shard); }
 
     Status begin_trial(TrialInfo info);
     const TrialInfo& trial() const { return trial_; }
@@ -46,7 +49,8 @@ public:
     Status end_trial();
     // Make every saved trial durable and listed in the manifest.
     Status flush();
-    // Already in the dataset (a resumed run skips it; counted as skipped).
+    // Already in the dataset (a resumed run skips it; counted as skipped), or
+    // recorded by another shard.
     bool has_trial(const std::string& id);
     std::mt19937_64& trial_random() { return trial_rng_; }
 
@@ -73,6 +77,7 @@ private:
     double sample_period_;
     std::uint64_t run_seed_;
     std::unique_ptr<DatasetWriter> dataset_;
+    std::unique_ptr<ShardPlan> plan_;  // --shard: which trials are this process's
     TrialInfo trial_;
     bool trial_open_ = false;
     TrialData data_;

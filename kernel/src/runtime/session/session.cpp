@@ -97,6 +97,7 @@ Status Session::prepare() {
     clock_ = make_clock(profile_.virtual_clock);
     if (!clock_->is_virtual()) loop_timing_ = std::make_unique<LoopTiming>(1.0 / profile_.control_rate_hz);
     recorder_ = std::make_unique<Recorder>(*robot_, *clock_, profile_.sample_rate_hz, options_.seed);
+    if (options_.shard) recorder_->set_shard(*options_.shard);
 
     std::vector<fs::path> modules;
     if (!options_.script.empty()) modules.push_back(options_.script.parent_path().empty() ? fs::path(".") : options_.script.parent_path());
@@ -206,18 +207,21 @@ void Session::last_resort(const std::string& why, double wall_start) {
 }
 
 void Session::write_run_info(const Status& s, double wall_start) {
-    recorder_->write_run_info({{"date_utc", utc_now()},
-                               {"command_line", options_.command_line},
-                               {"rollsense_version", ROLLSENSE_VERSION},
-                               {"profile", profile_.path.string()},
-                               {"script", options_.script.string()},
-                               {"seed", std::to_string(options_.seed)},
-                               {"status", s.ok() ? "ok" : s.error().describe()},
-                               {"trials_saved", std::to_string(recorder_->trials_saved())},
-                               {"trials_skipped", std::to_string(recorder_->trials_skipped())},
-                               {"run_time_s", std::to_string(clock_ ? clock_->now() : 0.0)},
-                               {"wall_time_s", std::to_string(wall_seconds() - wall_start)},
-                               {"control_loop", loop_timing_ ? loop_timing_->summary().describe() : "virtual clock"}});
+    std::vector<std::pair<std::string, std::string>> fields{
+        {"date_utc", utc_now()},
+        {"command_line", options_.command_line},
+        {"rollsense_version", ROLLSENSE_VERSION},
+        {"profile", profile_.path.string()},
+        {"script", options_.script.string()},
+        {"seed", std::to_string(options_.seed)},
+        {"status", s.ok() ? "ok" : s.error().describe()},
+        {"trials_saved", std::to_string(recorder_->trials_saved())},
+        {"trials_skipped", std::to_string(recorder_->trials_skipped())},
+        {"run_time_s", std::to_string(clock_ ? clock_->now() : 0.0)},
+        {"wall_time_s", std::to_string(wall_seconds() - wall_start)},
+        {"control_loop", loop_timing_ ? loop_timing_->summary().describe() : "virtual clock"}};
+    if (options_.shard) fields.emplace_back("shard", options_.shard->text());
+    recorder_->write_run_info(fields);
 }
 
 Status Session::run_main_chunk() {
@@ -304,7 +308,8 @@ Status Session::check_output_name(const std::string& name, const std::string& wh
                 what + ": output name '" + shown + "' must be a plain file name of at most " +
                     std::to_string(kMaxName) + " letters, digits, '.', '_' or '-' (no '/', no leading '.'); " +
                     "it goes into the output folder"};
-    for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials"})
+    for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials",
+                            kShardPlanFile, kShardsFile})
         if (name == own)
             return {ErrorCode::invalid_argument,
                     what + ": '" + name + "' belongs to the dataset and cannot be written by a script; choose another name"};

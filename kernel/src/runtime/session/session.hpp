@@ -35,6 +35,7 @@ struct SessionOptions {
     std::filesystem::path out_dir;            // empty: no dataset (scripts that only move)
     std::uint64_t seed = 1;
     bool resume = false;
+    std::optional<Shard> shard;               // --shard K/N: record only this shard's trials
     Settings settings;
     std::vector<std::filesystem::path> plugin_path;  // from the command line
     std::filesystem::path share_dir;
@@ -117,7 +118,7 @@ public:
     // A file name a script may write into the output folder: a plain name
     // (letters, digits, '.', '_', '-'; no leading '.'; at most 128 bytes),
     // not one of the dataset's own files (manifest.csv, dataset-info.csv,
-    // run-info.csv, features.csv, trials). `what` names the caller.
+    // run-info.csv, features.csv, trials, shard-plan.csv, shards.csv). `what` names the caller.
     static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 

@@ -1,0 +1,101 @@
+// rollsense merge OUT SHARD...: the datasets of a sharded run joined into the
+// dataset the unsharded run records, with its features.
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include "cli/command.hpp"
+#include "cli/log_setup.hpp"
+#include "rollsense/atomic_file.hpp"
+#include "rollsense/dataset.hpp"
+#include "rollsense/features.hpp"
+#include "rollsense/csv.hpp"
+#include "rollsense/shard_merge.hpp"
+#include "analysis/report/provenance.hpp"
+
+namespace rollsense::cli {
+namespace {
+
+const char* kHelp = R"(usage: rollsense merge OUT SHARD... [options]
+
+Join the datasets of the N shards of one run (rollsense run SCRIPT --shard K/N
+--out SHARD, one process per shard: docs/cluster.md) into OUT, the dataset the
+unsharded run records with the same seed: trials/, manifest.csv (the trials in
+the run's order), dataset-info.csv (and run-config.csv when the shards have
+one) byte for byte, and features.csv with the paper's feature settings, as the
+stock script's analysis writes it. OUT also gets shards.csv (one row per
+shard: its folder, trials, date, wall time, command line) and run-info.csv
+(this merge). OUT must be new or empty.
+
+Refused, with nothing written, unless the SHARD folders are exactly the shards
+0/N ... N-1/N of one run: each finished (status ok), recorded with the same
+profile, seed, script and settings and the same plan of trials
+(shard-plan.csv), holding between them every trial of the run once. The error
+names the shard folder and the difference.
+
+Then analyse OUT as the unsharded run does: the shards' command line without
+--shard, with --out OUT --resume (every trial is found on disk, so the script
+goes straight to its analysis; printed at the end), or 'rollsense report OUT'.
+
+options:
+  --threads N           feature extraction threads (0 = all cores; results do
+                        not depend on it)
+  -v, --verbose         debug messages;   -q, --quiet   warnings and errors only)";
+
+// The shards' command line turned into the one that analyses the merged
+// dataset: without --shard, --out and --resume, then --out OUT --resume.
+std::string analyse_command(const std::string& shard_command, const std::string& out) {
+    std::istringstream in(shard_command);
+    std::string result;
+    for (std::string w; in >> w;) {
+        if (w == "--shard" || w == "--out") {
+            in >> w;  // and its value
+            continue;
+        }
+        if (w == "--resume" || w.rfind("--shard=", 0) == 0 || w.rfind("--out=", 0) == 0) continue;
+        result += (result.empty() ? "" : " ") + w;
+    }
+    return result + " --out " + out + " --resume";
+}
+
+int fail(const Error& e, int fallback) {
+    std::fprintf(stderr, "rollsense merge: %s\n", e.message.c_str());
+    return exit_code_for(e.code, fallback);
+}
+
+int run(const std::vector<std::string>& argv) {
+    Args args(argv);
+    args.reject_unknown({"--threads", "-v", "--verbose", "-q", "--quiet"});
+    const auto pos = args.positionals({"--threads"});
+    if (pos.size() < 2) throw UsageError("expects OUT and at least one SHARD folder (see --help)");
+    setup_logging(args);
+    const auto threads = static_cast<unsigned>(args.unsigned_option("--threads", 0, 0, 4096));
+    const std::filesystem::path out = pos[0];
+    const std::vector<std::filesystem::path> shards(pos.begin() + 1, pos.end());
+
+    auto merged = merge_shards(out, shards);
+    if (!merged) return fail(merged.error(), kExitConfig);
+    auto dataset = DatasetReader::open(out);
+    if (!dataset) return fail(dataset.error(), kExitFailure);
+    auto rows = features::extract_dataset(*dataset, features::FeatureSettings{}, threads);
+    if (!rows) return fail(rows.error(), kExitFailure);
+    if (auto s = features::write_features_csv(out / "features.csv", *rows); !s) return fail(s.error(), kExitFailure);
+    std::string command_line = "rollsense merge";
+    for (const auto& a : argv) command_line += " " + a;
+    const csv::KeyValues run_info{{"date_utc", report::utc_timestamp()},
+                             {"command_line", command_line},
+                             {"rollsense_version", ROLLSENSE_VERSION_STRING},
+                             {"status", "ok"},
+                             {"shards", std::to_string(merged->shards)},
+                             {"trials", std::to_string(merged->trials)}};
+    if (auto s = write_file_atomic(out / "run-info.csv", csv::format_key_values(run_info)); !s) return fail(s.error(), kExitIo);
+    std::printf("merged %zu shards: %zu trials into %s (with features.csv)\nanalyse it as the unsharded run: %s\n",
+                merged->shards, merged->trials, out.c_str(), analyse_command(merged->command_line, out.string()).c_str());
+    return kExitOk;
+}
+
+const Registration reg{{"merge", "join the datasets of a sharded run (--shard K/N) into the whole run's dataset",
+                        kHelp, &run}};
+
+}  // namespace
+}  // namespace rollsense::cli

@@ -1,0 +1,36 @@
+// `rollsense merge OUT SHARD...`: the datasets of the N shards of one run
+// (rollsense/shard.hpp) joined into the dataset the unsharded run records:
+// trials/, manifest.csv (the trials in the run's order), dataset-info.csv and,
+// when the shards have one, run-config.csv are byte-identical to it.
+//
+// Refused, with nothing written, unless the shards are exactly one run's:
+// shards 0..N-1 of one N, each finished (run-info.csv status ok), recorded with
+// one configuration (dataset-info.csv and run-config.csv, or without that file
+// the script, profile, seed and --set options of run-info.csv), with one plan
+// (shard-plan.csv), and between them every planned trial once. Each error
+// names the shard folder and the difference.
+//
+// The merged folder also gets shards.csv (one row per shard: where it came
+// from, its trials, when and how it ran; docs/dataset-format.md); run-info.csv
+// is the caller's (the merge's provenance).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense {
+
+struct MergeSummary {
+    std::size_t shards = 0;
+    std::size_t trials = 0;
+    std::string command_line;  // that recorded shard 0 (its run-info.csv)
+};
+
+// `out` must not exist or be an empty folder. The shards are locked while
+// they are read (a shard still being recorded is refused).
+Result<MergeSummary> merge_shards(const std::filesystem::path& out, const std::vector<std::filesystem::path>& shards);
+
+}  // namespace rollsense

@@ -1,0 +1,366 @@
+#include "rollsense/shard_merge.hpp"
+
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <unordered_map>
+
+#include "rollsense/atomic_file.hpp"
+#include "rollsense/csv.hpp"
+#include "rollsense/dataset.hpp"
+#include "rollsense/directory_lock.hpp"
+#include "rollsense/run_config.hpp"
+#include "rollsense/shard.hpp"
+
+namespace rollsense {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Problems listed in one refusal before the rest are only counted.
+constexpr std::size_t kProblemsShown = 10;
+// Trial files written per group commit.
+constexpr std::size_t kFilesPerCommit = 256;
+
+using csv::KeyValues;
+
+// The value of the last row named `key`, or nullptr.
+const std::string* find_value(const KeyValues& entries, std::string_view key) {
+    for (auto it = entries.rbegin(); it != entries.rend(); ++it)
+        if (it->first == key) return &it->second;
+    return nullptr;
+}
+
+struct ShardDataset {
+    fs::path dir;
+    DirectoryLock lock;  // no run writes into it while it is read
+    Shard shard;
+    KeyValues run_info;
+    std::vector<std::string> plan;
+    DatasetReader dataset;
+
+    std::string label() const { return dir.string() + " (shard " + shard.text() + ")"; }
+    std::string value(std::string_view key) const {
+        const std::string* v = find_value(run_info, key);
+        return v ? *v : std::string();
+    }
+};
+
+Error refused(const std::string& message) { return Error{ErrorCode::invalid_argument, message}; }
+
+Result<std::string> read_bytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (!in.good() && !in.eof()) return Error{ErrorCode::io_error, file.string() + ": cannot be read"};
+    if (!in.is_open()) return Error{ErrorCode::not_found, file.string() + ": cannot be opened"};
+    return bytes.str();
+}
+
+Result<ShardDataset> open_shard(const fs::path& dir) {
+    ShardDataset s;
+    s.dir = dir;
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return Error{ErrorCode::not_found, dir.string() + ": no such shard folder"};
+    auto lock = DirectoryLock::acquire(dir);
+    if (!lock) return lock.error();
+    s.lock = std::move(lock).value();
+    const fs::path run_info = dir / "run-info.csv";
+    if (!fs::exists(run_info, ec))
+        return refused(run_info.string() + " is missing: " + dir.string() + " is not the folder of a finished run " +
+                       "(a shard's run writes it when it ends)");
+    auto info = csv::read_key_values(run_info);
+    if (!info) return info.error();
+    s.run_info = std::move(info).value();
+    const std::string* shard = find_value(s.run_info, "shard");
+    if (!shard)
+        return refused(run_info.string() + ": no 'shard' row: " + dir.string() +
+                       " was recorded without --shard K/N, so it is a whole run, not a shard of one");
+    auto parsed = parse_shard(*shard, run_info.string() + ": shard");
+    if (!parsed) return parsed.error();
+    s.shard = *parsed;
+    if (const auto status = s.value("status"); status != "ok")
+        return refused(s.label() + " did not finish: its run-info.csv says status '" + status +
+                       "'; finish it with the command line in that file plus --resume, then merge");
+    auto plan = read_shard_plan(dir, s.shard.count);
+    if (!plan) return plan.error();
+    s.plan = std::move(plan).value();
+    auto dataset = DatasetReader::open(dir);
+    if (!dataset) return dataset.error();
+    s.dataset = std::move(dataset).value();
+    return s;
+}
+
+// The --set KEY=VALUE options of a command line as run-info.csv records it
+// (words joined by spaces), the last value of each key.
+std::map<std::string, std::string> set_options(const std::string& command_line) {
+    std::vector<std::string> words;
+    std::istringstream in(command_line);
+    for (std::string w; in >> w;) words.push_back(w);
+    std::map<std::string, std::string> out;
+    for (std::size_t i = 0; i < words.size(); ++i) {
+        std::string kv;
+        if (words[i] == "--set" && i + 1 < words.size())
+            kv = words[++i];
+        else if (words[i].rfind("--set=", 0) == 0)
+            kv = words[i].substr(6);
+        else
+            continue;
+        const auto eq = kv.find('=');
+        out[kv.substr(0, eq)] = eq == std::string::npos ? "" : kv.substr(eq + 1);
+    }
+    return out;
+}
+
+// What decides the trials a shard records, as "file key" → value.
+Result<KeyValues> configuration(const ShardDataset& s) {
+    KeyValues out;
+    auto add_file = [&](const char* name) -> Status {
+        auto rows = csv::read_key_values(s.dir / name);
+        if (!rows) return rows.error();
+        for (auto& [k, v] : *rows) out.emplace_back(std::string(name) + " " + k, v);
+        return {};
+    };
+    if (auto st = add_file("dataset-info.csv"); !st) return st.error();
+    // The run configuration --resume checks (script and profile with their
+    // digests, seed, every --set): when the shards have it, it says it all.
+    std::error_code ec;
+    if (fs::exists(s.dir / kRunConfigFile, ec)) {
+        if (auto st = add_file(kRunConfigFile); !st) return st.error();
+        return out;
+    }
+    for (const char* key : {"script", "profile", "seed"}) out.emplace_back(std::string("run-info.csv ") + key, s.value(key));
+    for (const auto& [k, v] : set_options(s.value("command_line")))
+        out.emplace_back("run-info.csv command line --set " + k, v);
+    return out;
+}
+
+// "what: A here, B there" for every entry that differs.
+std::vector<std::string> differences(const KeyValues& here, const KeyValues& there) {
+    std::map<std::string, std::pair<std::optional<std::string>, std::optional<std::string>>> both;
+    for (const auto& [k, v] : here) both[k].first = v;
+    for (const auto& [k, v] : there) both[k].second = v;
+    std::vector<std::string> out;
+    const auto shown = [](const std::optional<std::string>& v) { return v ? "'" + *v + "'" : std::string("(none)"); };
+    for (const auto& [k, v] : both)
+        if (v.first != v.second) out.push_back(k + ": " + shown(v.first) + " vs " + shown(v.second));
+    return out;
+}
+
+std::string listed(const std::vector<std::string>& problems, const std::string& separator) {
+    std::string out;
+    for (std::size_t i = 0; i < problems.size() && i < kProblemsShown; ++i) out += (i ? separator : "") + problems[i];
+    if (problems.size() > kProblemsShown)
+        out += separator + "... and " + std::to_string(problems.size() - kProblemsShown) + " more";
+    return out;
+}
+
+// Shards 0..N-1 of one N, each once; returns them ordered by K.
+Result<std::vector<ShardDataset>> order_shards(std::vector<ShardDataset> shards) {
+    const std::size_t n = shards.front().shard.count;
+    const std::string first = shards.front().label();  // before it is moved into place
+    std::vector<std::optional<ShardDataset>> by_k(n);
+    for (auto& s : shards) {
+        if (s.shard.count != n)
+            return refused(s.label() + " and " + first +
+                           " come from different splits of a run (N = " + std::to_string(s.shard.count) + " and " +
+                           std::to_string(n) + "); merge the N shards of one run");
+        auto& slot = by_k[s.shard.index];
+        if (slot) return refused(slot->dir.string() + " and " + s.dir.string() + " are both shard " + s.shard.text());
+        slot = std::move(s);
+    }
+    std::vector<std::string> missing;
+    for (std::size_t k = 0; k < n; ++k)
+        if (!by_k[k]) missing.push_back(Shard{k, n}.text());
+    if (!missing.empty())
+        return refused("shard " + listed(missing, ", ") + " missing: give the folders of all " + std::to_string(n) +
+                       " shards of the run (" + std::to_string(shards.size()) + " given)");
+    std::vector<ShardDataset> out;
+    for (auto& s : by_k) out.push_back(std::move(*s));
+    return out;
+}
+
+Status check_same_run(const std::vector<ShardDataset>& shards) {
+    const ShardDataset& first = shards.front();
+    auto reference = configuration(first);
+    if (!reference) return reference.error();
+    for (std::size_t k = 1; k < shards.size(); ++k) {
+        const ShardDataset& s = shards[k];
+        auto config = configuration(s);
+        if (!config) return config.error();
+        if (auto d = differences(*config, *reference); !d.empty())
+            return refused(s.label() + " was recorded with another configuration than " + first.label() + ": " +
+                           listed(d, "; ") + " (this shard's value first); the shards of a run are recorded with one "
+                           "script, profile, seed and settings: record this shard again with the others' command line");
+        if (s.plan != first.plan) {
+            std::size_t i = 0;
+            while (i < s.plan.size() && i < first.plan.size() && s.plan[i] == first.plan[i]) ++i;
+            const auto at = [i](const std::vector<std::string>& plan) {
+                return i < plan.size() ? "'" + plan[i] + "'" : std::string("the end of its plan");
+            };
+            return refused(s.label() + " planned other trials than " + first.label() + " (shard-plan.csv): trial " +
+                           std::to_string(i) + " of the run is " + at(s.plan) + " in the one, " + at(first.plan) +
+                           " in the other; the script or its settings changed between the shards");
+        }
+    }
+    return {};
+}
+
+struct ManifestRows {
+    std::vector<std::string> header;
+    std::unordered_map<std::string, std::vector<std::string>> by_id;
+};
+
+// manifest.csv as it is written, row by row, so the merged one is byte for
+// byte what the run wrote, whatever columns it has.
+Result<ManifestRows> read_manifest_rows(const fs::path& dir) {
+    auto reader = csv::Reader::open(dir / "manifest.csv");
+    if (!reader) return reader.error();
+    auto id = reader->column("trial_id");
+    if (!id) return id.error();
+    ManifestRows rows;
+    rows.header = reader->header();
+    std::vector<std::string> f;
+    for (;;) {
+        auto more = reader->next(f);
+        if (!more) return more.error();
+        if (!*more) break;
+        rows.by_id[f[*id]] = f;
+    }
+    return rows;
+}
+
+struct Placed {
+    const ShardDataset* shard = nullptr;
+    const TrialRecord* record = nullptr;
+};
+
+// Every planned trial exactly once, in the shard the plan gives it to.
+Result<std::vector<Placed>> place_trials(const std::vector<ShardDataset>& shards) {
+    const auto& plan = shards.front().plan;
+    const Shard split = shards.front().shard;
+    std::unordered_map<std::string, std::size_t> index_of;
+    for (std::size_t i = 0; i < plan.size(); ++i) index_of.emplace(plan[i], i);
+    std::vector<Placed> placed(plan.size());
+    std::vector<std::string> problems;
+    for (const auto& s : shards) {
+        for (const auto& r : s.dataset.trials()) {
+            const auto it = index_of.find(r.info.id);
+            if (it == index_of.end()) {
+                problems.push_back(s.label() + " holds trial '" + r.info.id + "', which the run's plan does not list");
+                continue;
+            }
+            const std::size_t owner = split.owner(it->second);
+            auto& p = placed[it->second];
+            if (p.shard) {
+                problems.push_back("trial '" + r.info.id + "' is duplicated: " + p.shard->label() + " and " + s.label() +
+                                   " both hold it (the plan gives it to shard " + Shard{owner, split.count}.text() + ")");
+                continue;
+            }
+            if (owner != s.shard.index)
+                problems.push_back(s.label() + " holds trial '" + r.info.id + "', which the plan gives to shard " +
+                                   Shard{owner, split.count}.text());
+            p = {&s, &r};
+        }
+    }
+    for (std::size_t i = 0; i < plan.size(); ++i)
+        if (!placed[i].shard)
+            problems.push_back("trial '" + plan[i] + "' (trial " + std::to_string(i) + " of the run) is missing from " +
+                               shards[split.owner(i)].label() +
+                               "; record it with that shard's command line plus --resume");
+    if (!problems.empty()) return refused(std::to_string(problems.size()) + " problem(s) with the shards' trials: " + listed(problems, "; "));
+    return placed;
+}
+
+std::string shards_csv(const std::vector<ShardDataset>& shards) {
+    std::string out;
+    csv::append_row(out, {"shard", "folder", "trials", "date_utc", "wall_time_s", "command_line"});
+    for (const auto& s : shards) {
+        std::error_code ec;
+        const fs::path folder = fs::absolute(s.dir, ec).lexically_normal();
+        csv::append_row(out, {s.shard.text(), (ec ? s.dir : folder).string(), std::to_string(s.dataset.trials().size()),
+                              s.value("date_utc"), s.value("wall_time_s"), s.value("command_line")});
+    }
+    return out;
+}
+
+Status check_out_folder(const fs::path& out) {
+    std::error_code ec;
+    if (!fs::exists(out, ec)) return {};
+    if (!fs::is_directory(out, ec) || !fs::is_empty(out, ec))
+        return refused(out.string() + " already exists and is not empty: merge into a new folder");
+    return {};
+}
+
+}  // namespace
+
+Result<MergeSummary> merge_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
+    if (dirs.empty()) return refused("no shard folders given");
+    if (auto s = check_out_folder(out); !s) return s.error();
+    std::map<fs::path, fs::path> given;  // each folder once (it is locked while read)
+    for (const auto& dir : dirs) {
+        std::error_code ec;
+        const auto canonical = fs::weakly_canonical(dir, ec);
+        if (auto [it, added] = given.emplace(ec ? dir : canonical, dir); !added)
+            return refused(dir.string() + " is given twice (also as " + it->second.string() + ")");
+    }
+    std::vector<ShardDataset> opened;
+    for (const auto& dir : dirs) {
+        auto s = open_shard(dir);
+        if (!s) return s.error();
+        opened.push_back(std::move(s).value());
+    }
+    auto ordered = order_shards(std::move(opened));
+    if (!ordered) return ordered.error();
+    const std::vector<ShardDataset>& shards = *ordered;
+    if (auto s = check_same_run(shards); !s) return s.error();
+    auto placed = place_trials(shards);
+    if (!placed) return placed.error();
+
+    std::vector<ManifestRows> manifests;
+    for (const auto& s : shards) {
+        auto rows = read_manifest_rows(s.dir);
+        if (!rows) return rows.error();
+        if (!manifests.empty() && rows->header != manifests.front().header)
+            return refused(s.label() + ": manifest.csv has other columns than " + shards.front().label() +
+                           "'s (recorded by another rollsense version?)");
+        manifests.push_back(std::move(rows).value());
+    }
+
+    std::error_code ec;
+    fs::create_directories(out / "trials", ec);
+    if (ec) return Error{ErrorCode::io_error, (out / "trials").string() + ": cannot create: " + ec.message()};
+    auto lock = DirectoryLock::acquire(out);
+    if (!lock) return lock.error();
+
+    // The trial files first, each checked as a reader loads it; the manifest
+    // that lists them last, so a merge that stops halfway leaves no dataset.
+    std::string manifest;
+    csv::append_row(manifest, manifests.front().header);
+    std::vector<PendingFile> batch;
+    for (const auto& p : *placed) {
+        if (auto data = p.shard->dataset.load(*p.record); !data) return data.error();
+        auto bytes = read_bytes(p.shard->dir / p.record->file);
+        if (!bytes) return bytes.error();
+        batch.push_back({out / p.record->file, std::move(bytes).value()});
+        if (batch.size() >= kFilesPerCommit) {
+            if (auto s = write_files_atomic(batch); !s) return s.error();
+            batch.clear();
+        }
+        const auto k = static_cast<std::size_t>(p.shard - shards.data());
+        csv::append_row(manifest, manifests[k].by_id.at(p.record->info.id));
+    }
+    for (const char* name : {"dataset-info.csv", kRunConfigFile}) {
+        if (!fs::exists(shards.front().dir / name, ec)) continue;
+        auto bytes = read_bytes(shards.front().dir / name);
+        if (!bytes) return bytes.error();
+        batch.push_back({out / name, std::move(bytes).value()});
+    }
+    batch.push_back({out / kShardsFile, shards_csv(shards)});
+    if (auto s = write_files_atomic(batch); !s) return s.error();
+    if (auto s = write_file_atomic(out / "manifest.csv", manifest); !s) return s.error();
+    return MergeSummary{shards.size(), placed->size(), shards.front().value("command_line")};
+}
+
+}  // namespace rollsense

@@ -1,0 +1,206 @@
+// rollsense merge refuses every set of folders that is not exactly the shards
+// of one run, names the shard folder and the difference, exits 3 and writes
+// nothing.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+#include "shard_fixture.hpp"
+
+namespace fs = std::filesystem;
+namespace rt = rollsense::testing;
+
+namespace {
+
+// 4 trials (C1 and P1 at speed 10, two runs each), no analysis: shards of
+// 2, 1 and 1 trials when split three ways.
+const std::string kSmall = "--set runs=2 --set objects=C1,P1 --set speeds=10 --set analyse=false ";
+
+fs::path shard(const rt::TempDir& dir, int k, int n = 3, const std::string& options = "") {
+    const auto out = dir / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) +
+                            (options.empty() ? "" : "-" + std::to_string(std::hash<std::string>{}(options))));
+    if (!fs::exists(out)) {
+        auto r = rt::record(out, kSmall + options + " --shard " + std::to_string(k) + "/" + std::to_string(n));
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+    }
+    return out;
+}
+
+rt::CommandRun merge(const fs::path& out, const std::vector<fs::path>& shards) {
+    std::string args = "merge " + out.string();
+    for (const auto& s : shards) args += " " + s.string();
+    return rt::run_rollsense(args);
+}
+
+std::vector<std::string> lines(const fs::path& file) {
+    std::ifstream in(file);
+    std::vector<std::string> out;
+    for (std::string l; std::getline(in, l);) out.push_back(l);
+    return out;
+}
+
+void write_lines(const fs::path& file, const std::vector<std::string>& rows) {
+    std::string text;
+    for (const auto& r : rows) text += r + "\n";
+    rt::write_file(file, text);
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
+
+// The merge was refused (exit 3), naming each of `expected`, with nothing written.
+void refused(const rt::CommandRun& r, const fs::path& out, std::initializer_list<std::string> expected) {
+    INFO(r.output);
+    CHECK(r.status == 3);
+    for (const auto& e : expected) CHECK(r.output.find(e) != std::string::npos);
+    CHECK(occurrences(r.output, "rollsense merge:") == 1);  // printed once
+    CHECK((!fs::exists(out) || fs::is_empty(out)));
+}
+
+}  // namespace
+
+TEST_CASE("the three shards of a small run merge", "[merge]") {
+    rt::TempDir dir;
+    auto r = merge(dir / "merged", {shard(dir, 0), shard(dir, 1), shard(dir, 2)});
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(rt::manifest_trials(dir / "merged") == 4);
+}
+
+TEST_CASE("rollsense merge refuses shards of different configurations", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s2 = shard(dir, 2);
+    SECTION("another seed") {
+        const auto odd = dir / "seed-12";
+        REQUIRE(rt::run_rollsense("run " + rt::paper_experiment() + " --seed 12 -q " + kSmall + "--shard 1/3 --out " +
+                                  odd.string()).status == 0);
+        refused(merge(dir / "merged", {s0, odd, s2}), dir / "merged",
+                {odd.string() + " (shard 1/3) was recorded with another configuration than " + s0.string() +
+                     " (shard 0/3)",
+                 "dataset-info.csv seed: '12' vs '11'"});
+    }
+    SECTION("another setting") {
+        const auto odd = shard(dir, 1, 3, "--set speeds=20");
+        refused(merge(dir / "merged", {s0, odd, s2}), dir / "merged",
+                {odd.string() + " (shard 1/3) was recorded with another configuration",
+                 "run-config.csv set.speeds: '20' vs '10'"});
+        // Datasets recorded before run-config.csv existed: the settings of run-info.csv's command line.
+        for (const auto& s : {s0, odd, s2}) fs::remove(s / "run-config.csv");
+        refused(merge(dir / "merged", {s0, odd, s2}), dir / "merged",
+                {odd.string() + " (shard 1/3) was recorded with another configuration",
+                 "run-info.csv command line --set speeds: '20' vs '10'"});
+    }
+    SECTION("the same settings but another plan of trials (the script changed)") {
+        const auto s1 = shard(dir, 1);
+        auto plan = lines(s1 / "shard-plan.csv");
+        std::swap(plan[1], plan[4]);  // trials 0 and 3: both shard 0's
+        write_lines(s1 / "shard-plan.csv", plan);
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {s1.string() + " (shard 1/3) planned other trials than " + s0.string() + " (shard 0/3)",
+                 "trial 0 of the run is 'P1-v10-r002' in the one, 'C1-v10-r001' in the other"});
+    }
+}
+
+TEST_CASE("rollsense merge refuses missing, duplicated and misplaced trials", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    // shard 0 holds trials 0 and 3 (C1-v10-r001, P1-v10-r002), shard 1 trial 1, shard 2 trial 2.
+    SECTION("a trial missing from its shard") {
+        auto manifest = lines(s0 / "manifest.csv");
+        REQUIRE(manifest.size() == 3);
+        manifest.pop_back();
+        write_lines(s0 / "manifest.csv", manifest);
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {"trial 'P1-v10-r002' (trial 3 of the run) is missing from " + s0.string() + " (shard 0/3)"});
+    }
+    SECTION("a trial in two shards") {
+        auto manifest = lines(s1 / "manifest.csv");
+        manifest.push_back(lines(s0 / "manifest.csv")[1]);
+        write_lines(s1 / "manifest.csv", manifest);
+        fs::copy_file(s0 / "trials/C1-v10-r001.csv", s1 / "trials/C1-v10-r001.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {"trial 'C1-v10-r001' is duplicated: " + s0.string() + " (shard 0/3) and " + s1.string() +
+                 " (shard 1/3) both hold it"});
+    }
+    SECTION("a trial in the wrong shard") {
+        auto from = lines(s0 / "manifest.csv");
+        auto to = lines(s2 / "manifest.csv");
+        to.push_back(from[1]);
+        from.erase(from.begin() + 1);
+        write_lines(s0 / "manifest.csv", from);
+        write_lines(s2 / "manifest.csv", to);
+        fs::rename(s0 / "trials/C1-v10-r001.csv", s2 / "trials/C1-v10-r001.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {s2.string() + " (shard 2/3) holds trial 'C1-v10-r001', which the plan gives to shard 0/3"});
+    }
+    SECTION("a trial the plan does not list") {
+        auto manifest = lines(s1 / "manifest.csv");
+        REQUIRE(manifest[1].rfind("C1-v10-r002,trials/C1-v10-r002.csv,", 0) == 0);
+        manifest[1] = "X9-v10-r002,trials/X9-v10-r002.csv," + manifest[1].substr(35);
+        write_lines(s1 / "manifest.csv", manifest);
+        fs::rename(s1 / "trials/C1-v10-r002.csv", s1 / "trials/X9-v10-r002.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {s1.string() + " (shard 1/3) holds trial 'X9-v10-r002', which the run's plan does not list",
+                 "trial 'C1-v10-r002' (trial 1 of the run) is missing from " + s1.string()});
+    }
+    SECTION("a damaged trial file") {
+        auto text = rt::read_file(s1 / "trials/C1-v10-r002.csv");
+        rt::write_file(s1 / "trials/C1-v10-r002.csv", text.substr(0, text.size() / 2));
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        CHECK(r.status != 0);
+        CHECK(r.output.find((s1 / "trials/C1-v10-r002.csv").string()) != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "merged/manifest.csv"));  // the manifest comes last
+    }
+}
+
+TEST_CASE("rollsense merge refuses a set of shards that is not 0..N-1 of one N", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    refused(merge(dir / "merged", {s0, s1}), dir / "merged",
+            {"shard 2/3 missing: give the folders of all 3 shards of the run (2 given)"});
+    refused(merge(dir / "merged", {s0, s1, s1}), dir / "merged", {s1.string() + " is given twice"});
+    fs::copy(s1, dir / "copy-of-1", fs::copy_options::recursive);
+    refused(merge(dir / "merged", {s0, s1, dir / "copy-of-1"}), dir / "merged",
+            {s1.string() + " and " + (dir / "copy-of-1").string() + " are both shard 1/3"});
+    const auto half = shard(dir, 1, 2);
+    refused(merge(dir / "merged", {s0, half, s2}), dir / "merged",
+            {half.string() + " (shard 1/2) and " + s0.string() + " (shard 0/3) come from different splits of a run"});
+}
+
+TEST_CASE("rollsense merge refuses what is not a finished shard, and an output folder in use", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    SECTION("a whole run") {
+        const auto whole = dir / "whole";
+        REQUIRE(rt::record(whole, kSmall).status == 0);
+        refused(merge(dir / "merged", {s0, whole, s2}), dir / "merged",
+                {(whole / "run-info.csv").string() + ": no 'shard' row: " + whole.string() +
+                 " was recorded without --shard K/N"});
+    }
+    SECTION("a folder that does not exist") {
+        refused(merge(dir / "merged", {s0, dir / "nowhere", s2}), dir / "merged",
+                {(dir / "nowhere").string() + ": no such shard folder"});
+    }
+    SECTION("a shard whose run failed") {
+        auto info = rt::read_file(s1 / "run-info.csv");
+        const auto at = info.find("status,ok");
+        REQUIRE(at != std::string::npos);
+        info.replace(at, 9, "status,io_error: disk full");
+        rt::write_file(s1 / "run-info.csv", info);
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {s1.string() + " (shard 1/3) did not finish: its run-info.csv says status 'io_error: disk full'"});
+    }
+    SECTION("an output folder that is not empty") {
+        rt::write_file(dir / "merged/notes.txt", "mine");
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        CHECK(r.status == 3);
+        CHECK(r.output.find((dir / "merged").string() + " already exists and is not empty") != std::string::npos);
+        CHECK(rt::read_file(dir / "merged/notes.txt") == "mine");
+        CHECK_FALSE(fs::exists(dir / "merged/manifest.csv"));
+    }
+}

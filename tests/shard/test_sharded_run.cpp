@@ -1,0 +1,139 @@
+// The stock experiment split over processes: three shards merged into the
+// unsharded run's dataset byte for byte, and its analysis on the merged
+// dataset equal to the unsharded run's; a shard interrupted and resumed; what
+// a script sees and may do in a shard.
+#include <catch2/catch.hpp>
+
+#include "shard_fixture.hpp"
+
+namespace fs = std::filesystem;
+namespace rt = rollsense::testing;
+
+TEST_CASE("the stock experiment split three ways merges into the unsharded run's dataset, byte for byte",
+          "[shard][merge]") {
+    rt::TempDir dir;
+    const auto whole = dir / "whole", merged = dir / "merged";
+    auto w = rt::record(whole, "--set runs=2");
+    INFO(w.output);
+    REQUIRE(w.status == 0);
+    for (int k = 0; k < 3; ++k) {
+        const auto shard = dir / ("shard-" + std::to_string(k));
+        auto r = rt::record(shard, "--set runs=2 --shard " + std::to_string(k) + "/3");
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        CHECK(rt::manifest_trials(shard) == 18);  // 9 objects x 3 speeds x 2 runs / 3
+        CHECK(fs::exists(shard / "shard-plan.csv"));
+        // A shard leaves the analysis to the merged dataset.
+        CHECK_FALSE(fs::exists(shard / "features.csv"));
+        CHECK_FALSE(fs::exists(shard / "model.rsm"));
+        CHECK(rt::read_file(shard / "run-info.csv").find("\nshard," + std::to_string(k) + "/3\n") != std::string::npos);
+    }
+
+    // In any order on the command line.
+    auto m = rt::run_rollsense("merge " + merged.string() + " " + (dir / "shard-2").string() + " " +
+                               (dir / "shard-0").string() + " " + (dir / "shard-1").string());
+    INFO(m.output);
+    REQUIRE(m.status == 0);
+    CHECK(m.output.find("merged 3 shards: 54 trials") != std::string::npos);
+    CHECK(m.output.find("--out " + merged.string() + " --resume") != std::string::npos);
+    rt::same_files(whole, merged, {"manifest.csv", "dataset-info.csv", "features.csv"});
+    CHECK(rt::same_trials(whole, merged) == 54);
+    CHECK_FALSE(fs::exists(merged / "shard-plan.csv"));
+    const auto shards = rt::read_file(merged / "shards.csv");
+    CHECK(shards.rfind("shard,folder,trials,date_utc,wall_time_s,command_line\n0/3,", 0) == 0);
+    CHECK(rt::read_file(merged / "run-info.csv").find("\nshards,3\n") != std::string::npos);
+
+    // The script resumed on the merged dataset finds every trial and analyses
+    // it as the unsharded run did: the same features and the same model.
+    auto a = rt::record(merged, "--set runs=2 --resume");
+    INFO(a.output);
+    REQUIRE(a.status == 0);
+    rt::same_files(whole, merged, {"manifest.csv", "features.csv", "model.rsm"});
+    CHECK(rt::same_trials(whole, merged) == 54);
+}
+
+TEST_CASE("a shard stopped halfway is refused by the merge, and resumed it equals an uninterrupted shard",
+          "[shard][resume]") {
+    rt::TempDir dir;
+    const std::string experiment = "--set runs=2 --set analyse=false --shard 1/3 ";
+    auto whole = rt::record(dir / "uninterrupted", experiment);
+    REQUIRE(whole.status == 0);
+    // About 10 s of robot time per trial: stopped after a few of its 18.
+    auto cut = rt::record(dir / "shard", experiment + "--time-limit 60 --commit-every 1");
+    INFO(cut.output);
+    REQUIRE(cut.status == 130);
+    const auto before = rt::manifest_trials(dir / "shard");
+    CHECK(before > 0);
+    CHECK(before < 18);
+
+    auto m = rt::run_rollsense("merge " + (dir / "merged").string() + " " + (dir / "shard").string());
+    CHECK(m.status == 3);
+    CHECK(m.output.find((dir / "shard").string() + " (shard 1/3) did not finish") != std::string::npos);
+    CHECK(m.output.find("--resume") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "merged"));
+
+    auto resumed = rt::record(dir / "shard", experiment + "--resume");
+    INFO(resumed.output);
+    REQUIRE(resumed.status == 0);
+    rt::same_files(dir / "uninterrupted", dir / "shard", {"manifest.csv", "dataset-info.csv", "shard-plan.csv"});
+    CHECK(rt::same_trials(dir / "uninterrupted", dir / "shard") == 18);
+}
+
+TEST_CASE("a bad shard K/N is refused before anything runs", "[shard]") {
+    rt::TempDir dir;
+    for (const char* bad : {"3/3", "1/0", "x", "-1/2"}) {
+        INFO(bad);
+        auto r = rt::record(dir / "out", std::string("--shard ") + bad);
+        CHECK(r.status == 2);
+        CHECK(r.output.find("--shard") != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "out"));
+    }
+}
+
+namespace {
+
+rt::CommandRun run_script(const rt::TempDir& dir, const std::string& lua, const std::string& out,
+                          const std::string& options) {
+    rt::write_file(dir / "script.lua", lua);
+    return rt::run_rollsense("run " + (dir / "script.lua").string() + " -q --no-progress " + options + " --out " +
+                             (dir / out).string());
+}
+
+}  // namespace
+
+TEST_CASE("a script sees its shard, and records only the trials of its share", "[shard][script]") {
+    rt::TempDir dir;
+    SECTION("rs.shard() returns k, n; 0, 1 unsharded") {
+        const std::string lua = "local rs = require 'rollsense'\nlocal k, n = rs.shard()\n"
+                                "rs.write_output('shard.txt', k .. '/' .. n)\n";
+        REQUIRE(run_script(dir, lua, "sharded", "--shard 2/5").status == 0);
+        REQUIRE(run_script(dir, lua, "whole", "").status == 0);
+        CHECK(rt::read_file(dir / "sharded/shard.txt") == "2/5");
+        CHECK(rt::read_file(dir / "whole/shard.txt") == "0/1");
+    }
+    SECTION("a trial recorded without asking rs.has_trial is refused in a shard") {
+        const std::string lua = "local etroll = require 'etroll'\n"
+                                "etroll.run_trial{ object = 'C1', speed = 10, repetition = 1 }\n";
+        CHECK(run_script(dir, lua, "whole", "").status == 0);
+        auto r = run_script(dir, lua, "sharded", "--shard 0/2");
+        CHECK(r.status != 0);
+        CHECK(r.output.find("did not ask rs.has_trial('C1-v10-r001')") != std::string::npos);
+    }
+    SECTION("a trial of another shard is refused") {
+        const std::string lua = "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
+                                "for r = 1, 2 do\n"
+                                "  rs.has_trial(rs.trial_id{ object = 'C1', speed = 10, repetition = r })\n"
+                                "  etroll.run_trial{ object = 'C1', speed = 10, repetition = r }\n"
+                                "end\n";
+        auto r = run_script(dir, lua, "sharded", "--shard 0/2");
+        CHECK(r.status != 0);
+        CHECK(r.output.find("'C1-v10-r002' (trial 1 of the run) belongs to shard 1/2, not to this shard 0/2") !=
+              std::string::npos);
+    }
+    SECTION("rs.analyse refuses a shard's part of the trials") {
+        const std::string lua = "local rs = require 'rollsense'\nrs.analyse{}\n";
+        auto r = run_script(dir, lua, "sharded", "--shard 1/2");
+        CHECK(r.status != 0);
+        CHECK(r.output.find("rs.analyse: this run is shard 1/2") != std::string::npos);
+    }
+}

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Submit a rollsense run to Slurm as N shards and a merge (docs/cluster.md):
+#
+#   tools/slurm/submit.sh -n N -o OUT [options] SCRIPT [run options: --seed, --set, --profile ...]
+#
+#   -n N               shards: one array task each (sbatch --array=0-(N-1))
+#   -o OUT             results: OUT/shard-K per shard, OUT/merged the merged and
+#                      analysed dataset, OUT/logs the jobs' output
+#   --rollsense PATH   the program (default: rollsense on PATH, else this
+#                      checkout's build/bin/rollsense)
+#   --sbatch OPTION    passed to both sbatch calls (repeatable), e.g.
+#                      --sbatch --partition=short --sbatch --time=10
+#
+# Submits tools/slurm/shard.sbatch as a job array and tools/slurm/merge.sbatch
+# with --dependency=afterok on it. Prints on stdout, for scripts:
+#   ROLLSENSE_SHARDS_JOB=<array job id>
+#   ROLLSENSE_MERGE_JOB=<merge job id>
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+
+usage() {
+  sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2
+  exit 2
+}
+
+n= out= rollsense= sbatch_options=()
+while (($#)); do
+  case $1 in
+    -n) n=${2:?-n needs a number}; shift 2 ;;
+    -o) out=${2:?-o needs a folder}; shift 2 ;;
+    --rollsense) rollsense=${2:?--rollsense needs a path}; shift 2 ;;
+    --sbatch) sbatch_options+=("${2:?--sbatch needs an option}"); shift 2 ;;
+    -h|--help) usage ;;
+    --) shift; break ;;
+    -*) echo "submit.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+    *) break ;;
+  esac
+done
+(($# >= 1)) || { echo "submit.sh: give the SCRIPT to run (see --help)" >&2; exit 2; }
+[[ -n $out ]] || { echo "submit.sh: give -o OUT, the results folder" >&2; exit 2; }
+if ! [[ $n =~ ^[1-9][0-9]*$ ]]; then
+  echo "submit.sh: -n expects the number of shards, a whole number >= 1, got '$n'" >&2
+  exit 2
+fi
+script=$1
+shift
+if [[ -z $rollsense ]]; then
+  rollsense=$(command -v rollsense || true)
+  [[ -n $rollsense ]] || rollsense=$here/../../build/bin/rollsense
+fi
+[[ -x $rollsense ]] || { echo "submit.sh: no rollsense program at '$rollsense'; give --rollsense PATH" >&2; exit 2; }
+command -v sbatch >/dev/null || { echo "submit.sh: sbatch not found: run this on a Slurm login node" >&2; exit 2; }
+
+# The jobs run on other nodes, in other folders: absolute paths only.
+rollsense=$(realpath "$rollsense")
+[[ -f $script ]] && script=$(realpath "$script")  # else a stock script the program finds by name
+mkdir -p "$out/logs"
+out=$(realpath "$out")
+
+export ROLLSENSE=$rollsense
+unset ROLLSENSE_SHARD_COUNT  # the array below is the whole 0-(N-1): shard.sbatch reads N from Slurm
+shards_job=$(sbatch --parsable --array="0-$((n - 1))" --output="$out/logs/%x-%A_%a.out" \
+  "${sbatch_options[@]}" "$here/shard.sbatch" "$out" "$script" "$@")
+shards_job=${shards_job%%;*}  # "id;cluster" on a federation
+merge_job=$(sbatch --parsable --dependency="afterok:$shards_job" --kill-on-invalid-dep=yes \
+  --output="$out/logs/%x-%j.out" "${sbatch_options[@]}" "$here/merge.sbatch" "$out" "$n" "$script" "$@")
+merge_job=${merge_job%%;*}
+
+echo "submit.sh: $n shards as job array $shards_job (0-$((n - 1))), merge and analysis as job $merge_job;" \
+     "results in $out/merged, logs in $out/logs" >&2
+echo "ROLLSENSE_SHARDS_JOB=$shards_job"
+echo "ROLLSENSE_MERGE_JOB=$merge_job"
