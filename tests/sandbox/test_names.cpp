@@ -11,7 +11,7 @@ using namespace rollsense;
 
 TEST_CASE("rs.write_output refuses the dataset's own files and unsafe names", "[sandbox][names]") {
     const std::string names[] = {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials",
-                                 "..",           "a/b",              "../x",         ".hidden",      std::string(300, 'a'),
+                                 "run-config.csv", "shard-plan.csv", "shards.csv", "..",           "a/b",              "../x",         ".hidden",      std::string(300, 'a'),
                                  "x\\\\y",         ""};
     for (const auto& name : names) {
         kt::TempDir dir;

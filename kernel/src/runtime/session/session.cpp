@@ -16,6 +16,7 @@
 
 #include "rollsense/last_resort.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/run_config.hpp"
 #include "runtime/lua/api.hpp"
 #include "runtime/lua/cancel_watchdog.hpp"
 
@@ -309,7 +310,7 @@ Status Session::check_output_name(const std::string& name, const std::string& wh
                     std::to_string(kMaxName) + " letters, digits, '.', '_' or '-' (no '/', no leading '.'); " +
                     "it goes into the output folder"};
     for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials",
-                            kShardPlanFile, kShardsFile})
+                            kRunConfigFile, kShardPlanFile, kShardsFile})
         if (name == own)
             return {ErrorCode::invalid_argument,
                     what + ": '" + name + "' belongs to the dataset and cannot be written by a script; choose another name"};
