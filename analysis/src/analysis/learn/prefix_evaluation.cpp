@@ -116,13 +116,13 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                                                       "' is not a dataset folder (a features CSV has no prefixes)"};
     auto opened = open_series_dataset(dataset_dir);
     if (!opened) return opened.error();
-    const DatasetReader* ds = &opened->reader;
-    const std::vector<std::string>* channels = &opened->channels;
-    const std::vector<std::size_t>* channel_idx = &opened->channel_idx;
+    const DatasetReader& ds = opened->reader;
+    const std::vector<std::string>& channels = opened->channels;
+    const std::vector<std::size_t>& channel_idx = opened->channel_idx;
 
     // The evaluation's trials, loaded once.
     std::map<std::string, const TrialRecord*> record_of;
-    for (const auto& r : ds->trials()) record_of[r.info.id] = &r;
+    for (const auto& r : ds.trials()) record_of[r.info.id] = &r;
     const std::size_t n = ev.trial_ids.size();
     std::vector<TrialRecord> records;
     for (const auto& id : ev.trial_ids) {
@@ -132,7 +132,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                                                    "/manifest.csv (evaluation and dataset out of step?)"};
         records.push_back(*it->second);
     }
-    auto loaded = load_trials(*ds, dataset_dir, records, options.threads);
+    auto loaded = load_trials(ds, dataset_dir, records, options.threads);
     if (!loaded) return loaded.error();
     const std::vector<TrialData>& data = *loaded;
 
@@ -176,7 +176,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
                 features::FeatureExtractor extractor(feature_settings);
                 std::array<std::span<const double>, features::kChannels> ch;
                 for (std::size_t k = 0; k < features::kChannels; ++k)
-                    ch[k] = std::span<const double>(d.channels[(*channel_idx)[k]]).first(keep);
+                    ch[k] = std::span<const double>(d.channels[channel_idx[k]]).first(keep);
                 const std::span<const double> time =
                     d.time.size() >= keep ? std::span<const double>(d.time).first(keep) : std::span<const double>{};
                 auto tf = extractor.extract(std::span<const std::span<const double>>(ch), time);
@@ -192,7 +192,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
             if (need_series) {
                 series::SeriesSettings s = inputs.series;
                 s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
-                auto p = series::prepare_series(d, *channel_idx, s);
+                auto p = series::prepare_series(d, channel_idx, s);
                 if (!p) {
                     errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
                     return;
@@ -207,7 +207,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
             if (!st) return st.error();
         // Full tables (every trial; rows without a decision hold zeros and are never used).
         ftab.feature_names.assign(features::feature_names().begin(), features::feature_names().end());
-        stab.channel_names = *channels;
+        stab.channel_names = channels;
         stab.series_length = inputs.series.length;
         for (auto* t : {&ftab, &stab}) {
             t->class_names = ev.classes;
@@ -297,12 +297,12 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
                                                  "classifiers (e.g. minirocket)"};
     auto opened = open_series_dataset(dataset_dir);
     if (!opened) return opened.error();
-    const DatasetReader* ds = &opened->reader;
-    const std::vector<std::string>* channels = &opened->channels;
-    const std::vector<std::size_t>* channel_idx = &opened->channel_idx;
-    const std::vector<TrialRecord> records(ds->trials().begin(), ds->trials().end());
+    const DatasetReader& ds = opened->reader;
+    const std::vector<std::string>& channels = opened->channels;
+    const std::vector<std::size_t>& channel_idx = opened->channel_idx;
+    const std::vector<TrialRecord> records(ds.trials().begin(), ds.trials().end());
     if (records.empty()) return Error{ErrorCode::invalid_argument, dataset_dir.string() + ": no trials to train on"};
-    auto loaded = load_trials(*ds, dataset_dir, records, inputs.threads);
+    auto loaded = load_trials(ds, dataset_dir, records, inputs.threads);
     if (!loaded) return loaded.error();
     const std::vector<TrialData>& data = *loaded;
 
@@ -321,14 +321,14 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
             series::SeriesSettings s = inputs.series;
             const std::size_t keep = prefix_samples(f, nominal_samples.at(records[i].info.speed), data[i].samples());
             s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
-            auto p = series::prepare_series(data[i], *channel_idx, s);
+            auto p = series::prepare_series(data[i], channel_idx, s);
             if (!p) errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
             else if (p->ok) values[i] = std::move(p->values);
         });
         for (const auto& st : errors)
             if (!st) return st.error();
         FeatureTable table;
-        table.channel_names = *channels;
+        table.channel_names = channels;
         table.series_length = inputs.series.length;
         table.class_names = class_names;
         PrefixModel pm;
