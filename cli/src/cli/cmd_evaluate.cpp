@@ -48,9 +48,10 @@ int integer_option(const Args& args, std::string_view name, int fallback, int mi
 namespace {
 const std::vector<std::string> kLearnOptions = {"--folds",      "--repeats",     "--seed",   "--evaluations",
                                                 "--classifier", "--set",         "--plugin-path", "-o",
-                                                "--output",     "--trials",      "--series-amplitude"};
+                                                "--output",     "--trials",      "--series-amplitude",
+                                                "--cv",         "--group-by",    "--block"};
 // Options of the input step that only the pipeline (evaluate, report) honours.
-const std::vector<std::string> kPipelineOnly = {"--trials", "--series-amplitude"};
+const std::vector<std::string> kPipelineOnly = {"--trials", "--series-amplitude", "--cv", "--group-by", "--block"};
 }  // namespace
 
 // Shared by evaluate and train (declared again in cmd_train.cpp).
@@ -111,6 +112,8 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     request.classifiers = classifier_specs(s);
     request.options = s.options;
     request.inputs = input_options_from_args(args);
+    request.options.schemes = value_or_throw_usage(
+        learn::parse_cv_schemes(args.option("--cv"), args.option("--group-by"), args.option("--block")), "--cv");
     if (args.flag("--prefixes")) {
         learn::PrefixOptions po;
         // One k-fold per fraction unless --repeats asks for more.
@@ -201,6 +204,17 @@ options:
   --folds K           k of the k-fold CV (5)
   --repeats R         repetitions of the CV with different partitions (10)
   --seed S            partition and optimiser seed (1)
+  --cv LIST           also cross-validate with whole groups held out, beside
+                      random k-fold (always run): grouped (needs --group-by),
+                      blocked (needs --block), comma-separated; figures in the
+                      report and evaluation.json (docs/identification.md)
+  --group-by COLUMN   grouped CV: a manifest column (trial_id, object, speed,
+                      repetition, or a key of its extra column, e.g. mount);
+                      with no more groups than folds, leave one group out
+                      (speed: a speed-transfer test)
+  --block N           blocked CV: runs of N consecutive trials within a mount
+                      are groups, so neighbouring rolls never straddle
+                      training and test
   --trials SET        clean (default): the paper's clean trials, and with a
                       series classifier only those the series rule accepts
                       too (every classifier sees the same trials and folds);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "analysis/learn/folds.hpp"
 
@@ -76,8 +77,8 @@ namespace {
 Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& rows, const FeatureTable& table,
                                       const std::vector<std::size_t>& row_of,
                                       const std::vector<std::string>* group_ptr, const FoldPlan& plan,
-                                      const ClassifierRequest& request, const EvaluationOptions& options,
-                                      bool several) {
+                                      const std::vector<SchemePlan>& schemes, const ClassifierRequest& request,
+                                      const EvaluationOptions& options, bool several) {
     const auto& factory = request.factory;
     EvaluationReport rep;
     rep.name = request.name;
@@ -100,6 +101,14 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
     auto base = repeated_cv(table, factory, request.params, plan);
     if (!base) return base.error();
     rep.baseline = std::move(base).value();
+    for (const auto& s : schemes) {
+        say(options, "cross-validating" + (several ? " " + request.name : std::string()) + ", " +
+                         s.scheme.describe() + ": " + std::to_string(s.plan.repeats()) + " x " +
+                         std::to_string(s.plan.folds) + "-fold over " + std::to_string(s.groups) + " groups");
+        auto cv = repeated_cv(table, factory, request.params, s.plan);
+        if (!cv) return Status(cv.error()).with_context(s.scheme.describe());
+        rep.scheme_cv.push_back({s.scheme, std::move(cv).value()});
+    }
     rep.analysis = analyse_like_paper(rows, row_of, table.y, rep.baseline.first_predicted, table.class_names,
                                       options.catalogue);
 
@@ -256,10 +265,19 @@ Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows
     auto plan = make_fold_plan(table.y, group_ptr, options.folds, options.repeats, options.seed);
     if (!plan) return plan.error();
     ev.plan = std::move(plan).value();
+    for (const auto& scheme : options.schemes) {
+        auto scheme_groups_of = scheme_groups(scheme, rows, row_of);
+        if (!scheme_groups_of) return scheme_groups_of.error();
+        auto p = make_scheme_plan(scheme, table.y, table.class_names, *scheme_groups_of, options.folds,
+                                  options.repeats, options.seed);
+        if (!p) return p.error();
+        const std::set<std::string> distinct(scheme_groups_of->begin(), scheme_groups_of->end());
+        ev.schemes.push_back({scheme, std::move(p).value(), distinct.size()});
+    }
 
     for (const auto& request : classifiers) {
         const auto one_started = std::chrono::steady_clock::now();
-        auto one = evaluate_one(rows, input.tables[request.table], row_of, group_ptr, ev.plan, request, options,
+        auto one = evaluate_one(rows, input.tables[request.table], row_of, group_ptr, ev.plan, ev.schemes, request, options,
                                 classifiers.size() > 1);
         if (!one) return Status(one.error()).with_context("classifier '" + request.name + "'");
         one->input = input.kinds[request.table];
@@ -361,6 +379,11 @@ std::string format_report(const EvaluationReport& r, bool with_timing) {
     std::snprintf(buf, sizeof buf, "preset, %d x repeated stratified %d-fold CV:\n  accuracy ", b.repeats, b.folds);
     out += buf;
     out += figure(b.mean, b.sd, b.wilson, b.correct, b.total) + "\n";
+    for (const auto& s : r.scheme_cv) {
+        std::snprintf(buf, sizeof buf, "%s, %d x %d-fold CV (whole groups held out):\n  accuracy ",
+                      s.scheme.describe().c_str(), s.cv.repeats, s.cv.folds);
+        out += buf + figure(s.cv.mean, s.cv.sd, s.cv.wilson, s.cv.correct, s.cv.total) + "\n";
+    }
     if (!r.params.values().empty()) out += "  parameters: " + describe_params(r.params, r.space) + "\n";
     out += "\nconfusion matrix (pooled over repetitions):\n" + format_confusion(b.confusion);
     if (r.tuned) {
@@ -448,6 +471,11 @@ std::string format_evaluation(const Evaluation& ev) {
                       100.0 * c.baseline.mean, 100.0 * c.baseline.sd,
                       ev.input.find('+') != std::string::npos ? ("   input: " + c.input).c_str() : "");
         out += buf;
+        for (const auto& s : c.scheme_cv) {
+            std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %% ± %.1f %s\n", w, "", 100.0 * s.cv.mean,
+                          100.0 * s.cv.sd, s.scheme.describe().c_str());
+            out += buf;
+        }
     }
     out += selection_line(ev);
     out += "\npaired per-fold accuracy differences (a − b, every fold of every repetition; t: paired t, df = n − 1;\n"

@@ -14,6 +14,7 @@
 #include "rollsense/features.hpp"
 #include "analysis/learn/bayes_opt.hpp"
 #include "analysis/learn/cross_validation.hpp"
+#include "analysis/learn/cv_scheme.hpp"
 #include "analysis/learn/folds.hpp"
 #include "analysis/learn/metrics.hpp"
 #include "analysis/learn/paper_analysis.hpp"
@@ -33,6 +34,9 @@ struct EvaluationOptions {
     std::string classifier;     // the classifier's name, for messages
     // Optional group per trial id (session, rig state): grouped folds instead of stratified.
     std::function<std::string(const features::FeatureRow&)> group_of;
+    // Run beside the k-fold above, on the same trials: grouped and blocked CV
+    // (cv_scheme.hpp), each reported next to it.
+    std::vector<CvScheme> schemes;
     std::vector<ObjectShape> catalogue = paper_objects();
     std::function<void(const std::string&)> progress;  // one line per step
     // Set from another thread or a signal handler (Ctrl-C): the work stops at
@@ -80,6 +84,11 @@ struct EvaluationReport {
     ParamSet params;
     SearchSpace space;
     RepeatedCv baseline;
+    struct SchemeCv {
+        CvScheme scheme;
+        RepeatedCv cv;
+    };
+    std::vector<SchemeCv> scheme_cv;  // one per Evaluation::schemes, same order
     PaperAnalysis analysis;  // of the baseline's first repetition (one k-fold CV, as the paper)
     std::optional<TunedCv> tuned;
     std::optional<NestedCv> nested;
@@ -98,6 +107,13 @@ struct ClassifierRequest {
 struct RefusedTrial {
     std::string trial_id;
     std::string reason;
+};
+
+// A grouped or blocked CV's partitions, shared by every classifier.
+struct SchemePlan {
+    CvScheme scheme;
+    FoldPlan plan;
+    std::size_t groups = 0;  // distinct groups among the used trials
 };
 
 // Between two classifiers of the comparison: their per-fold accuracies over
@@ -119,6 +135,7 @@ struct Evaluation {
     std::vector<char> peak_clean;        // per used trial: does the paper's peak rule keep it?
     std::vector<RefusedTrial> refused;   // trials the input step left out
     FoldPlan plan;                       // the partitions every classifier was scored on
+    std::vector<SchemePlan> schemes;     // grouped / blocked CV beside it (EvaluationOptions::schemes)
     std::vector<EvaluationReport> classifiers;
     std::vector<PairedComparison> paired;  // every pair (i < j), i − j
     std::optional<PrefixCurves> prefixes;  // identification before the roll ends (--prefixes)

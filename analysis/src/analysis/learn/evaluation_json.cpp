@@ -80,6 +80,23 @@ void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationRepor
     w.key("pooled");
     write_pooled(w, b.correct, b.total, b.wilson);
     w.end_object();
+    w.key("cv_schemes").begin_array();
+    for (const auto& s : c.scheme_cv) {
+        w.begin_object();
+        w.key("id").value(s.scheme.id());
+        w.key("mean").value(s.cv.mean);
+        w.key("sd").value(s.cv.sd);
+        w.key("per_repeat");
+        write_numbers(w, s.cv.repeat_accuracy);
+        w.key("pooled");
+        write_pooled(w, s.cv.correct, s.cv.total, s.cv.wilson);
+        w.key("per_class_accuracy");
+        write_numbers(w, s.cv.confusion.true_positive_rates());
+        w.key("confusion");
+        write_confusion(w, s.cv.confusion);
+        w.end_object();
+    }
+    w.end_array();
     w.key("classes").begin_array();
     for (const auto& name : c.classes) w.value(name);
     w.end_array();
@@ -226,6 +243,32 @@ std::string evaluation_json(const Evaluation& ev) {
     }
     w.end_array();
     w.end_object();
+
+    w.key("cv_schemes").begin_array();
+    for (const auto& s : ev.schemes) {
+        w.begin_object();
+        w.key("id").value(s.scheme.id());
+        w.key("kind").value(s.scheme.kind == CvScheme::Kind::grouped ? "grouped" : "blocked");
+        if (s.scheme.kind == CvScheme::Kind::grouped)
+            w.key("group_by").value(s.scheme.group_by);
+        else
+            w.key("block").value(s.scheme.block);
+        w.key("groups").value(static_cast<std::uint64_t>(s.groups));
+        w.key("k").value(s.plan.folds);
+        w.key("repeats").value(static_cast<std::uint64_t>(s.plan.repeats()));
+        w.key("seeds").begin_array();
+        for (auto seed : s.plan.seeds) w.value(seed);
+        w.end_array();
+        w.key("assignment").begin_array();
+        for (const auto& a : s.plan.assignment) {
+            w.begin_array();
+            for (int f : a) w.value(f);
+            w.end_array();
+        }
+        w.end_array();
+        w.end_object();
+    }
+    w.end_array();
 
     w.key("classifiers").begin_array();
     for (const auto& c : ev.classifiers) write_classifier(w, ev, c);

@@ -79,7 +79,9 @@ std::vector<learn::ClassifierSpec> classifier_specs_from(lua_State* L, int opts,
 //             classifiers={"a","b"}, params={...}, model="model.rsm",
 //             trials="clean"|"all", series_amplitude="global_scale"|"z_per_channel",
 //             dataset=DIR (default: this run's), tag="NAME" (outputs evaluation-NAME.*, report-NAME.html),
-//             prefixes=false (identification before the roll ends), prefix_repeats=1 }
+//             prefixes=false (identification before the roll ends), prefix_repeats=1,
+//             cv="random"|"grouped,blocked", group_by=COLUMN, block=N (grouped/blocked CV beside
+//             random k-fold: learn/cv_scheme.hpp) }
 //             → summary table
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
@@ -87,7 +89,8 @@ int l_analyse(lua_State* L) {
     const int opts = 1;
     check_options(L, opts, "rs.analyse", {"model", "dataset", "tag", "folds", "repeats", "params", "optimize",
                                           "nested", "evaluations", "classifier", "classifiers", "trials",
-                                          "prefixes", "prefix_repeats", "series_amplitude"});
+                                          "prefixes", "prefix_repeats", "series_amplitude", "cv", "group_by",
+                                          "block"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
     // The model's name is checked before anything is written.
     const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
@@ -123,6 +126,14 @@ int l_analyse(lua_State* L) {
     eo.optimize = opt_field_bool(L, opts, "optimize", false);
     eo.nested = opt_field_bool(L, opts, "nested", eo.optimize);
     eo.bayes.evaluations = static_cast<int>(opt_field_number(L, opts, "evaluations", eo.bayes.evaluations));
+    {
+        const double block = opt_field_number(L, opts, "block", 0);
+        auto schemes = learn::parse_cv_schemes(opt_field_string(L, opts, "cv", ""),
+                                               opt_field_string(L, opts, "group_by", ""),
+                                               block == 0 ? "" : std::to_string(static_cast<long long>(block)));
+        if (!schemes) raise_status(L, Status(schemes.error()).with_context("rs.analyse"));
+        eo.schemes = std::move(schemes).value();
+    }
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
     eo.stop = &s.interrupt_flag();  // Ctrl-C stops the analysis, not only the roll
     request.classifiers = classifier_specs_from(L, opts, eo.params);
@@ -206,6 +217,20 @@ int l_analyse(lua_State* L) {
         lua_pushnumber(L, report->nested->mean);
         lua_setfield(L, -2, "nested_accuracy");
     }
+    // Grouped / blocked CV of the first classifier: {id="grouped:speed", accuracy=, accuracy_sd=}.
+    lua_createtable(L, static_cast<int>(report->scheme_cv.size()), 0);
+    for (std::size_t i = 0; i < report->scheme_cv.size(); ++i) {
+        const auto& sc = report->scheme_cv[i];
+        lua_newtable(L);
+        lua_pushstring(L, sc.scheme.id().c_str());
+        lua_setfield(L, -2, "id");
+        lua_pushnumber(L, sc.cv.mean);
+        lua_setfield(L, -2, "accuracy");
+        lua_pushnumber(L, sc.cv.sd);
+        lua_setfield(L, -2, "accuracy_sd");
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_setfield(L, -2, "cv");
     // Every classifier compared, in the order given: {name=, accuracy=, accuracy_sd=}.
     lua_createtable(L, static_cast<int>(evaluation.classifiers.size()), 0);
     for (std::size_t i = 0; i < evaluation.classifiers.size(); ++i) {

@@ -35,6 +35,11 @@ std::string text_summary(const ReportInputs& in) {
                   pct(b.mean).c_str(), 100.0 * b.sd, ev.name.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
                   100.0 * b.wilson.high);
     out += buf;
+    for (const auto& s : ev.scheme_cv) {
+        std::snprintf(buf, sizeof buf, "  %s: %s +- %.1f (%d x %d-fold, groups held out whole)\n",
+                      s.scheme.describe().c_str(), pct(s.cv.mean).c_str(), 100.0 * s.cv.sd, s.cv.repeats, s.cv.folds);
+        out += buf;
+    }
     if (ev.tuned) {
         std::snprintf(buf, sizeof buf, "  tuned, scored on the same folds (optimistic, the paper's protocol): %s\n",
                       pct(ev.tuned->same_folds_accuracy).c_str());

@@ -73,6 +73,11 @@ std::string accuracy_table(const learn::EvaluationReport& r, const std::string& 
     h += "<tr>" + th("pooled out-of-fold predictions") +
          td(std::to_string(b.correct) + " of " + std::to_string(b.total) + " correct", true) + "</tr>\n";
     h += "<tr>" + th("95 % Wilson interval (pooled)") + td(interval(b.wilson), true) + "</tr>\n";
+    // Grouped / blocked CV beside it: what the figure owes to neighbouring rolls (rollsense evaluate --cv).
+    for (const auto& s : r.scheme_cv)
+        h += "<tr>" + th(s.scheme.describe() + ", " + std::to_string(s.cv.repeats) + " \u00d7 " +
+                         std::to_string(s.cv.folds) + "-fold, groups held out whole") +
+             td(mean_sd(s.cv.mean, s.cv.sd) + " (Wilson " + interval(s.cv.wilson) + ")", true) + "</tr>\n";
     h += "<tr>" + th("paper (5-fold CV, tuned on the same folds)") + td(percent(0.905), true) + "</tr>\n";
     return h + "</tbody></table>\n";
 }
