@@ -7,6 +7,10 @@
 --
 -- At the end the dataset is analysed (rs.analyse): features.csv, the evaluation
 -- (evaluation.txt, printed), a trained model (model.rsm) in the output folder.
+-- Each object is mounted on the winch once and rolled for all its runs before the
+-- next (the paper: one printed specimen per object, attached by hand, 150 rolls);
+-- the manifest records mount and index_in_mount (the order of the speeds within a
+-- mount is not stated in the paper: here all runs at the first speed, then the next).
 -- Sharded (--shard K/N: this process records every Nth trial, see docs/cluster.md)
 -- it records its trials and stops; the merged dataset is analysed after
 -- `rollsense merge`, by this script resumed on it.
@@ -40,12 +44,15 @@ rs.on_cleanup(etroll.park)
 local total = #objects * #speeds * runs
 local done = 0
 for _, object in ipairs(objects) do
+  local mount, index_in_mount = object .. "-1", 0
   for _, speed in ipairs(speeds) do
     for repetition = 1, runs do
       local id = rs.trial_id{ object = object, speed = tonumber(speed), repetition = repetition }
       if not rs.has_trial(id) then
-        etroll.run_trial{ object = object, speed = tonumber(speed), repetition = repetition }
+        etroll.run_trial{ object = object, speed = tonumber(speed), repetition = repetition,
+                          mount = mount, index_in_mount = index_in_mount }
       end
+      index_in_mount = index_in_mount + 1
       done = done + 1
       rs.progress(done, total, id)
     end

@@ -6,6 +6,7 @@
 --
 --   local etroll = require "etroll"
 --   etroll.run_trial{ object = "C1", speed = 10, repetition = 1 }
+--   etroll.run_trial{ object = "C1", speed = 10, repetition = 1, mount = "C1-1", index_in_mount = 0 }
 --
 -- Every number below is a declared setting; override any of them with
 -- etroll.configure{ ... } or from the command line (--set etroll.<key>=...).
@@ -162,8 +163,20 @@ function M.winch_reset()
 end
 
 -- One whole trial of the stock experiment. Returns the number of samples.
+-- mount (which mounting of the specimen on the winch string, a name unique in
+-- the run) and index_in_mount (rolls before this one in that mounting, from 0)
+-- go into the manifest's extra column; the simulated sensor draws its
+-- per-mount effects from them, and `rollsense evaluate --cv blocked` groups by them.
 function M.run_trial(t)
-  local id = rs.trial{ object = t.object, speed = t.speed, repetition = t.repetition }
+  local extra = nil
+  if t.mount ~= nil or t.index_in_mount ~= nil then
+    if t.mount == nil or math.type(t.index_in_mount) ~= "integer" or t.index_in_mount < 0 then
+      error("etroll.run_trial: mount and index_in_mount go together (a name, and an integer >= 0: rolls before "
+        .. "this one in that mounting)", 2)
+    end
+    extra = { mount = tostring(t.mount), index_in_mount = t.index_in_mount }
+  end
+  local id = rs.trial{ object = t.object, speed = t.speed, repetition = t.repetition, extra = extra }
   M.open()
   M.clamp()
   local samples = M.roll(t.speed)

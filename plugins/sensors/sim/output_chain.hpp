@@ -15,10 +15,14 @@ namespace rollsense::sim {
 
 struct OutputChainSettings {
     double lag_tau = 0.04;          // s, rubber's first-order viscoelastic lag
-    double count_kpa = 0.15;        // kPa per output count
+    // kPa per output count: the MPL115A's 10-bit Pcomp spans 50-115 kPa,
+    // (115 − 50) / 1023 kPa per count (datasheet transfer function).
+    double count_kpa = 65.0 / 1023.0;
     double kpa_per_unit = 16.0;     // kPa per unit of the paper's reading
-    double noise_kpa = 0.065;       // σ of the white noise, kPa
-    double drift_sigma = 0.004;     // σ of the per-trial linear drift rate, kPa/s
+    // σ of the white noise, kPa: no datasheet figure; sized by the paper's noise
+    // after smoothing (p99 of |noise| ≤ 0.005, none at 0.01: bench/sim).
+    double noise_kpa = 0.03;
+    double drift_sigma = 0.0;       // σ of the per-trial linear drift rate, kPa/s (no source: off)
     double headroom_kpa = 13.0;     // saturation above ambient, kPa
     double ambient_kpa = 101.325;   // ambient pressure (sets the quantiser's phase)
     int baseline_samples = 16;      // readings averaged for the baseline

@@ -24,9 +24,33 @@ DeviceState make_device(const SimParameters& p) {
     return d;
 }
 
+namespace {
+// The seed of everything that belongs to one specimen (and, with a mount name, to one mounting of it).
+std::uint64_t specimen_seed(const SimParameters& p, const std::string& object, const std::string& mount = "") {
+    return mix64(p.device_seed) ^ label_hash(mount.empty() ? object : object + "/" + mount);
+}
+}  // namespace
+
+ObjectSpec make_specimen(const SimParameters& p, const ObjectSpec& nominal) {
+    ObjectSpec s = nominal;
+    Rng rng(specimen_seed(p, nominal.id), "specimen-size");
+    const double deviation = rng.uniform(-p.specimen_size_tolerance, p.specimen_size_tolerance);
+    if (s.is_cylinder()) {
+        s.diameter += deviation;
+    } else {
+        s.diameter *= (s.side + deviation) / s.side;  // the circumscribed diameter scales with the edge
+        s.side += deviation;
+    }
+    return s;
+}
+
 TrialModel::TrialModel(const SimParameters& params, const DeviceState& device, const ObjectSpec* object,
-                       std::uint64_t trial_seed)
+                       std::uint64_t trial_seed, const MountPosition& mount)
     : p_(params), device_(&device), object_(object), seed_(trial_seed), slip_rng_(trial_seed, "slip") {
+    if (object) {
+        specimen_ = make_specimen(p_, *object);
+        object_ = &*specimen_;
+    }
     // Every draw has its own named stream (see rng.hpp).
     Rng placement(trial_seed, "placement");
     draws_.start_centre = placement.uniform(p_.start_centre - 0.5 * p_.start_range,
@@ -38,8 +62,16 @@ TrialModel::TrialModel(const SimParameters& params, const DeviceState& device, c
     draws_.palm_phase = force.uniform(0.0, 2.0 * kPi);
     Rng slip(trial_seed, "cylinder-slip");
     draws_.cylinder_slip = slip.uniform(0.0, p_.cylinder_slip_max);
+    if (object_ && !mount.mount.empty()) {
+        // One mounting: where the string holds the specimen, how it is seated,
+        // and the slow change over its rolls (all off unless set: no source sizes them).
+        Rng m(specimen_seed(p_, object_->id, mount.mount), "mount");
+        draws_.start_centre += m.normal(0.0, p_.mount_start_sigma);
+        draws_.force_factor *= std::exp(m.normal(0.0, p_.mount_force_log_sigma)) *
+                               (1.0 + p_.mount_force_trend * static_cast<double>(mount.index) / 100.0);
+    }
     if (object_ && !object_->is_cylinder()) {
-        Rng edges(trial_seed, "edges");
+        Rng edges = p_.specimen_edges ? Rng(specimen_seed(p_, object_->id), "edges") : Rng(trial_seed, "edges");
         for (int k = 0; k < object_->sides; ++k)
             draws_.edge_radius.push_back(edges.uniform(object_->edge_radius_min, object_->edge_radius_max));
     }

@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "contact_load.hpp"
 #include "kinematics.hpp"
@@ -54,6 +55,13 @@ struct SimParameters {
     double cylinder_slip_max = 0.04;       // slip fraction, uniform in [0, max]
     double polygon_slip = 0.3;             // mm, mean slip per landing
     double face_dwell = 4.0;               // mm of finger slide per unit μ_tip a landed face stays flat
+    // The paper's protocol: one printed specimen per object, mounted on the
+    // winch string once for its 150 rolls (docs/simulation.md "Protocol").
+    double specimen_size_tolerance = 0.2;  // mm, uniform ± on a specimen's diameter (cylinder) or edge (prism)
+    bool specimen_edges = true;            // edge radii drawn once per specimen (false: per trial)
+    double mount_start_sigma = 0.0;        // mm, σ of a mounting's shift of the start position
+    double mount_force_log_sigma = 0.0;    // σ_ln of a mounting's clamping-load factor
+    double mount_force_trend = 0.0;        // relative clamping-load change per 100 rolls of a mounting
     double gain_jitter = 0.10;             // relative, per device (uniform ±)
     double ambient_offset_range = 0.15;    // kPa, per device (uniform ±): quantiser phase
     OutputChainSettings chain;
@@ -80,11 +88,27 @@ struct TrialDraws {
     std::vector<double> edge_radius;
 };
 
+// Where a trial sits in the protocol: which mounting of its specimen (a name
+// unique in the run; empty = none recorded, no mount effects) and how many
+// rolls of that mounting came before it.
+struct MountPosition {
+    std::string mount;
+    long index = 0;
+};
+
+// The specimen of a catalogue object for a device seed: its printed size
+// within specimen_size_tolerance. A pure function of (device seed, object).
+ObjectSpec make_specimen(const SimParameters& p, const ObjectSpec& nominal);
+
 class TrialModel {
 public:
     // `object` may be null: no object between the fingers (readings are noise).
+    // Every draw is a pure function of (device seed, object, mount, index in
+    // mount, trial seed), never of the order trials are recorded in.
     TrialModel(const SimParameters& params, const DeviceState& device, const ObjectSpec* object,
-               std::uint64_t trial_seed);
+               std::uint64_t trial_seed, const MountPosition& mount = {});
+    TrialModel(const TrialModel&) = delete;  // object_ may point into specimen_
+    TrialModel& operator=(const TrialModel&) = delete;
 
     // Recording starts with the fingers at theta (rad) at `time` (s). The
     // first of a trial places the object; a later one keeps it where it is.
@@ -106,6 +130,7 @@ private:
 
     SimParameters p_;
     const DeviceState* device_;
+    std::optional<ObjectSpec> specimen_;
     const ObjectSpec* object_;
     std::uint64_t seed_;
     TrialDraws draws_;

@@ -65,6 +65,22 @@ ParamSchema sim_schema() {
                      10.0, "mm"),
         param_number("face_dwell", d.face_dwell,
                      "finger slide a landed face stays flat per unit tipping friction (fitted)", 0.0, 50.0, "mm"),
+        // The paper's protocol (docs/simulation.md "Protocol")
+        param_number("specimen_size_tolerance", d.specimen_size_tolerance,
+                     "printing tolerance: a specimen's diameter (cylinder) or edge (prism) is off by uniform +- this, "
+                     "once per object and device_seed",
+                     0.0, 5.0, "mm"),
+        param_bool("specimen_edges", d.specimen_edges,
+                   "a prism's edge radii are drawn once per specimen (one printed object); false: afresh per trial"),
+        param_number("mount_start_sigma", d.mount_start_sigma,
+                     "sigma of a mounting's shift of the start position (the manifest's mount; 0: off, no source)",
+                     0.0, 50.0, "mm"),
+        param_number("mount_force_log_sigma", d.mount_force_log_sigma,
+                     "sigma_ln of a mounting's clamping-load factor (0: off, no source)", 0.0, 2.0, "1"),
+        param_number("mount_force_trend", d.mount_force_trend,
+                     "relative clamping-load change per 100 rolls of a mounting, e.g. servo warm-up (0: off, no "
+                     "source)",
+                     -0.9, 0.9, "1"),
         param_number("gain_jitter", d.gain_jitter, "per-device relative gain error of each barometer (uniform +-)",
                      0.0, 0.5, "1"),
         param_number("ambient_offset_range", d.ambient_offset_range,
@@ -72,7 +88,7 @@ ParamSchema sim_schema() {
                      "kPa"),
         // MPL115A output chain
         param_number("lag_tau", c.lag_tau, "rubber's first-order viscoelastic lag", 0.0, 1.0, "s"),
-        param_number("count_kpa", c.count_kpa, "MPL115A resolution: pressure per output count", 0.001, 10.0, "kPa"),
+        param_number("count_kpa", c.count_kpa, "MPL115A output count: (115 - 50) / 1023 kPa per Pcomp count", 0.001, 10.0, "kPa"),
         param_number("kpa_per_unit", c.kpa_per_unit, "pressure per unit of the paper's unitless reading", 0.01,
                      1000.0, "kPa"),
         param_number("noise_kpa", c.noise_kpa, "sigma of the white noise before quantisation", 0.0, 10.0, "kPa"),
@@ -118,6 +134,11 @@ SimSettings sim_settings_from(const ParamSet& ps) {
     p.cylinder_slip_max = ps.get_number("cylinder_slip_max");
     p.polygon_slip = ps.get_number("polygon_slip");
     p.face_dwell = ps.get_number("face_dwell");
+    p.specimen_size_tolerance = ps.get_number("specimen_size_tolerance");
+    p.specimen_edges = ps.get_bool("specimen_edges");
+    p.mount_start_sigma = ps.get_number("mount_start_sigma");
+    p.mount_force_log_sigma = ps.get_number("mount_force_log_sigma");
+    p.mount_force_trend = ps.get_number("mount_force_trend");
     p.gain_jitter = ps.get_number("gain_jitter");
     p.ambient_offset_range = ps.get_number("ambient_offset_range");
     p.chain.lag_tau = ps.get_number("lag_tau");

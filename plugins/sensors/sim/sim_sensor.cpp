@@ -15,6 +15,27 @@ std::string joint_list(const SampleInput& input) {
         for (const auto& n : *input.joint_names) out += (out.empty() ? "" : ", ") + n;
     return out.empty() ? "none" : out;
 }
+
+// The trial's place in the protocol, from the manifest's extra keys `mount`
+// and `index_in_mount` (etroll.run_trial writes them); none: no mount effects.
+Result<MountPosition> mount_position(const TrialInfo& trial) {
+    MountPosition m;
+    if (auto it = trial.extra.find("mount"); it != trial.extra.end()) m.mount = it->second;
+    if (auto it = trial.extra.find("index_in_mount"); it != trial.extra.end()) {
+        const std::string& text = it->second;
+        std::size_t used = 0;
+        try {
+            m.index = std::stol(text, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != text.size() || m.index < 0)
+            return Error{ErrorCode::invalid_argument, "sim: trial '" + trial.id + "': index_in_mount '" + text +
+                                                          "' is not an integer >= 0 (rolls before this one in its "
+                                                          "mounting; etroll.run_trial's index_in_mount)"};
+    }
+    return m;
+}
 }  // namespace
 
 Status SimSensor::on_configure(const ParamSet& params, const PluginContext& context) {
@@ -71,7 +92,9 @@ Status SimSensor::begin_trial(const TrialInfo& trial) {
                                                            catalogue_->path().string() + ", column '" +
                                                            problem->column + "': " + problem->message};
     }
-    trial_ = std::make_unique<TrialModel>(settings_.physics, device_, object_, trial.seed);
+    auto mount = mount_position(trial);
+    if (!mount) return Status{mount.error()};
+    trial_ = std::make_unique<TrialModel>(settings_.physics, device_, object_, trial.seed, *mount);
     warned_no_pushing_joint_ = false;
     return {};
 }
