@@ -24,8 +24,8 @@ figures() {  # --set arguments → "overall | cylinders only"
     echo "$overall % | $cylinders %"
 }
 
-echo "| source (switched off with) | default | where its size comes from | overall / cylinders with it off |"
-echo "|---|---|---|---|"
+echo "| source (switched off with) | default | where its size comes from | overall, with it off | cylinders only, with it off |"
+echo "|---|---|---|---|---|"
 echo "| (every default) | | | $(figures) |"
 row() {  # label default source --set...
     label=$1 default=$2 source=$3
