@@ -103,6 +103,41 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
         CHECK(j["paired_differences"][0]["n"].num() == 6);
     }
 
+    // Grouped and blocked CV beside random k-fold, in the text and in evaluation.json.
+    r = rollsense_cli("evaluate " + features.string() +
+                      " --repeats 2 --folds 3 --set learners=5 --cv blocked,grouped --block 4 --group-by repetition"
+                      " -o " + (dir / "cv.txt").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("grouped by repetition, 2 x 3-fold CV") &&
+                             Catch::Contains("blocked: 4 consecutive trials within a mount, 2 x 3-fold CV"));
+    {
+        std::ifstream json_in(dir / "cv.json");
+        const std::string text((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+        const auto j = rollsense::testing::JsonReader::parse(text);
+        REQUIRE(j["cv_schemes"].arr().size() == 2);
+        CHECK(j["cv_schemes"][0]["id"].str() == "blocked:4");
+        CHECK(j["cv_schemes"][0]["groups"].num() == 9);  // 3 objects x 12 rolls / 4
+        CHECK(j["cv_schemes"][1]["group_by"].str() == "repetition");
+        CHECK(j["cv_schemes"][1]["assignment"].arr().size() == 2);
+        CHECK(j["classifiers"][0]["cv_schemes"][1]["id"].str() == "grouped:repetition");
+        CHECK(j["classifiers"][0]["cv_schemes"][1]["pooled"]["total"].num() == 66);
+    }
+    // A grouping that is the class is refused with the way out; an option without its scheme too.
+    r = rollsense_cli("evaluate " + features.string() + " --folds 3 --cv grouped --group-by object");
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains("no training fold ever sees that class") &&
+                             Catch::Contains("docs/identification.md"));
+    r = rollsense_cli("evaluate " + features.string() + " --cv grouped --group-by session");
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains("no manifest column 'session'"));
+    r = rollsense_cli("evaluate " + features.string() + " --group-by speed");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("add grouped to --cv"));
+    r = rollsense_cli("train " + features.string() + " -o /tmp/m.rbt --cv blocked --block 3");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("--cv applies to 'rollsense evaluate'"));
+
     const auto model = dir / "model.rsm";
     r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");
     INFO(r.output);

@@ -35,11 +35,13 @@ Result<std::vector<CvScheme>> parse_cv_schemes(const std::string& list, const st
     }
     if (want_grouped != !group_by.empty())
         return Error{ErrorCode::invalid_argument,
-                     want_grouped ? "--cv grouped needs --group-by COLUMN (a manifest column, e.g. speed)"
-                                  : "--group-by applies to --cv grouped; add grouped to --cv"};
+                     want_grouped
+                         ? "--cv grouped needs --group-by COLUMN (rs.analyse: group_by), a manifest column such as speed"
+                         : "--group-by (group_by) applies to --cv grouped; add grouped to --cv"};
     if (want_blocked != !block.empty())
-        return Error{ErrorCode::invalid_argument, want_blocked ? "--cv blocked needs --block N (trials per block)"
-                                                               : "--block applies to --cv blocked; add blocked to --cv"};
+        return Error{ErrorCode::invalid_argument,
+                     want_blocked ? "--cv blocked needs --block N (rs.analyse: block), the trials per block"
+                                  : "--block (block) applies to --cv blocked; add blocked to --cv"};
     if (want_blocked) {
         CvScheme s;
         s.kind = CvScheme::Kind::blocked;

@@ -48,6 +48,17 @@ void write_confusion(JsonWriter& w, const ConfusionMatrix& m) {
     w.end_array();
 }
 
+// "assignment": per repetition, the test fold of every trial (in folds.trials order).
+void write_assignment(JsonWriter& w, const FoldPlan& plan) {
+    w.key("assignment").begin_array();
+    for (const auto& a : plan.assignment) {
+        w.begin_array();
+        for (int f : a) w.value(f);
+        w.end_array();
+    }
+    w.end_array();
+}
+
 void write_pooled(JsonWriter& w, std::size_t correct, std::size_t total, const Interval& wilson) {
     w.begin_object();
     w.key("correct").value(static_cast<std::uint64_t>(correct));
@@ -235,13 +246,7 @@ std::string evaluation_json(const Evaluation& ev) {
     w.key("trials").begin_array();
     for (const auto& id : ev.trial_ids) w.value(id);
     w.end_array();
-    w.key("assignment").begin_array();
-    for (const auto& a : ev.plan.assignment) {
-        w.begin_array();
-        for (int f : a) w.value(f);
-        w.end_array();
-    }
-    w.end_array();
+    write_assignment(w, ev.plan);
     w.end_object();
 
     w.key("cv_schemes").begin_array();
@@ -259,13 +264,7 @@ std::string evaluation_json(const Evaluation& ev) {
         w.key("seeds").begin_array();
         for (auto seed : s.plan.seeds) w.value(seed);
         w.end_array();
-        w.key("assignment").begin_array();
-        for (const auto& a : s.plan.assignment) {
-            w.begin_array();
-            for (int f : a) w.value(f);
-            w.end_array();
-        }
-        w.end_array();
+        write_assignment(w, s.plan);
         w.end_object();
     }
     w.end_array();
