@@ -43,6 +43,9 @@ options:
   --folds K           k of the k-fold CV (5)
   --repeats R         repetitions of the CV with different partitions (10)
   --seed S            partition and optimiser seed (1)
+  --cv LIST, --group-by COLUMN, --block N
+                      grouped and blocked CV beside random k-fold, shown in
+                      the accuracy table (as 'rollsense evaluate --help' says)
   --optimize          also run the paper's Bayesian optimisation and nested CV
   --evaluations N     optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
