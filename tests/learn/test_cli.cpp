@@ -105,19 +105,19 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
 
     // Grouped and blocked CV beside random k-fold, in the text and in evaluation.json.
     r = rollsense_cli("evaluate " + features.string() +
-                      " --repeats 2 --folds 3 --set learners=5 --cv blocked,grouped --block 4 --group-by repetition"
+                      " --repeats 2 --folds 3 --set learners=5 --cv blocked,grouped --block 2 --group-by repetition"
                       " -o " + (dir / "cv.txt").string());
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("grouped by repetition, 2 x 3-fold CV") &&
-                             Catch::Contains("blocked: 4 consecutive trials within a mount, 2 x 3-fold CV"));
+                             Catch::Contains("blocked: 2 consecutive trials within a mount, 2 x 3-fold CV"));
     {
         std::ifstream json_in(dir / "cv.json");
         const std::string text((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
         const auto j = rollsense::testing::JsonReader::parse(text);
         REQUIRE(j["cv_schemes"].arr().size() == 2);
-        CHECK(j["cv_schemes"][0]["id"].str() == "blocked:4");
-        CHECK(j["cv_schemes"][0]["groups"].num() == 9);  // 3 objects x 12 rolls / 4
+        CHECK(j["cv_schemes"][0]["id"].str() == "blocked:2");
+        CHECK(j["cv_schemes"][0]["groups"].num() == 18);  // 3 objects x 12 rolls / 2
         CHECK(j["cv_schemes"][1]["group_by"].str() == "repetition");
         CHECK(j["cv_schemes"][1]["assignment"].arr().size() == 2);
         CHECK(j["classifiers"][0]["cv_schemes"][1]["id"].str() == "grouped:repetition");

@@ -148,6 +148,14 @@ TEST_CASE("grouped CV refuses an unknown column and a grouping that is the class
     CHECK_THAT(plan.error().message, Catch::Contains("no training fold ever sees that class"));
     CHECK_THAT(plan.error().message, Catch::Contains("docs/identification.md"));
 
+    // Blocks as long as a mounting are the class as well: the message says to shorten them.
+    const auto whole_mount = parse_cv_schemes("blocked", "", "12")->front();
+    auto blocks = scheme_groups(whole_mount, rows, all_rows(rows.size()));
+    REQUIRE(blocks.ok());
+    auto too_long = make_scheme_plan(whole_mount, labels, names, *blocks, 5, 1, 1);
+    REQUIRE_FALSE(too_long.ok());
+    CHECK_THAT(too_long.error().message, Catch::Contains("too few blocks") && Catch::Contains("smaller blocks"));
+
     // A single group cannot be cross-validated.
     auto one = make_scheme_plan(by_mount, labels, names, std::vector<std::string>(rows.size(), "1"), 5, 1, 1);
     CHECK_THAT(one.error().message, Catch::Contains("at least 2"));

@@ -139,10 +139,15 @@ Result<FoldPlan> make_scheme_plan(const CvScheme& scheme, const std::vector<int>
                     return Error{ErrorCode::invalid_argument,
                                  scheme.describe() + ": every trial of class '" + class_names[labels[i]] +
                                      "' falls in test fold " + std::to_string(f + 1) +
-                                     ", so no training fold ever sees that class: the grouping is the class (as a "
-                                     "mount is when each object is mounted once), and the figure would be 0 % by "
-                                     "construction. Group by a column that varies within each class (speed, "
-                                     "or --cv blocked); see docs/identification.md"};
+                                     ", so no training fold ever sees that class and the figure would be 0 % by "
+                                     "construction" +
+                                     (scheme.kind == CvScheme::Kind::grouped
+                                          ? ": the grouping is the class (as a mount is when each object is mounted "
+                                            "once). Group by a column that varies within each class (speed), or use "
+                                            "--cv blocked"
+                                          : ": the class has too few blocks for " + std::to_string(plan->folds) +
+                                                " folds. Use smaller blocks (--block) or fewer folds (--folds)") +
+                                     "; see docs/identification.md"};
         }
     }
     return plan;
