@@ -60,6 +60,15 @@ std::vector<int> labels_of(const std::vector<FeatureRow>& rows, std::vector<std:
     return out;
 }
 
+// The scheme's groups over every row, then its plan.
+Result<FoldPlan> plan_for(const CvScheme& scheme, const std::vector<FeatureRow>& rows, int k, int repeats) {
+    auto groups = scheme_groups(scheme, rows, all_rows(rows.size()));
+    if (!groups) return groups.error();
+    std::vector<std::string> names;
+    const auto labels = labels_of(rows, names);
+    return make_scheme_plan(scheme, labels, names, *groups, k, repeats, 1);
+}
+
 // Every group's rows sit in one fold of every repetition.
 void check_groups_whole(const FoldPlan& plan, const std::vector<std::string>& groups) {
     for (const auto& fold : plan.assignment) {
@@ -138,26 +147,21 @@ TEST_CASE("grouped CV refuses an unknown column and a grouping that is the class
     CHECK_THAT(unknown.error().message, Catch::Contains("speed, repetition, index_in_mount, mount"));
 
     // One mount per object: leaving a mount out leaves its class out of training.
-    const auto by_mount = parse_cv_schemes("grouped", "mount", "")->front();
-    auto groups = scheme_groups(by_mount, rows, all_rows(rows.size()));
-    REQUIRE(groups.ok());
-    std::vector<std::string> names;
-    const auto labels = labels_of(rows, names);
-    auto plan = make_scheme_plan(by_mount, labels, names, *groups, 5, 1, 1);
+    auto plan = plan_for(parse_cv_schemes("grouped", "mount", "")->front(), rows, 5, 1);
     REQUIRE_FALSE(plan.ok());
     CHECK_THAT(plan.error().message, Catch::Contains("no training fold ever sees that class"));
     CHECK_THAT(plan.error().message, Catch::Contains("docs/identification.md"));
 
     // Blocks as long as a mounting are the class as well: the message says to shorten them.
-    const auto whole_mount = parse_cv_schemes("blocked", "", "12")->front();
-    auto blocks = scheme_groups(whole_mount, rows, all_rows(rows.size()));
-    REQUIRE(blocks.ok());
-    auto too_long = make_scheme_plan(whole_mount, labels, names, *blocks, 5, 1, 1);
+    auto too_long = plan_for(parse_cv_schemes("blocked", "", "12")->front(), rows, 5, 1);
     REQUIRE_FALSE(too_long.ok());
     CHECK_THAT(too_long.error().message, Catch::Contains("too few blocks") && Catch::Contains("smaller blocks"));
 
     // A single group cannot be cross-validated.
-    auto one = make_scheme_plan(by_mount, labels, names, std::vector<std::string>(rows.size(), "1"), 5, 1, 1);
+    std::vector<std::string> names;
+    const auto labels = labels_of(rows, names);
+    auto one = make_scheme_plan(parse_cv_schemes("grouped", "mount", "")->front(), labels, names,
+                                std::vector<std::string>(rows.size(), "1"), 5, 1, 1);
     CHECK_THAT(one.error().message, Catch::Contains("at least 2"));
 }
 
