@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "rollsense/hal/dynamixel/last_resort.hpp"
 #include "rollsense/log.hpp"
@@ -428,10 +427,11 @@ Result<std::size_t> DynamixelActuator::joint_index(const ValueMap& args) const {
 
 Status DynamixelActuator::reboot_joint(std::size_t i) {
     if (auto st = bus_->reboot(ids_[i]); !st.ok()) return with_joint(i, st);
-    // The servo restarts after answering; it is back within about half a second.
+    // The servo restarts after answering; it is back within about half a second
+    // (waited on the line's clock: no wall time on the in-memory emulator).
     Status last;
     for (int attempt = 0; attempt < 20; ++attempt) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        bus_->port().pause(std::chrono::milliseconds(50));
         auto p = bus_->ping(ids_[i]);
         if (p.ok()) {
             last = {};
