@@ -25,6 +25,12 @@ struct PendingFile {
 };
 Status write_files_atomic(std::vector<PendingFile>& files);
 
+// Append to an existing file and flush it to stable storage. A failed write
+// cuts the file back to its size before, so it never keeps part of `content`;
+// only a crash during the append can (readers of appended files must handle a
+// last line without its line end).
+Status append_file_durable(const std::filesystem::path& file, std::string_view content);
+
 // Remove temporaries left by an interrupted write (".<name>.tmp-*") in a folder.
 void remove_stale_temporaries(const std::filesystem::path& folder);
 
