@@ -90,7 +90,7 @@ def main():
     p.add_argument("reference")
     p.add_argument("--runs", default="50,500,5000", help="repetitions per object and speed (27 trials each)")
     p.add_argument("--repeats", type=int, default=3, help="repeats of each recording size (135k: once)")
-    p.add_argument("--stock-repeats", type=int, default=5)
+    p.add_argument("--stock-repeats", type=int, default=5, help="0: no stock run")
     p.add_argument("--tmp", default=None, help="folder for the datasets (default: the system's temporary folder)")
     a = p.parse_args()
     builds = {"new": os.path.join(a.build, "bin", "rollsense"), "ref": os.path.join(a.reference, "bin", "rollsense")}
@@ -150,6 +150,8 @@ def main():
             print(f"record+features 1350 trials: new {rf_new:.2f} s (features from memory), ref {rf_ref:.2f} s "
                   f"(record + features from disk), ref/new {rf_ref / rf_new:.2f}x")
 
+        if a.stock_repeats == 0:
+            return
         t = {"new": [], "ref": []}
         for i in range(a.stock_repeats):
             for b in order(i):

@@ -60,7 +60,26 @@ Status sync_folder(const std::filesystem::path& folder) {
     return {};
 }
 
+// One syncfs() of the filesystem holding `file`: its data and every folder entry.
+Status sync_filesystem_of(const std::filesystem::path& file) {
+    int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    const int rc = fd < 0 ? -1 : ::syncfs(fd);
+    if (fd >= 0) ::close(fd);
+    if (rc != 0) return {ErrorCode::io_error, file.parent_path().string() + ": syncfs failed: " + errno_text()};
+    return {};
+}
+
 }  // namespace
+
+Status write_files_synced(const std::vector<PendingFile>& files) {
+    // As write_files_atomic: one file is fdatasync'ed (and its folder synced),
+    // several are flushed by one syncfs().
+    const bool group = files.size() > 1;
+    for (const auto& f : files)
+        if (auto s = write_and_sync(f.file, f.content, !group); !s.ok()) return s;
+    if (files.empty()) return {};
+    return group ? sync_filesystem_of(files.front().file) : sync_folder(files.front().file.parent_path());
+}
 
 Status write_files_atomic(std::vector<PendingFile>& files) {
     std::vector<std::filesystem::path> temps;
@@ -80,16 +99,11 @@ Status write_files_atomic(std::vector<PendingFile>& files) {
             return s;
         }
     }
-    if (group) {
-        int fd = ::open(temps.front().c_str(), O_RDONLY | O_CLOEXEC);
-        const int rc = fd < 0 ? -1 : ::syncfs(fd);
-        if (fd >= 0) ::close(fd);
-        if (rc != 0) {
-            Status s{ErrorCode::io_error, temps.front().parent_path().string() + ": syncfs failed: " + errno_text()};
+    if (group)
+        if (auto s = sync_filesystem_of(temps.front()); !s.ok()) {
             discard();
             return s;
         }
-    }
     std::vector<std::filesystem::path> folders;
     for (std::size_t i = 0; i < files.size(); ++i) {
         if (::rename(temps[i].c_str(), files[i].file.c_str()) != 0) {

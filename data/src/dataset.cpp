@@ -612,9 +612,10 @@ void DatasetWriter::writer_loop() {
             for (std::size_t i = 0; i < batch.trials.size(); ++i)
                 files.push_back({dir_ / batch.trials[i].record.file,
                                  format_trial_csv(info_, batch.trials[i].data, on_durable_ ? &written[i] : nullptr)});
-            // Trial files first (synced and renamed), then the manifest rows that
-            // list them, appended and synced: each batch costs its own size only.
-            s = write_files_atomic(files);
+            // Trial files first (written in place and synced: only the manifest
+            // makes them part of the dataset), then the rows that list them,
+            // appended and synced: each batch costs its own size only.
+            s = write_files_synced(files);
             if (s.ok()) s = append_file_durable(dir_ / "manifest.csv", batch.manifest_rows);
             if (s.ok() && on_durable_)
                 for (std::size_t i = 0; i < batch.trials.size(); ++i) on_durable_(info_, batch.trials[i].record, written[i]);

@@ -94,8 +94,8 @@ enum class DatasetOpenMode {
 };
 
 // Writes trials durably, holding a lock on the folder (a second writer is
-// refused at once). Each trial file is written atomically; a batch's manifest
-// rows are appended (and synced) after the trial files they list, so after a
+// refused at once). A batch's trial files are written and synced; then its
+// manifest rows are appended (and synced) after the trial files they list, so after a
 // crash every trial in the manifest is complete, and a trial file not yet in
 // the manifest is simply written again on resume. A crash during an append can
 // leave a last line without its line end: the reader refuses such a dataset,
