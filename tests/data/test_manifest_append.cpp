@@ -18,44 +18,25 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "temp_dir.hpp"
+#include "tiny_dataset.hpp"
 
 using namespace rollsense;
 using rollsense::testing::TempDir;
+using rollsense::testing::tiny_info;
+using rollsense::testing::tiny_record;
+using rollsense::testing::tiny_samples;
 
 namespace {
-
-DatasetInfo info() {
-    DatasetInfo i;
-    i.channels = {"ch1"};
-    i.profile = "test";
-    i.seed = 3;
-    return i;
-}
-
-TrialData samples() {
-    TrialData d;
-    d.time = {0.0, 0.1};
-    d.channels = {{1.0, 2.0}};
-    d.valid = {1, 1};
-    return d;
-}
-
-TrialRecord record(const std::string& id) {
-    TrialRecord r;
-    r.info.id = id;
-    r.info.object = "C1";
-    return r;
-}
 
 // Records trials t0..t<n-1>, `commit_every` per batch.
 void record_trials(const std::filesystem::path& dir, int n, std::size_t commit_every,
                    DatasetOpenMode mode = DatasetOpenMode::create) {
-    auto w = DatasetWriter::open(dir, info(), mode);
+    auto w = DatasetWriter::open(dir, tiny_info(), mode);
     REQUIRE(w.ok());
     (*w)->set_commit_every(commit_every);
     for (int i = 0; i < n; ++i) {
         const std::string id = "t" + std::to_string(i);
-        if (!(*w)->has_trial(id)) REQUIRE((*w)->add_trial(record(id), samples()).ok());
+        if (!(*w)->has_trial(id)) REQUIRE((*w)->add_trial(tiny_record(id), tiny_samples()).ok());
     }
     REQUIRE((*w)->flush().ok());
 }
@@ -109,14 +90,14 @@ TEST_CASE("format_sample writes exactly what \"%.9g\" wrote, for random and edge
 TEST_CASE("the manifest is appended batch by batch, never rewritten, and equals one written whole",
           "[data][manifest]") {
     TempDir dir;
-    auto w = DatasetWriter::open(dir.path() / "ds", info(), DatasetOpenMode::create);
+    auto w = DatasetWriter::open(dir.path() / "ds", tiny_info(), DatasetOpenMode::create);
     REQUIRE(w.ok());
     (*w)->set_commit_every(2);
     const auto manifest = dir.path() / "ds" / "manifest.csv";
     const ino_t first = inode(manifest);
     std::uintmax_t size = std::filesystem::file_size(manifest);
     for (int i = 0; i < 6; ++i) {
-        REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
+        REQUIRE((*w)->add_trial(tiny_record("t" + std::to_string(i)), tiny_samples()).ok());
         REQUIRE((*w)->flush().ok());
         CHECK(inode(manifest) == first);  // the same file, grown (a rewrite renames a new one over it)
         CHECK(std::filesystem::file_size(manifest) > size);
@@ -180,10 +161,10 @@ TEST_CASE("a hand-made manifest without a final line end is read as before", "[d
 
 TEST_CASE("a failed manifest append keeps no part of its rows", "[data][manifest]") {
     TempDir dir;
-    auto w = DatasetWriter::open(dir.path() / "ds", info(), DatasetOpenMode::create);
+    auto w = DatasetWriter::open(dir.path() / "ds", tiny_info(), DatasetOpenMode::create);
     REQUIRE(w.ok());
     (*w)->set_commit_every(1);
-    REQUIRE((*w)->add_trial(record("t0"), samples()).ok());
+    REQUIRE((*w)->add_trial(tiny_record("t0"), tiny_samples()).ok());
     REQUIRE((*w)->flush().ok());
     const auto manifest = dir.path() / "ds" / "manifest.csv";
     const std::string before = testing::read_file(manifest);
@@ -195,7 +176,7 @@ TEST_CASE("a failed manifest append keeps no part of its rows", "[data][manifest
     rlimit small = old;
     small.rlim_cur = before.size() + 10;
     REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
-    REQUIRE((*w)->add_trial(record("t1"), samples()).ok());
+    REQUIRE((*w)->add_trial(tiny_record("t1"), tiny_samples()).ok());
     const auto s = (*w)->flush();
     REQUIRE(::setrlimit(RLIMIT_FSIZE, &old) == 0);
     std::signal(SIGXFSZ, old_handler);
