@@ -25,11 +25,16 @@ in this one process, on the stock script scripts/paper_experiment.lua with
 Each figure is the median of the repeats; ratios are reference / new (> 1:
 the new build is faster). Both builds' datasets are compared byte for byte
 (trials/, manifest.csv, dataset-info.csv; and features.csv for the stock run).
-The 135k size (--runs 5000) takes minutes and ~1.3 GB of disk per build.
+The CPU seconds (user + system of the child) are printed beside the wall
+time: on a shared machine they vary less. Every dataset gets a fresh folder and
+all are deleted at the end (ext4 scans past recently deleted inodes when it
+allocates new ones, which would charge a run for deleting the one before): the
+135k size (--runs 5000) takes minutes and ~1.3 GB of disk per build.
 """
 import argparse
 import filecmp
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -52,13 +57,19 @@ def proc_io():
     return out
 
 
+CPU = {}  # command → CPU seconds (user + system) of its last run
+
+
 def run(cmd):
     """Runs cmd; returns (wall seconds, bytes written via write(), bytes to the block layer)."""
     before = proc_io()
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     wall = time.perf_counter() - start
     after = proc_io()
+    used = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU[cmd[0]] = used.ru_utime - usage.ru_utime + used.ru_stime - usage.ru_stime
     if done.returncode != 0:
         sys.exit(f"{' '.join(cmd)} failed ({done.returncode}):\n{done.stderr}")
     return wall, after["wchar"] - before["wchar"], after["write_bytes"] - before["write_bytes"]
@@ -109,29 +120,31 @@ def main():
             trials = TRIALS_PER_RUN * runs
             repeats = 1 if trials > 20000 else a.repeats
             t = {"new": [], "ref": []}
+            cpu = {"new": [], "ref": []}
             written = {}
             for i in range(repeats):
                 for b in order(i):
-                    out = os.path.join(work, f"{b}-{runs}")
-                    shutil.rmtree(out, ignore_errors=True)
+                    # A fresh folder each time, deleted only at the end: ext4 scans past
+                    # recently deleted inodes when it allocates, which would charge
+                    # one run for the deletion of the one before it.
+                    out = os.path.join(work, f"{b}-{runs}-{i}")
                     wall, wchar, wbytes = run([builds[b], "run", *base, "--set", f"runs={runs}", "--set",
                                                "analyse=false", "--out", out])
                     t[b].append(wall)
+                    cpu[b].append(CPU[builds[b]])
                     written[b] = (wchar, wbytes, folder_bytes(out))
-            why = same_dataset(os.path.join(work, f"new-{runs}"), os.path.join(work, f"ref-{runs}"),
+            why = same_dataset(os.path.join(work, f"new-{runs}-0"), os.path.join(work, f"ref-{runs}-0"),
                                ["manifest.csv", "dataset-info.csv"])
             for b in ("new", "ref"):
                 wall = statistics.median(t[b])
                 wchar, wbytes, size = written[b]
                 block = f", {wbytes / size:.2f}x to the block layer" if wbytes else ""
-                print(f"record {trials:>6} trials  {b}: {wall:7.2f} s  {trials / wall:7.0f} trials/s  wrote "
+                print(f"record {trials:>6} trials  {b}: {wall:7.2f} s ({statistics.median(cpu[b]):6.2f} s CPU)  "
+                      f"{trials / wall:7.0f} trials/s  wrote "
                       f"{wchar / 1e6:8.1f} MB for a {size / 1e6:7.1f} MB dataset = {wchar / size:5.2f}x{block}")
             print(f"record {trials:>6} trials  ref/new time {statistics.median(t['ref']) / statistics.median(t['new']):.2f}x; "
                   f"datasets {'byte-identical' if why is None else 'DIFFER: ' + why}")
             record_1k.setdefault(runs, {b: statistics.median(t[b]) for b in t})
-            if runs != 50:
-                for b in ("new", "ref"):
-                    shutil.rmtree(os.path.join(work, f"{b}-{runs}"), ignore_errors=True)
         sizes = sorted(record_1k)
         for small, big in zip(sizes, sizes[1:]):
             for b in ("new", "ref"):
@@ -142,7 +155,7 @@ def main():
             t = {"new": [], "ref": []}
             for i in range(a.repeats):
                 for b in order(i):
-                    ds = os.path.join(work, f"{b}-50")
+                    ds = os.path.join(work, f"{b}-50-0")
                     t[b].append(run([builds[b], "features", ds, "-o", os.path.join(work, f"{b}-features.csv")])[0])
             f = {b: statistics.median(t[b]) for b in t}
             print(f"features 1350 trials (from disk): new {f['new']:.3f} s, ref {f['ref']:.3f} s, ref/new {f['ref'] / f['new']:.2f}x")
@@ -155,10 +168,9 @@ def main():
         t = {"new": [], "ref": []}
         for i in range(a.stock_repeats):
             for b in order(i):
-                out = os.path.join(work, f"{b}-stock")
-                shutil.rmtree(out, ignore_errors=True)
+                out = os.path.join(work, f"{b}-stock-{i}")
                 t[b].append(run([builds[b], "run", *base, "--out", out])[0])
-        why = same_dataset(os.path.join(work, "new-stock"), os.path.join(work, "ref-stock"),
+        why = same_dataset(os.path.join(work, "new-stock-0"), os.path.join(work, "ref-stock-0"),
                            ["manifest.csv", "dataset-info.csv", "features.csv", "model.rsm"])
         s = {b: statistics.median(t[b]) for b in t}
         print(f"stock run (1350 trials, record + features + 10x5-fold CV + final fit + report): new {s['new']:.2f} s, "
