@@ -18,22 +18,29 @@ std::filesystem::path temporary_for(const std::filesystem::path& file) {
            ("." + file.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
 }
 
-// Write a file; with `sync` also flush it to stable storage before closing.
-Status write_and_sync(const std::filesystem::path& path, std::string_view content, bool sync = true) {
-    int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return {ErrorCode::io_error, path.string() + ": cannot create: " + errno_text()};
+// Every byte of `content` to an open file (retrying short writes).
+Status write_all(int fd, const std::filesystem::path& path, std::string_view content) {
     const char* p = content.data();
     std::size_t left = content.size();
     while (left > 0) {
         ssize_t n = ::write(fd, p, left);
         if (n < 0) {
             if (errno == EINTR) continue;
-            Status s{ErrorCode::io_error, path.string() + ": write failed: " + errno_text()};
-            ::close(fd);
-            return s;
+            return {ErrorCode::io_error, path.string() + ": write failed: " + errno_text()};
         }
         p += n;
         left -= static_cast<std::size_t>(n);
+    }
+    return {};
+}
+
+// Write a file; with `sync` also flush it to stable storage before closing.
+Status write_and_sync(const std::filesystem::path& path, std::string_view content, bool sync = true) {
+    int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return {ErrorCode::io_error, path.string() + ": cannot create: " + errno_text()};
+    if (auto s = write_all(fd, path, content); !s.ok()) {
+        ::close(fd);
+        return s;
     }
     if (sync && ::fdatasync(fd) != 0) {
         Status s{ErrorCode::io_error, path.string() + ": fsync failed: " + errno_text()};
@@ -53,7 +60,26 @@ Status sync_folder(const std::filesystem::path& folder) {
     return {};
 }
 
+// One syncfs() of the filesystem holding `file`: its data and every folder entry.
+Status sync_filesystem_of(const std::filesystem::path& file) {
+    int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    const int rc = fd < 0 ? -1 : ::syncfs(fd);
+    if (fd >= 0) ::close(fd);
+    if (rc != 0) return {ErrorCode::io_error, file.parent_path().string() + ": syncfs failed: " + errno_text()};
+    return {};
+}
+
 }  // namespace
+
+Status write_files_synced(const std::vector<PendingFile>& files) {
+    // As write_files_atomic: one file is fdatasync'ed (and its folder synced),
+    // several are flushed by one syncfs().
+    const bool group = files.size() > 1;
+    for (const auto& f : files)
+        if (auto s = write_and_sync(f.file, f.content, !group); !s.ok()) return s;
+    if (files.empty()) return {};
+    return group ? sync_filesystem_of(files.front().file) : sync_folder(files.front().file.parent_path());
+}
 
 Status write_files_atomic(std::vector<PendingFile>& files) {
     std::vector<std::filesystem::path> temps;
@@ -73,16 +99,11 @@ Status write_files_atomic(std::vector<PendingFile>& files) {
             return s;
         }
     }
-    if (group) {
-        int fd = ::open(temps.front().c_str(), O_RDONLY | O_CLOEXEC);
-        const int rc = fd < 0 ? -1 : ::syncfs(fd);
-        if (fd >= 0) ::close(fd);
-        if (rc != 0) {
-            Status s{ErrorCode::io_error, temps.front().parent_path().string() + ": syncfs failed: " + errno_text()};
+    if (group)
+        if (auto s = sync_filesystem_of(temps.front()); !s.ok()) {
             discard();
             return s;
         }
-    }
     std::vector<std::filesystem::path> folders;
     for (std::size_t i = 0; i < files.size(); ++i) {
         if (::rename(temps[i].c_str(), files[i].file.c_str()) != 0) {
@@ -98,6 +119,18 @@ Status write_files_atomic(std::vector<PendingFile>& files) {
     for (const auto& folder : folders)
         if (auto s = sync_folder(folder); !s.ok()) return s;
     return {};
+}
+
+Status append_file_durable(const std::filesystem::path& file, std::string_view content) {
+    int fd = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (fd < 0) return {ErrorCode::io_error, file.string() + ": cannot open to append: " + errno_text()};
+    const off_t before = ::lseek(fd, 0, SEEK_END);
+    Status s = before < 0 ? Status{ErrorCode::io_error, file.string() + ": cannot seek: " + errno_text()}
+                          : write_all(fd, file, content);
+    if (s.ok() && ::fdatasync(fd) != 0) s = {ErrorCode::io_error, file.string() + ": fsync failed: " + errno_text()};
+    if (!s.ok() && before >= 0) (void)::ftruncate(fd, before);  // keep no part of a failed append
+    if (::close(fd) != 0 && s.ok()) s = {ErrorCode::io_error, file.string() + ": close failed: " + errno_text()};
+    return s;
 }
 
 Status write_file_atomic(const std::filesystem::path& file, std::string_view content) {

@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 namespace rollsense::csv {
@@ -39,13 +38,14 @@ Result<bool> Reader::read_record(std::vector<std::string>& fields) {
     std::string field;
     bool in_quotes = false, any = false, field_was_quoted = false;
     int c;
-    std::istream& in = *in_;
-    while ((c = in.get()) != EOF) {
+    // The stream buffer directly: istream::get() costs a sentry per character.
+    std::streambuf& in = *in_->rdbuf();
+    while ((c = in.sbumpc()) != EOF) {
         any = true;
         if (in_quotes) {
             if (c == '"') {
-                if (in.peek() == '"') {
-                    in.get();
+                if (in.sgetc() == '"') {
+                    in.sbumpc();
                     field.push_back('"');
                 } else {
                     in_quotes = false;
@@ -178,21 +178,38 @@ void append_row(std::string& out, const std::vector<std::string>& fields) {
     out.push_back('\n');
 }
 
-std::string format_number(double value) {
-    if (std::isnan(value)) return "NaN";
-    if (std::isinf(value)) return value > 0 ? "Inf" : "-Inf";
+void append_number(std::string& out, double value) {
+    if (std::isnan(value)) {
+        out += "NaN";
+    } else if (std::isinf(value)) {
+        out += value > 0 ? "Inf" : "-Inf";
+    } else {
+        char buf[32];
+        // Shortest representation that round-trips exactly (24 chars at most).
+        const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value);
+        out.append(buf, ptr);
+    }
+}
+
+void append_sample(std::string& out, double value) {
+    if (!std::isfinite(value)) return append_number(out, value);
     char buf[32];
-    // Shortest representation that round-trips exactly.
-    auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value);
-    if (ec != std::errc()) return std::to_string(value);
-    return std::string(buf, ptr);
+    // As "%.9g": 9 significant digits, trailing zeros dropped, an exponent of
+    // at least two digits outside [1e-4, 1e9) (16 chars at most).
+    const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 9);
+    out.append(buf, ptr);
+}
+
+std::string format_number(double value) {
+    std::string out;
+    append_number(out, value);
+    return out;
 }
 
 std::string format_sample(double value) {
-    if (!std::isfinite(value)) return format_number(value);
-    char buf[32];
-    const int n = std::snprintf(buf, sizeof buf, "%.9g", value);
-    return std::string(buf, static_cast<std::size_t>(n));
+    std::string out;
+    append_sample(out, value);
+    return out;
 }
 
 Result<KeyValues> read_key_values(const std::filesystem::path& file) {

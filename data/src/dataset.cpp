@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
-#include <sstream>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <unordered_set>
 
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
@@ -150,10 +152,50 @@ Result<DatasetInfo> read_info(const fs::path& file) {
 // Counts of a trial's samples: far above any real recording, far below what overflows.
 constexpr std::uint64_t kMaxCount = 1'000'000'000;
 
+// The columns a manifest row is read from (SIZE_MAX: an optional column it lacks).
+using ManifestColumns = std::vector<std::size_t>;
+
+// One manifest row, the inverse of append_manifest_row.
+Result<TrialRecord> parse_manifest_row(const csv::Reader& reader, const std::vector<std::string>& f,
+                                       const ManifestColumns& col) {
+    auto integer = [&](std::size_t c, std::uint64_t max = kMaxCount) -> Result<std::uint64_t> {
+        if (c == SIZE_MAX) return std::uint64_t{0};
+        return reader.unsigned_integer(f, c, max);
+    };
+    TrialRecord r;
+    r.info.id = f[col[0]];
+    r.file = f[col[1]];
+    r.info.object = f[col[2]];
+    r.info.speed = f[col[3]];
+    auto rep = integer(col[4], INT32_MAX);
+    if (!rep) return rep.error();
+    r.info.repetition = static_cast<int>(*rep);
+    if (col[5] != SIZE_MAX) {
+        auto seed = integer(col[5], UINT64_MAX);
+        if (!seed) return seed.error();
+        r.info.seed = *seed;
+    }
+    auto samples = integer(col[6]);
+    if (!samples) return samples.error();
+    r.samples = static_cast<std::size_t>(*samples);
+    auto invalid = integer(col[7]);
+    if (!invalid) return invalid.error();
+    r.invalid_samples = static_cast<std::size_t>(*invalid);
+    if (col[8] != SIZE_MAX) r.info.extra = parse_extra(f[col[8]]);
+    if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader.where(col[0]) + ": empty trial id"};
+    // A manifest names files inside its dataset folder only.
+    const fs::path listed(r.file);
+    if (r.file.empty() || listed.is_absolute() ||
+        std::any_of(listed.begin(), listed.end(), [](const fs::path& part) { return part == ".."; }))
+        return Error{ErrorCode::parse_error, reader.where(col[1]) + ": '" + r.file +
+                                                 "' is not a path inside the dataset folder (relative, no '..')"};
+    return r;
+}
+
 Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
     auto reader = csv::Reader::open(file);
     if (!reader) return reader.error();
-    std::vector<std::size_t> col;
+    ManifestColumns col;
     for (const auto& name : kManifestColumns) {
         if (name == "extra" || name == "invalid_samples" || name == "seed") {
             auto c = reader->column(name);
@@ -165,53 +207,76 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
         col.push_back(*c);
     }
     std::vector<TrialRecord> out;
-    std::set<std::string> ids;
+    std::unordered_set<std::string> ids;
     std::vector<std::string> f;
-    auto integer = [&](std::size_t c, std::uint64_t max = kMaxCount) -> Result<std::uint64_t> {
-        if (c == SIZE_MAX) return std::uint64_t{0};
-        return reader->unsigned_integer(f, c, max);
-    };
     for (;;) {
         auto more = reader->next(f);
         if (!more) return more.error();
         if (!*more) break;
-        TrialRecord r;
-        r.info.id = f[col[0]];
-        r.file = f[col[1]];
-        r.info.object = f[col[2]];
-        r.info.speed = f[col[3]];
-        auto rep = integer(col[4], INT32_MAX);
-        if (!rep) return rep.error();
-        r.info.repetition = static_cast<int>(*rep);
-        if (col[5] != SIZE_MAX) {
-            auto seed = integer(col[5], UINT64_MAX);
-            if (!seed) return seed.error();
-            r.info.seed = *seed;
-        }
-        auto samples = integer(col[6]);
-        if (!samples) return samples.error();
-        r.samples = static_cast<std::size_t>(*samples);
-        auto invalid = integer(col[7]);
-        if (!invalid) return invalid.error();
-        r.invalid_samples = static_cast<std::size_t>(*invalid);
-        if (col[8] != SIZE_MAX) r.info.extra = parse_extra(f[col[8]]);
-        if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader->where(col[0]) + ": empty trial id"};
-        // A manifest names files inside its dataset folder only.
-        const fs::path listed(r.file);
-        if (r.file.empty() || listed.is_absolute() ||
-            std::any_of(listed.begin(), listed.end(), [](const fs::path& part) { return part == ".."; }))
-            return Error{ErrorCode::parse_error, reader->where(col[1]) + ": '" + r.file +
-                                                     "' is not a path inside the dataset folder (relative, no '..')"};
-        if (!ids.insert(r.info.id).second)
-            return Error{ErrorCode::parse_error, reader->where(col[0]) + ": trial id '" + r.info.id + "' appears twice"};
-        out.push_back(std::move(r));
+        auto r = parse_manifest_row(*reader, f, col);
+        if (!r) return r.error();
+        if (!ids.insert(r->info.id).second)
+            return Error{ErrorCode::parse_error,
+                         reader->where(col[0]) + ": trial id '" + r->info.id + "' appears twice"};
+        out.push_back(std::move(*r));
     }
     return out;
 }
 
+// One manifest row, '\n' terminated: what a batch appends for each of its trials.
+void append_manifest_row(std::string& out, const TrialRecord& t) {
+    csv::append_row(out, {t.info.id, t.file, t.info.object, t.info.speed, std::to_string(t.info.repetition),
+                          std::to_string(t.info.seed), std::to_string(t.samples), std::to_string(t.invalid_samples),
+                          format_extra(t.info.extra)});
+}
+
+// A manifest is appended to batch by batch; a crash in the middle of an
+// append can leave its last line without the line end. Returns the size of
+// the file without that torn line and the line's number, or nothing when the
+// file ends with a line end (or is empty).
+struct TornLine {
+    std::uintmax_t keep_bytes = 0;
+    std::size_t line = 0;
+};
+Result<std::optional<TornLine>> find_torn_line(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return Error{ErrorCode::io_error, file.string() + ": cannot be opened for reading (check permissions)"};
+    char last = '\n';
+    if (in.seekg(0, std::ios::end).tellg() > 0) in.seekg(-1, std::ios::end).get(last);
+    if (last == '\n') return std::optional<TornLine>{};  // the common case reads one byte
+    in.seekg(0);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto last_end = text.rfind('\n');
+    TornLine torn;
+    torn.keep_bytes = last_end == std::string::npos ? 0 : last_end + 1;
+    torn.line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+    return std::optional<TornLine>{torn};
+}
+
+// Resuming: cut a torn last line off the manifest (the trial it listed is
+// recorded again, as is any trial whose file the manifest does not list).
+Status drop_torn_line(const fs::path& manifest) {
+    std::error_code ec;
+    if (!fs::exists(manifest, ec)) return {};
+    auto torn = find_torn_line(manifest);
+    if (!torn) return torn.error();
+    if (!*torn) return {};
+    log_warning("dataset", manifest.string() + ":" + std::to_string((*torn)->line) +
+                               ": the last line has no line end (a crash while listing a trial); it is dropped and "
+                               "its trial recorded again");
+    if ((*torn)->keep_bytes == 0) {  // the header itself was cut: write it again
+        std::string header;
+        csv::append_row(header, kManifestColumns);
+        return write_file_atomic(manifest, header);
+    }
+    fs::resize_file(manifest, (*torn)->keep_bytes, ec);
+    if (ec) return {ErrorCode::io_error, manifest.string() + ": cannot cut the torn last line: " + ec.message()};
+    return {};
+}
+
 }  // namespace
 
-std::string format_trial_csv(const DatasetInfo& info, const TrialData& data) {
+std::string format_trial_csv(const DatasetInfo& info, const TrialData& data, TrialData* as_written) {
     std::string out;
     out.reserve(64 + data.samples() * (12 * (2 + info.channels.size() + info.joints.size())));
     std::vector<std::string> header{"time"};
@@ -219,17 +284,31 @@ std::string format_trial_csv(const DatasetInfo& info, const TrialData& data) {
     header.insert(header.end(), info.joints.begin(), info.joints.end());
     header.push_back("valid");
     csv::append_row(out, header);
+    if (as_written) {
+        *as_written = TrialData{};
+        as_written->channels.resize(data.channels.size());
+        as_written->joints.resize(data.joints.size());
+    }
+    // Appends one value; with `as_written`, also reads it back from the text
+    // as DatasetReader::load() would (9 significant digits for samples).
+    auto put = [&out](double value, bool sample, std::vector<double>* back) {
+        const std::size_t from = out.size();
+        sample ? csv::append_sample(out, value) : csv::append_number(out, value);
+        if (back) back->push_back(csv::parse_number(std::string_view(out).substr(from), {}).value());
+    };
     for (std::size_t i = 0; i < data.samples(); ++i) {
-        out += csv::format_number(data.time[i]);
-        for (const auto& ch : data.channels) {
+        put(data.time[i], false, as_written ? &as_written->time : nullptr);
+        for (std::size_t c = 0; c < data.channels.size(); ++c) {
             out.push_back(',');
-            out += csv::format_sample(ch[i]);
+            put(data.channels[c][i], true, as_written ? &as_written->channels[c] : nullptr);
         }
-        for (const auto& j : data.joints) {
+        for (std::size_t j = 0; j < data.joints.size(); ++j) {
             out.push_back(',');
-            out += csv::format_sample(j[i]);
+            put(data.joints[j][i], true, as_written ? &as_written->joints[j] : nullptr);
         }
-        out += (i < data.valid.size() && !data.valid[i]) ? ",0\n" : ",1\n";
+        const bool valid = !(i < data.valid.size() && !data.valid[i]);
+        out += valid ? ",1\n" : ",0\n";
+        if (as_written) as_written->valid.push_back(valid ? 1 : 0);
     }
     return out;
 }
@@ -242,6 +321,18 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
         return Error{ErrorCode::not_found, dir.string() + ": no such dataset folder"};
+    // A manifest rollsense wrote (beside its dataset-info.csv) whose last line
+    // lacks its line end was cut by a crash while a batch was being listed: that
+    // trial may be incomplete, so the dataset is refused until --resume drops it.
+    if (fs::exists(dir / "dataset-info.csv", ec) && fs::exists(dir / "manifest.csv", ec)) {
+        auto torn = find_torn_line(dir / "manifest.csv");
+        if (!torn) return torn.error();
+        if (*torn)
+            return Error{ErrorCode::parse_error,
+                         (dir / "manifest.csv").string() + ":" + std::to_string((*torn)->line) +
+                             ": the last line has no line end: the recording was interrupted while listing a trial. "
+                             "Continue the run with --resume (it drops that line and records the trial again)"};
+    }
     auto manifest = read_manifest(dir / "manifest.csv");
     if (!manifest) return manifest.error();
     r.trials_ = std::move(*manifest);
@@ -379,6 +470,8 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     remove_stale_temporaries(dir);
     remove_stale_temporaries(dir / "trials");
     if (mode == DatasetOpenMode::resume && exists) {
+        if (auto s = drop_torn_line(dir / "manifest.csv"); !s.ok())
+            return Error{s.error().code, "cannot resume: " + s.error().message};
         auto on_disk = DatasetReader::open(dir);
         if (!on_disk) return Error{on_disk.error().code, "cannot resume: " + on_disk.error().message};
         const auto& old = on_disk->info();
@@ -404,10 +497,12 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
         // A trial whose file is missing or not what the manifest says (cut short
         // by a crash or a full disk) is recorded again, not kept.
         for (const auto& t : on_disk->trials()) {
-            if (auto loaded = on_disk->load(t); loaded)
+            if (auto loaded = on_disk->load(t); loaded) {
                 w->trials_.push_back(t);
-            else
+                w->ids_.insert(t.info.id);
+            } else {
                 log_warning("dataset", loaded.error().message + ": trial '" + t.info.id + "' is recorded again");
+            }
         }
     }
     w->durable_ = w->trials_.size();
@@ -428,19 +523,12 @@ DatasetWriter::~DatasetWriter() {
     if (writer_.joinable()) writer_.join();
 }
 
-bool DatasetWriter::has_trial(const std::string& trial_id) const {
-    for (const auto& t : trials_)
-        if (t.info.id == trial_id) return true;
-    return false;
-}
+bool DatasetWriter::has_trial(const std::string& trial_id) const { return ids_.count(trial_id) != 0; }
 
 std::string DatasetWriter::manifest_text() const {
     std::string out;
     csv::append_row(out, kManifestColumns);
-    for (const auto& t : trials_)
-        csv::append_row(out, {t.info.id, t.file, t.info.object, t.info.speed, std::to_string(t.info.repetition),
-                              std::to_string(t.info.seed), std::to_string(t.samples), std::to_string(t.invalid_samples),
-                              format_extra(t.info.extra)});
+    for (const auto& t : trials_) append_manifest_row(out, t);
     return out;
 }
 
@@ -486,8 +574,9 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     record.samples = data.samples();
     record.invalid_samples = 0;
     for (auto v : data.valid) record.invalid_samples += v ? 0 : 1;
-    pending_.ids.push_back(record.info.id);
-    pending_.trials.emplace_back(dir_ / record.file, data);
+    append_manifest_row(pending_.manifest_rows, record);
+    ids_.insert(record.info.id);
+    pending_.trials.push_back({record, data});
     trials_.push_back(std::move(record));
     if (pending_.trials.size() >= commit_every_) hand_over();
     return {};
@@ -495,7 +584,6 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
 
 void DatasetWriter::hand_over() {
     if (pending_.trials.empty()) return;
-    pending_.manifest = manifest_text();
     pending_.listed = trials_.size();
     {
         std::lock_guard lock(mutex_);
@@ -520,10 +608,17 @@ void DatasetWriter::writer_loop() {
         if (!failed) {  // after an error nothing more is written: the manifest stays truthful
             std::vector<PendingFile> files;
             files.reserve(batch.trials.size());
-            for (const auto& [path, data] : batch.trials) files.push_back({path, format_trial_csv(info_, data)});
-            // Trial files first (synced and renamed), then the manifest that lists them.
-            s = write_files_atomic(files);
-            if (s.ok()) s = write_file_atomic(dir_ / "manifest.csv", batch.manifest);
+            std::vector<TrialData> written(on_durable_ ? batch.trials.size() : 0);  // what the files hold
+            for (std::size_t i = 0; i < batch.trials.size(); ++i)
+                files.push_back({dir_ / batch.trials[i].record.file,
+                                 format_trial_csv(info_, batch.trials[i].data, on_durable_ ? &written[i] : nullptr)});
+            // Trial files first (written in place and synced: only the manifest
+            // makes them part of the dataset), then the rows that list them,
+            // appended and synced: each batch costs its own size only.
+            s = write_files_synced(files);
+            if (s.ok()) s = append_file_durable(dir_ / "manifest.csv", batch.manifest_rows);
+            if (s.ok() && on_durable_)
+                for (std::size_t i = 0; i < batch.trials.size(); ++i) on_durable_(info_, batch.trials[i].record, written[i]);
         }
         lock.lock();
         if (s.ok() && !failed) {
@@ -532,7 +627,7 @@ void DatasetWriter::writer_loop() {
             // Every trial of a batch that did not reach the manifest is lost,
             // even those whose files were written: the manifest is what counts.
             if (error_.ok()) error_ = s;
-            lost_.insert(lost_.end(), batch.ids.begin(), batch.ids.end());
+            for (const auto& t : batch.trials) lost_.push_back(t.record.info.id);
         }
         busy_ = false;
         idle_.notify_all();

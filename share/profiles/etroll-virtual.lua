@@ -1,5 +1,6 @@
 -- The E-TRoll driver stack on servos emulated in-process, on the virtual
--- clock: the dynamixel plugin's serial port, Protocol 2.0 packets, one sync
+-- clock: the dynamixel plugin's Protocol 2.0 packets over an in-memory line
+-- (answered at once; reply timeouts on the line's own clock), one sync
 -- write and one sync read per control period, the palm-parallel controller and
 -- the Table I procedure all run for real, against emulated XM430/XL330 servos
 -- (with an object clamped between the fingers) that move on the run clock. The

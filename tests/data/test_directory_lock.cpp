@@ -7,31 +7,23 @@
 #include "rollsense/directory_lock.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "tiny_dataset.hpp"
 
 using namespace rollsense;
 using rollsense::testing::TempDir;
-
-namespace {
-DatasetInfo info() {
-    DatasetInfo i;
-    i.channels = {"ch1"};
-    i.profile = "test";
-    i.seed = 3;
-    return i;
-}
-}  // namespace
+using rollsense::testing::tiny_info;
 
 TEST_CASE("a second writer into the same folder is refused while the first lives", "[data][lock]") {
     TempDir dir;
-    auto first = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::create);
+    auto first = DatasetWriter::open(dir / "ds", tiny_info(), DatasetOpenMode::create);
     REQUIRE(first.ok());
-    auto second = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::resume);
+    auto second = DatasetWriter::open(dir / "ds", tiny_info(), DatasetOpenMode::resume);
     REQUIRE_FALSE(second.ok());
     CHECK(second.error().code == ErrorCode::state_error);
     CHECK_THAT(second.error().message, Catch::Contains("being written by another rollsense run") &&
                                            Catch::Contains("--out"));
     first->reset();
-    auto third = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::resume);
+    auto third = DatasetWriter::open(dir / "ds", tiny_info(), DatasetOpenMode::resume);
     CHECK(third.ok());
 }
 

@@ -11,36 +11,13 @@
 #include "rollsense/trial_id.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "tiny_dataset.hpp"
 
 using namespace rollsense;
 using rollsense::testing::TempDir;
-
-namespace {
-
-DatasetInfo info() {
-    DatasetInfo i;
-    i.channels = {"ch1"};
-    i.profile = "test";
-    i.seed = 3;
-    return i;
-}
-
-TrialData samples() {
-    TrialData d;
-    d.time = {0.0, 0.1};
-    d.channels = {{1.0, 2.0}};
-    d.valid = {1, 1};
-    return d;
-}
-
-TrialRecord record(const std::string& id) {
-    TrialRecord r;
-    r.info.id = id;
-    r.info.object = "C1";
-    return r;
-}
-
-}  // namespace
+using rollsense::testing::tiny_info;
+using rollsense::testing::tiny_record;
+using rollsense::testing::tiny_samples;
 
 TEST_CASE("trial ids that cannot name a file everywhere are refused with the rule they break", "[data][trial_id]") {
     for (const char* good : {"C1-v10-r001", "a", "x.y_z-1", "CONSOLE", "com10", "LPT0"})
@@ -77,14 +54,14 @@ TEST_CASE("trial ids that cannot name a file everywhere are refused with the rul
 TEST_CASE("an over-long trial id is refused at add_trial and the rest of its batch is saved", "[data][trial_id]") {
     TempDir dir;
     {
-        auto w = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::create);
+        auto w = DatasetWriter::open(dir / "ds", tiny_info(), DatasetOpenMode::create);
         REQUIRE(w.ok());
         (*w)->set_commit_every(6);
-        for (int i = 0; i < 3; ++i) REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
-        const auto bad = (*w)->add_trial(record(std::string(300, 'x')), samples());
+        for (int i = 0; i < 3; ++i) REQUIRE((*w)->add_trial(tiny_record("t" + std::to_string(i)), tiny_samples()).ok());
+        const auto bad = (*w)->add_trial(tiny_record(std::string(300, 'x')), tiny_samples());
         REQUIRE_FALSE(bad.ok());
         CHECK_THAT(bad.message(), Catch::Contains("300 characters long"));
-        for (int i = 3; i < 5; ++i) REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
+        for (int i = 3; i < 5; ++i) REQUIRE((*w)->add_trial(tiny_record("t" + std::to_string(i)), tiny_samples()).ok());
         REQUIRE((*w)->flush().ok());
         CHECK((*w)->durable_trials() == 5);
     }
@@ -95,7 +72,7 @@ TEST_CASE("an over-long trial id is refused at add_trial and the rest of its bat
 
 TEST_CASE("a failed batch write names every trial it lost and counts only durable ones", "[data][trial_id]") {
     TempDir dir;
-    auto w = DatasetWriter::open(dir / "ds", info(), DatasetOpenMode::create);
+    auto w = DatasetWriter::open(dir / "ds", tiny_info(), DatasetOpenMode::create);
     REQUIRE(w.ok());
     // A non-empty folder where t1's file belongs: the rename onto it fails,
     // as ENOSPC or EIO would, whoever runs the test.
@@ -103,7 +80,7 @@ TEST_CASE("a failed batch write names every trial it lost and counts only durabl
 
     SECTION("the failing batch") {
         (*w)->set_commit_every(3);
-        for (int i = 0; i < 3; ++i) REQUIRE((*w)->add_trial(record("t" + std::to_string(i)), samples()).ok());
+        for (int i = 0; i < 3; ++i) REQUIRE((*w)->add_trial(tiny_record("t" + std::to_string(i)), tiny_samples()).ok());
         const auto s = (*w)->flush();
         REQUIRE_FALSE(s.ok());
         CHECK_THAT(s.message(), Catch::Contains("3 trial(s) not saved: t0, t1, t2") &&
@@ -113,11 +90,11 @@ TEST_CASE("a failed batch write names every trial it lost and counts only durabl
     }
     SECTION("batches before it stay, batches after it are named") {
         (*w)->set_commit_every(1);
-        REQUIRE((*w)->add_trial(record("t0"), samples()).ok());
+        REQUIRE((*w)->add_trial(tiny_record("t0"), tiny_samples()).ok());
         REQUIRE((*w)->flush().ok());
-        (void)(*w)->add_trial(record("t1"), samples());  // fails in the background
+        (void)(*w)->add_trial(tiny_record("t1"), tiny_samples());  // fails in the background
         (void)(*w)->flush();
-        const auto later = (*w)->add_trial(record("t2"), samples());
+        const auto later = (*w)->add_trial(tiny_record("t2"), tiny_samples());
         REQUIRE_FALSE(later.ok());  // nothing more is accepted after a failure
         const auto s = (*w)->flush();
         REQUIRE_FALSE(s.ok());

@@ -1,9 +1,13 @@
-// The bus master against the emulator over a real pseudo-terminal.
+// The bus master against the emulator, over a real pseudo-terminal (what
+// rollsense-dxl-emu and etroll-emulated use) and over the in-memory
+// VirtualBusLink (what etroll-virtual uses): every scenario that does not
+// depend on wall-clock pacing runs on both.
 #include <catch2/catch.hpp>
 
 #include "rollsense/hal/dynamixel/bus.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
+#include "rollsense/hal/dynamixel/virtual_link.hpp"
 
 using namespace rollsense;
 using namespace rollsense::hal;
@@ -12,26 +16,49 @@ using namespace std::chrono_literals;
 
 namespace {
 
-struct Rig {
+BusEmulator etroll_bus() {
+    BusEmulator e;
+    for (const auto& s : etroll_servos()) e.add_servo(s);  // 57600 baud, as from the factory
+    return e;
+}
+
+struct PtyRig {
     std::unique_ptr<PtyBusEmulator> emu;
     std::unique_ptr<Bus> bus;
 
-    explicit Rig(PtyEmulatorOptions options = {false, 0}, BusOptions bus_options = {100ms, 3}) {
-        BusEmulator e;
-        for (const auto& s : etroll_servos()) e.add_servo(s);
-        auto started = PtyBusEmulator::start(std::move(e), options);
+    explicit PtyRig(PtyEmulatorOptions options = {false, 0}, BusOptions bus_options = {100ms, 3}) {
+        auto started = PtyBusEmulator::start(etroll_bus(), options);
         REQUIRE(started.ok());
         emu = std::move(started).value();
         auto port = SerialPort::open(emu->device(), 57600);
         REQUIRE(port.ok());
         bus = std::make_unique<Bus>(std::move(port).value(), bus_options);
     }
+    template <class F>
+    auto with_bus(F f) {
+        return emu->with_bus(f);
+    }
+};
+
+struct VirtualRig {
+    VirtualBusLink* link = nullptr;  // owned by bus
+    std::unique_ptr<Bus> bus;
+
+    VirtualRig() {
+        auto l = std::make_unique<VirtualBusLink>(etroll_bus(), 57600);
+        link = l.get();
+        bus = std::make_unique<Bus>(std::move(l), BusOptions{100ms, 3});
+    }
+    template <class F>
+    auto with_bus(F f) {
+        return f(link->bus());
+    }
 };
 
 }  // namespace
 
-TEST_CASE("ping and scan find the E-TRoll servos with their model numbers") {
-    Rig rig;
+TEMPLATE_TEST_CASE("ping and scan find the E-TRoll servos with their model numbers", "", PtyRig, VirtualRig) {
+    TestType rig;
     auto p = rig.bus->ping(3);
     REQUIRE(p.ok());
     CHECK(p->model_number == 1020);
@@ -42,8 +69,8 @@ TEST_CASE("ping and scan find the E-TRoll servos with their model numbers") {
     CHECK((*found)[3].model_number == 1200);
 }
 
-TEST_CASE("read and write single items") {
-    Rig rig;
+TEMPLATE_TEST_CASE("read and write single items", "", PtyRig, VirtualRig) {
+    TestType rig;
     REQUIRE(rig.bus->write_value(2, addr::profile_velocity, 4, 15).ok());
     auto v = rig.bus->read_value(2, addr::profile_velocity, 4);
     REQUIRE(v.ok());
@@ -53,8 +80,8 @@ TEST_CASE("read and write single items") {
     CHECK(*mode == 4);
 }
 
-TEST_CASE("one sync write moves every servo and one sync read returns every state") {
-    Rig rig;
+TEMPLATE_TEST_CASE("one sync write moves every servo and one sync read returns every state", "", PtyRig, VirtualRig) {
+    TestType rig;
     const std::uint8_t ids[] = {1, 2, 3, 4};
     for (auto id : ids) REQUIRE(rig.bus->write_value(id, addr::torque_enable, 1, 1).ok());
     std::vector<SyncWriteEntry> entries;
@@ -63,12 +90,12 @@ TEST_CASE("one sync write moves every servo and one sync read returns every stat
         put_le(d, 4096 / 8 * id, 4);  // 45 deg per id above 0 tick... absolute ticks
         entries.push_back({id, d});
     }
-    const auto writes_before = rig.emu->with_bus([](BusEmulator& b) { return b.sync_writes(); });
+    const auto writes_before = rig.with_bus([](BusEmulator& b) { return b.sync_writes(); });
     REQUIRE(rig.bus->sync_write(addr::goal_position, 4, entries).ok());
     // SYNC_WRITE has no reply; a PING behind it proves the emulator has handled it.
     REQUIRE(rig.bus->ping(1).ok());
     // The emulator's clock is manual here: let 5 s pass.
-    rig.emu->with_bus([](BusEmulator& b) { b.advance(5.0); return 0; });
+    rig.with_bus([](BusEmulator& b) { b.advance(5.0); return 0; });
     auto states = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
     REQUIRE(states.ok());
     REQUIRE(states->size() == 4);
@@ -78,12 +105,12 @@ TEST_CASE("one sync write moves every servo and one sync read returns every stat
         CHECK(pos == 512 * ids[i]);
         CHECK((*states)[i].data[0] == 0);  // not moving
     }
-    CHECK(rig.emu->with_bus([](BusEmulator& b) { return b.sync_writes(); }) == writes_before + 1);
-    CHECK(rig.emu->with_bus([](BusEmulator& b) { return b.sync_reads(); }) == 1);
+    CHECK(rig.with_bus([](BusEmulator& b) { return b.sync_writes(); }) == writes_before + 1);
+    CHECK(rig.with_bus([](BusEmulator& b) { return b.sync_reads(); }) == 1);
 }
 
-TEST_CASE("status-packet errors become typed errors naming the servo") {
-    Rig rig;
+TEMPLATE_TEST_CASE("status-packet errors become typed errors naming the servo", "", PtyRig, VirtualRig) {
+    TestType rig;
     SECTION("a goal outside the position limits is a limit violation") {
         REQUIRE(rig.bus->write_value(1, addr::max_position_limit, 4, 3000).ok());
         auto st = rig.bus->write_value(1, addr::goal_position, 4, 3500);
@@ -109,9 +136,9 @@ TEST_CASE("status-packet errors become typed errors naming the servo") {
     }
 }
 
-TEST_CASE("a dropped reply is retried and the transaction succeeds") {
-    Rig rig;
-    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(2, {1, 0}); return 0; });
+TEMPLATE_TEST_CASE("a dropped reply is retried and the transaction succeeds", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) { b.set_faults(2, {1, 0}); return 0; });
     auto v = rig.bus->read_value(2, addr::model_number, 2);
     REQUIRE(v.ok());
     CHECK(*v == 1020);
@@ -119,9 +146,9 @@ TEST_CASE("a dropped reply is retried and the transaction succeeds") {
     CHECK(rig.bus->statistics().timeouts == 1);
 }
 
-TEST_CASE("a servo that never answers ends in a timeout error after the bounded retries") {
-    Rig rig;
-    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(3, {-1, 0}); return 0; });
+TEMPLATE_TEST_CASE("a servo that never answers ends in a timeout error after the bounded retries", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) { b.set_faults(3, {-1, 0}); return 0; });
     auto v = rig.bus->read_value(3, addr::present_position, 4);
     REQUIRE_FALSE(v.ok());
     CHECK(v.error().code == ErrorCode::timeout);
@@ -133,14 +160,14 @@ TEST_CASE("a servo that never answers ends in a timeout error after the bounded 
     CHECK(rig.bus->ping(1).ok());
 }
 
-TEST_CASE("a corrupted reply is retried; a servo that always corrupts ends in a CRC error") {
-    Rig rig;
-    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(1, {0, 2}); return 0; });
+TEMPLATE_TEST_CASE("a corrupted reply is retried; a servo that always corrupts ends in a CRC error", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) { b.set_faults(1, {0, 2}); return 0; });
     REQUIRE(rig.bus->ping(1).ok());
     CHECK(rig.bus->statistics().crc_errors == 2);
     CHECK(rig.bus->statistics().retries == 2);
 
-    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(1, {0, -1}); return 0; });
+    rig.with_bus([](BusEmulator& b) { b.set_faults(1, {0, -1}); return 0; });
     auto p = rig.bus->ping(1);
     REQUIRE_FALSE(p.ok());
     CHECK(p.error().code == ErrorCode::protocol_error);
@@ -148,9 +175,9 @@ TEST_CASE("a corrupted reply is retried; a servo that always corrupts ends in a 
     CHECK(p.error().message.find("servo 1") != std::string::npos);
 }
 
-TEST_CASE("a sync read with one silent servo names that servo") {
-    Rig rig;
-    rig.emu->with_bus([](BusEmulator& b) { b.set_faults(3, {-1, 0}); return 0; });
+TEMPLATE_TEST_CASE("a sync read with one silent servo names that servo", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) { b.set_faults(3, {-1, 0}); return 0; });
     const std::uint8_t ids[] = {1, 2, 3, 4};
     auto r = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
     REQUIRE_FALSE(r.ok());
@@ -159,9 +186,9 @@ TEST_CASE("a sync read with one silent servo names that servo") {
     CHECK(r.error().message.find("SYNC_READ") != std::string::npos);
 }
 
-TEST_CASE("garbage on the line before a reply is skipped") {
-    Rig rig;
-    rig.emu->with_bus([](BusEmulator& b) {
+TEMPLATE_TEST_CASE("garbage on the line before a reply is skipped", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) {
         b.inject_garbage({0x00, 0xFF, 0xFF, 0xFD, 0x13, 0x37, 0xFF, 0xFF});
         return 0;
     });
@@ -172,9 +199,9 @@ TEST_CASE("garbage on the line before a reply is skipped") {
     CHECK(rig.bus->statistics().garbage_bytes > 0);
 }
 
-TEST_CASE("an injected hardware error shows as the alert bit; reboot clears it") {
-    Rig rig;
-    rig.emu->with_bus([](BusEmulator& b) { b.raise_hardware_error(2, hw_error::overheating); return 0; });
+TEMPLATE_TEST_CASE("an injected hardware error shows as the alert bit; reboot clears it", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) { b.raise_hardware_error(2, hw_error::overheating); return 0; });
     auto r = rig.bus->read(2, addr::hardware_error_status, 1);
     REQUIRE(r.ok());
     CHECK(r->alert);
@@ -189,7 +216,7 @@ TEST_CASE("an injected hardware error shows as the alert bit; reboot clears it")
 TEST_CASE("with wire pacing a 4-servo control period costs about what the wire would") {
     // Not a timing threshold on the host: the paced emulator holds replies for
     // the computed wire time, so the lower bound is the physics, not the machine.
-    Rig rig({false, 57600}, {100ms, 0});
+    PtyRig rig({false, 57600}, {100ms, 0});
     const std::uint8_t ids[] = {1, 2, 3, 4};
     const auto t0 = std::chrono::steady_clock::now();
     auto r = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
@@ -199,8 +226,8 @@ TEST_CASE("with wire pacing a 4-servo control period costs about what the wire w
     CHECK(took >= std::chrono::microseconds((18 + 4 * 25) * 10 * 1000000LL / 57600 + 4 * 500));
 }
 
-TEST_CASE("a servo only answers at its own baud rate, as on a real bus") {
-    Rig rig;
+TEMPLATE_TEST_CASE("a servo only answers at its own baud rate, as on a real bus", "", PtyRig, VirtualRig) {
+    TestType rig;
     // Move servo 2 to 1 Mbps (EEPROM, torque is off): it answers that write at the old rate.
     REQUIRE(rig.bus->write_value(2, addr::baud_rate, 1, *index_from_baud(1000000)).ok());
     auto lost = rig.bus->ping(2);

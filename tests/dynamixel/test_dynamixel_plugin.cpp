@@ -12,6 +12,7 @@
 #include "dynamixel_actuator.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
+#include "rollsense/hal/dynamixel/virtual_link.hpp"
 
 using namespace rollsense;
 using namespace rollsense::hal::dxl;
@@ -197,6 +198,57 @@ TEST_CASE("each control period costs exactly one sync write and one sync read") 
     CHECK(on_bus(*emu, [](BusEmulator& b) { return b.instructions_handled(); }) == before + 50);
     CHECK(on_bus(*emu, [](BusEmulator& b) { return b.sync_writes(); }) == 25);
     CHECK(on_bus(*emu, [](BusEmulator& b) { return b.sync_reads(); }) == 26);
+}
+
+TEST_CASE("device 'emulator': servos in memory, one sync write and one sync read per period, faults on schedule") {
+    auto raw = etroll_raw("emulator");
+    raw["emulated_object"] = 0.0;  // a bare bus: these servos move freely
+    SECTION("every period is the same two packets, answered at once") {
+        DynamixelActuator a;
+        REQUIRE(a.on_configure(validated(raw), {}).ok());
+        REQUIRE(a.on_activate().ok());
+        auto* link = dynamic_cast<const VirtualBusLink*>(&a.bus()->port());
+        REQUIRE(link);
+        std::vector<JointState> s(4);
+        REQUIRE(a.read(0, s).ok());
+        auto cmd = hold_all(a, s);
+        cmd[0].position = 30;  // the sensing finger moves on the run clock, under the goal written last
+        cmd[0].profile_velocity = 0;
+        const auto before = a.bus()->statistics().transactions;
+        const auto writes = link->bus().sync_writes(), reads = link->bus().sync_reads();
+        for (int period = 1; period <= 100; ++period) {
+            REQUIRE(a.write(period * 0.01, cmd).ok());
+            REQUIRE(a.read(period * 0.01, s).ok());
+        }
+        CHECK(a.bus()->statistics().transactions == before + 200);
+        CHECK(link->bus().sync_writes() == writes + 100);
+        CHECK(link->bus().sync_reads() == reads + 100);
+        CHECK(a.bus()->statistics().timeouts == 0);
+        CHECK(link->now() == hal::SerialLink::Clock::time_point{});  // no reply was ever waited for
+        CHECK(s[0].position == Approx(30).margin(0.1));
+        CHECK(link->bus().elapsed() == Approx(1.0));
+    }
+    SECTION("an injected silent servo ends a read in a timeout naming it, at the scheduled run-clock time") {
+        raw["inject"] = std::vector<std::string>{"3:silent:0.5"};
+        DynamixelActuator a;
+        REQUIRE(a.on_configure(validated(raw), {}).ok());
+        REQUIRE(a.on_activate().ok());
+        std::vector<JointState> s(4);
+        REQUIRE(a.read(0.0, s).ok());
+        REQUIRE(a.read(0.49, s).ok());
+        const auto st = a.read(0.5, s);
+        REQUIRE_FALSE(st.ok());
+        CHECK(st.code() == ErrorCode::timeout);
+        CHECK(st.message().find("servo 3") != std::string::npos);
+        CHECK(st.message().find("4 attempts") != std::string::npos);
+    }
+    SECTION("a baud rate the servos cannot be set to is refused, naming it") {
+        raw["baud"] = std::int64_t{12345};
+        DynamixelActuator a;
+        const auto st = a.on_configure(validated(raw), {});
+        REQUIRE_FALSE(st.ok());
+        CHECK(st.message().find("12345") != std::string::npos);
+    }
 }
 
 TEST_CASE("the pushing finger switches to current mode and clamps the object with the commanded current") {

@@ -21,6 +21,7 @@
 #include <map>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "rollsense/classifier.hpp"
@@ -142,8 +143,13 @@ struct FeatureRow {
 // others: its row is rejected with the reason "unreadable (file:line: ...)".
 // An invalid peak is a rejected row. `stop`, when given and set (Ctrl-C),
 // ends the extraction with ErrorCode::cancelled.
+// `known`: extraction results already taken for some trials, by trial id
+// (features/recorded.hpp): those trials are not read from their files; their
+// identity (object, speed, ..., extra) still comes from the manifest.
+using KnownRows = std::unordered_map<std::string, FeatureRow>;
 Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, const FeatureSettings& settings,
-                                                unsigned threads = 0, const std::atomic<bool>* stop = nullptr);
+                                                unsigned threads = 0, const std::atomic<bool>* stop = nullptr,
+                                                const KnownRows* known = nullptr);
 
 // Features CSV, loadable by MATLAB's readtable / Classification Learner and by
 // pandas.read_csv without options:

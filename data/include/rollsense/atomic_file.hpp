@@ -25,6 +25,18 @@ struct PendingFile {
 };
 Status write_files_atomic(std::vector<PendingFile>& files);
 
+// Several files written in place (no temporary, no rename) and flushed to
+// stable storage (one syncfs() for several): for files that another file commits (the
+// trial files a manifest lists once they are durable), so that a torn one is
+// never read. Half the file-system operations of write_files_atomic.
+Status write_files_synced(const std::vector<PendingFile>& files);
+
+// Append to an existing file and flush it to stable storage. A failed write
+// cuts the file back to its size before, so it never keeps part of `content`;
+// only a crash during the append can (readers of appended files must handle a
+// last line without its line end).
+Status append_file_durable(const std::filesystem::path& file, std::string_view content);
+
 // Remove temporaries left by an interrupted write (".<name>.tmp-*") in a folder.
 void remove_stale_temporaries(const std::filesystem::path& folder);
 

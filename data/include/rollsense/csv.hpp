@@ -79,7 +79,11 @@ void append_row(std::string& out, const std::vector<std::string>& fields);
 // for round values), so files are byte-identical for identical data.
 std::string format_number(double value);
 // A measured value with 9 significant digits: far finer than any sensor's
-// resolution, and less than half the bytes of an exact double. Deterministic.
+// resolution, and less than half the bytes of an exact double. Deterministic:
+// exactly printf's "%.9g" (std::to_chars with precision 9 is defined as it).
 std::string format_sample(double value);
+// The same two, appended to `out` without a temporary string (trial files).
+void append_number(std::string& out, double value);
+void append_sample(std::string& out, double value);
 
 }  // namespace rollsense::csv

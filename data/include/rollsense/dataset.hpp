@@ -18,10 +18,12 @@
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
-#include <thread>
 #include <string>
+#include <thread>
+#include <unordered_set>
 #include <vector>
 
 #include "rollsense/atomic_file.hpp"
@@ -92,10 +94,13 @@ enum class DatasetOpenMode {
 };
 
 // Writes trials durably, holding a lock on the folder (a second writer is
-// refused at once). Each trial file is written atomically; the manifest is
-// rewritten atomically after the trial files it lists, so after a crash every
-// trial in the manifest is complete, and a trial file not yet in the manifest
-// is simply written again on resume.
+// refused at once). A batch's trial files are written and synced; then its
+// manifest rows are appended (and synced) after the trial files they list, so after a
+// crash every trial in the manifest is complete, and a trial file not yet in
+// the manifest is simply written again on resume. A crash during an append can
+// leave a last line without its line end: the reader refuses such a dataset,
+// and resuming cuts that line off (docs/dataset-format.md). The cost of a
+// batch is its own size, whatever the dataset's.
 //
 // Batches of `commit_every` trials are formatted and synced by a background
 // thread, so a fast simulated run overlaps its disk syncs with computing the
@@ -125,15 +130,25 @@ public:
     // Trials add_trial() accepted that a failed write lost (not in the manifest).
     std::size_t lost_trials();
 
+    // Called on the writer thread with each trial once it is durable (in the
+    // manifest), its values as its file holds them: what DatasetReader::load()
+    // would return, without reading the file (features from memory). Set it
+    // before the first add_trial(); it must not call back into the writer.
+    using DurableObserver = std::function<void(const DatasetInfo&, const TrialRecord&, const TrialData&)>;
+    void set_on_durable(DurableObserver observer) { on_durable_ = std::move(observer); }
+
     // Provenance outside the deterministic files.
     Status write_run_info(const std::vector<std::pair<std::string, std::string>>& entries);
 
 private:
+    struct Trial {
+        TrialRecord record;
+        TrialData data;
+    };
     struct Batch {
-        std::vector<std::pair<std::filesystem::path, TrialData>> trials;
-        std::string manifest;  // the manifest listing every trial up to this batch
-        std::vector<std::string> ids;  // the trials of this batch, for the error when it fails
-        std::size_t listed = 0;        // trials the manifest lists
+        std::vector<Trial> trials;
+        std::string manifest_rows;  // the rows of these trials, appended once their files are durable
+        std::size_t listed = 0;     // trials the manifest lists after this batch
     };
     DatasetWriter() = default;
     std::string manifest_text() const;
@@ -146,8 +161,10 @@ private:
     std::filesystem::path dir_;
     DatasetInfo info_;
     std::vector<TrialRecord> trials_;
+    std::unordered_set<std::string> ids_;  // of trials_: has_trial() in constant time
     Batch pending_;
     std::size_t commit_every_ = 1;
+    DurableObserver on_durable_;
 
     std::thread writer_;
     std::mutex mutex_;
@@ -160,6 +177,8 @@ private:
 };
 
 // Render a trial as its CSV file content (used by the writer and by tests).
-std::string format_trial_csv(const DatasetInfo& info, const TrialData& data);
+// With `as_written`, also the trial as a reader loads it back from that text
+// (values to 9 significant digits), without parsing a file.
+std::string format_trial_csv(const DatasetInfo& info, const TrialData& data, TrialData* as_written = nullptr);
 
 }  // namespace rollsense

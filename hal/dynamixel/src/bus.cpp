@@ -1,12 +1,9 @@
 #include "rollsense/hal/dynamixel/bus.hpp"
 
 #include <array>
-#include <thread>
 
 namespace rollsense::hal::dxl {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::string servo(std::uint8_t id) { return "servo " + std::to_string(id); }
 
@@ -26,15 +23,18 @@ Error status_packet_error(std::uint8_t id, Instruction inst, std::uint8_t err_by
     return Error{code, servo(id) + " refused " + to_string(inst) + ": " + describe_status_error(err_byte)};
 }
 
-Bus::Bus(SerialPort port, BusOptions options) : port_(std::move(port)), options_(options) {}
+Bus::Bus(SerialPort port, BusOptions options)
+    : Bus(std::make_unique<SerialPort>(std::move(port)), options) {}
+
+Bus::Bus(std::unique_ptr<SerialLink> link, BusOptions options) : port_(std::move(link)), options_(options) {}
 
 Status Bus::send(const Bytes& packet) {
     stats_.bytes_sent += packet.size();
-    return port_.write_all(packet);
+    return port_->write_all(packet);
 }
 
 Result<Packet> Bus::receive_status(std::uint8_t id, Instruction inst) {
-    const auto deadline = Clock::now() + options_.timeout;
+    const auto deadline = port_->now() + options_.timeout;
     std::array<std::uint8_t, 512> buf{};
     for (;;) {
         while (auto out = parser_.next()) {
@@ -50,14 +50,14 @@ Result<Packet> Bus::receive_status(std::uint8_t id, Instruction inst) {
             if (!p.is_status() || p.id != id) continue;
             return std::move(out->packet);
         }
-        const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - Clock::now());
+        const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - port_->now());
         if (left.count() <= 0) {
             ++stats_.timeouts;
             return Error{ErrorCode::timeout, servo(id) + " did not answer " + to_string(inst) + " within " +
                                                  std::to_string(options_.timeout.count() / 1000.0).substr(0, 5) +
                                                  " ms"};
         }
-        auto n = port_.read_some(buf, left);
+        auto n = port_->read_some(buf, left);
         if (!n.ok()) return n.error();
         stats_.bytes_received += *n;
         parser_.feed(std::span<const std::uint8_t>(buf.data(), *n));
@@ -69,7 +69,7 @@ Result<std::vector<Packet>> Bus::transact(std::uint8_t target, Instruction inst,
     const Bytes packet = build_instruction(target, inst, params);
     // Protocol 2.0 has no sequence numbers: a duplicate reply left over from
     // an earlier retried transaction would pass for this one's answer. Start clean.
-    (void)port_.discard_input();
+    (void)port_->discard_input();
     parser_.clear();
     Error last;
     for (int attempt = 0; attempt <= options_.retries; ++attempt) {
@@ -77,8 +77,8 @@ Result<std::vector<Packet>> Bus::transact(std::uint8_t target, Instruction inst,
             ++stats_.retries;
             // A late reply to the failed attempt must not be taken for the
             // answer to this one: wait out one byte time and drop everything.
-            std::this_thread::sleep_for(port_.byte_time() * 20);
-            (void)port_.discard_input();
+            port_->pause(port_->byte_time() * 20);
+            (void)port_->discard_input();
             parser_.clear();
         }
         ++stats_.transactions;

@@ -164,9 +164,4 @@ Status SerialPort::drain() {
     return {};
 }
 
-std::chrono::nanoseconds SerialPort::byte_time() const noexcept {
-    if (baud_ == 0) return std::chrono::nanoseconds(0);
-    return std::chrono::nanoseconds(10'000'000'000LL / baud_);
-}
-
 }  // namespace rollsense::hal

@@ -34,6 +34,8 @@ struct FeatureSettings {
     HalfWidthRule half_width = HalfWidthRule::outermost;
     TimeBase time_base = TimeBase::samples;
     bool interpolate_crossings = false;  // sub-sample 5 % / 50 % crossings (linear); off = paper's definition
+
+    bool operator==(const FeatureSettings&) const = default;
 };
 
 // The settings as a parameter schema (for profiles, Lua and the CLI) and back.

@@ -30,7 +30,8 @@ IdentificationInput identification_input(const TrialData& data, const std::array
 }
 
 Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, const FeatureSettings& settings,
-                                                unsigned threads, const std::atomic<bool>* stop) {
+                                                unsigned threads, const std::atomic<bool>* stop,
+                                                const KnownRows* known) {
     const auto& trials = dataset.trials();
     auto columns = identification_channels(dataset.info(), dataset.dir().string());
     if (!columns) return columns.error();
@@ -54,6 +55,14 @@ Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, co
             row.speed = rec.info.speed;
             row.repetition = rec.info.repetition;
             row.extra = rec.info.extra;
+            if (known)
+                if (const auto it = known->find(rec.info.id); it != known->end()) {
+                    row.clean = it->second.clean;
+                    row.reason = it->second.reason;
+                    row.values = it->second.values;
+                    row.windows = it->second.windows;
+                    continue;
+                }
             // A trial that cannot be read is skipped with the reason; the others go on.
             auto data = dataset.load(rec);
             if (!data) {

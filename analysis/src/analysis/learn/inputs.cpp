@@ -7,11 +7,13 @@ namespace rollsense::learn {
 
 Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesystem::path& input,
                                                             const features::FeatureSettings& settings,
-                                                            unsigned threads, const std::atomic<bool>* stop) {
+                                                            unsigned threads, const std::atomic<bool>* stop,
+                                                            const features::RecordedFeatures* recorded) {
     std::error_code ec;
     if (std::filesystem::is_directory(input, ec)) {
         auto ds = DatasetReader::open(input);
         if (!ds) return ds.error();
+        if (recorded) return recorded->extract(*ds, threads, stop);
         return features::extract_dataset(*ds, settings, threads, stop);
     }
     if (!std::filesystem::exists(input, ec))

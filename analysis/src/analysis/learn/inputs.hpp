@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rollsense/features.hpp"
+#include "rollsense/features/recorded.hpp"
 #include "analysis/learn/evaluate.hpp"
 
 namespace rollsense::learn {
@@ -14,10 +15,13 @@ namespace rollsense::learn {
 // A folder is a recorded dataset (features extracted with `settings`); a file
 // is a features CSV written by `rollsense features` (or by hand).
 // `stop`: as in features::extract_dataset.
+// `recorded`: features this run took from memory (features/recorded.hpp, with
+// `settings`); only the dataset's other trials are read from their files.
 Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesystem::path& input,
                                                             const features::FeatureSettings& settings,
                                                             unsigned threads = 0,
-                                                            const std::atomic<bool>* stop = nullptr);
+                                                            const std::atomic<bool>* stop = nullptr,
+                                                            const features::RecordedFeatures* recorded = nullptr);
 
 // "learners=100" → integer, "rate=0.1" → number, "x=true" → boolean,
 // anything else a string. Errors name the text.

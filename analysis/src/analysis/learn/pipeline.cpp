@@ -314,7 +314,7 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     if (!prepared) return fail(PipelineStage::classifiers, prepared.error());
     out.classifiers = std::move(prepared).value();
     for (auto& c : out.classifiers) c.factory = stoppable(std::move(c.factory), request.options.stop);
-    auto rows = load_feature_rows(request.input, request.features, 0, request.options.stop);
+    auto rows = load_feature_rows(request.input, request.features, 0, request.options.stop, request.recorded);
     if (!rows) return fail(PipelineStage::rows, rows.error());
     out.rows = std::move(rows).value();
     if (on_rows)

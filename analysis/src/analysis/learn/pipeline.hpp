@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "rollsense/features.hpp"
+#include "rollsense/features/recorded.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/series/prepare.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
@@ -112,6 +113,8 @@ struct PipelineRequest {
     EvaluationOptions options;            // options.params is ignored: each spec has its own
     InputOptions inputs;                  // series preparation and trial selection
     std::optional<PrefixOptions> prefixes;  // also: accuracy before the roll ends (needs a dataset folder)
+    // The input dataset's features this run took from memory, with `features`' settings (rs.analyse).
+    const features::RecordedFeatures* recorded = nullptr;
 };
 
 struct PipelineResult {

@@ -4,8 +4,10 @@
 // object just rolled (live identification).
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "rollsense/features.hpp"
+#include "rollsense/features/recorded.hpp"
 #include "rollsense/log.hpp"
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
@@ -118,6 +120,10 @@ int l_analyse(lua_State* L) {
     learn::PipelineRequest request;
     request.input = dataset_dir;
     request.features = features::FeatureSettings{};
+    // This run's own dataset: the features of the trials it recorded were taken
+    // from memory as each became durable (register_learn); only resumed ones are read.
+    auto* recorded = static_cast<const features::RecordedFeatures*>(lua_touserdata(L, lua_upvalueindex(1)));
+    if (dataset.empty() && recorded && recorded->settings() == request.features) request.recorded = recorded;
     learn::EvaluationOptions& eo = request.options;
     eo.folds = static_cast<int>(opt_field_number(L, opts, "folds", 5));
     eo.repeats = static_cast<int>(opt_field_number(L, opts, "repeats", 10));
@@ -417,8 +423,19 @@ void register_learn(lua_State* L) {
     lua_pushcfunction(L, l_classifier_gc);
     lua_setfield(L, -2, "__gc");
     lua_pop(L, 1);
-    static const luaL_Reg fns[] = {{"analyse", l_analyse}, {"classifier", l_classifier}, {nullptr, nullptr}};
+    static const luaL_Reg fns[] = {{"classifier", l_classifier}, {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
+    // Features from memory: every trial this session's recorder makes durable
+    // goes through a RecordedFeatures, which rs.analyse reads (its upvalue). The
+    // recorder's observer owns it, and the recorder outlives the Lua state.
+    auto recorded = std::make_shared<features::RecordedFeatures>();
+    lua_pushlightuserdata(L, recorded.get());
+    lua_pushcclosure(L, l_analyse, 1);
+    lua_setfield(L, -2, "analyse");
+    Session::of(L).recorder().on_durable(
+        [recorded](const DatasetInfo& info, const TrialRecord& record, const TrialData& data) {
+            recorded->add(info, record, data);
+        });
 }
 
 const ExtraRegistration registration{&register_learn};

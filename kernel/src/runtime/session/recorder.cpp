@@ -32,6 +32,7 @@ Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInf
     if (!w) return w.status();
     dataset_ = std::move(*w);
     dataset_->set_commit_every(commit_every);
+    dataset_->set_on_durable(on_durable_);
     return {};
 }
 

@@ -33,6 +33,8 @@ public:
     Status open_dataset(const std::filesystem::path& dir, const DatasetInfo& info, bool resume,
                         std::size_t commit_every);
     bool has_dataset() const { return dataset_ != nullptr; }
+    // Each trial once durable, as its file holds it (DatasetWriter::set_on_durable); set before open_dataset.
+    void on_durable(DatasetWriter::DurableObserver observer) { on_durable_ = std::move(observer); }
     // Record only one shard's trials (rollsense/shard.hpp); its plan is written with run-info.
     void set_shard(const Shard& shard) { plan_ = std::make_unique<ShardPlan>(shard); }
 
@@ -76,6 +78,7 @@ private:
     const Clock& clock_;
     double sample_period_;
     std::uint64_t run_seed_;
+    DatasetWriter::DurableObserver on_durable_;
     std::unique_ptr<DatasetWriter> dataset_;
     std::unique_ptr<ShardPlan> plan_;  // --shard: which trials are this process's
     TrialInfo trial_;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "rollsense/hal/dynamixel/last_resort.hpp"
 #include "rollsense/log.hpp"
@@ -42,6 +41,7 @@ void DynamixelActuator::arm_last_resort() {
         params.push_back(0);
     }
     const Bytes packet = build_instruction(kBroadcastId, Instruction::sync_write, params);
+    if (bus_->port().fd() < 0) return;  // servos emulated in memory die with the process
     last_resort_slot_ = register_last_resort(bus_->port().fd(), packet);
     if (last_resort_slot_ < 0)
         log_warning(kLog, "no crash-time torque-off for this bus (too many buses or servos); the Bus Watchdog "
@@ -86,19 +86,20 @@ Status DynamixelActuator::on_configure(const ParamSet& params, const PluginConte
         rt_[i].mode = j.default_mode;
     }
 
-    std::string device = config_.device;
     disarm_last_resort();
     bus_.reset();
-    emulator_.reset();
+    emulator_ = nullptr;
+    const BusOptions options{config_.timeout, config_.retries};
     if (config_.device == "emulator") {
-        auto emulator = InProcessEmulator::start(config_);
-        if (!emulator.ok()) return emulator.status();
-        emulator_ = std::move(emulator).value();
-        device = emulator_->device();
+        auto link = start_in_process_emulator(config_);
+        if (!link.ok()) return link.status();
+        emulator_ = link->get();
+        bus_ = std::make_unique<Bus>(std::move(link).value(), options);
+    } else {
+        auto port = hal::SerialPort::open(config_.device, config_.baud);
+        if (!port.ok()) return port.status();
+        bus_ = std::make_unique<Bus>(std::move(port).value(), options);
     }
-    auto port = hal::SerialPort::open(device, config_.baud);
-    if (!port.ok()) return port.status();
-    bus_ = std::make_unique<Bus>(std::move(port).value(), BusOptions{config_.timeout, config_.retries});
     return check_servos();
 }
 
@@ -251,21 +252,23 @@ Status DynamixelActuator::on_deactivate() {
 Status DynamixelActuator::on_cleanup() {
     disarm_last_resort();
     bus_.reset();
-    emulator_.reset();
+    emulator_ = nullptr;
     return {};
 }
 
 Status DynamixelActuator::on_recover() {
     disarm_last_resort();
     bus_.reset();
+    emulator_ = nullptr;
     rt_.assign(config_.joints.size(), Runtime{});
     return {};
 }
 
 Status DynamixelActuator::read(double time, std::span<JointState> states) {
     if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
-    if (emulator_)
-        if (auto st = emulator_->advance_to(time, bus_->statistics().bytes_sent); !st.ok()) return st;
+    // Every packet written so far is already in effect (the line hands bytes
+    // over synchronously): the servos move under the goals last written.
+    if (emulator_) emulator_->advance_servos_to(time);
     if (states.size() != ids_.size())
         return {ErrorCode::invalid_argument, "read() got " + std::to_string(states.size()) + " states for " +
                                                  std::to_string(ids_.size()) + " joints"};
@@ -424,10 +427,11 @@ Result<std::size_t> DynamixelActuator::joint_index(const ValueMap& args) const {
 
 Status DynamixelActuator::reboot_joint(std::size_t i) {
     if (auto st = bus_->reboot(ids_[i]); !st.ok()) return with_joint(i, st);
-    // The servo restarts after answering; it is back within about half a second.
+    // The servo restarts after answering; it is back within about half a second
+    // (waited on the line's clock: no wall time on the in-memory emulator).
     Status last;
     for (int attempt = 0; attempt < 20; ++attempt) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        bus_->port().pause(std::chrono::milliseconds(50));
         auto p = bus_->ping(ids_[i]);
         if (p.ok()) {
             last = {};

@@ -72,8 +72,9 @@ private:
     std::vector<JointInfo> infos_;
     std::vector<std::uint8_t> ids_;
     std::vector<Runtime> rt_;
-    std::unique_ptr<InProcessEmulator> emulator_;  // device "emulator" only; outlives bus_
     std::unique_ptr<hal::dxl::Bus> bus_;
+    // device "emulator" only: the in-memory line bus_ owns, whose servos read() moves on.
+    hal::dxl::VirtualBusLink* emulator_ = nullptr;
 };
 
 }  // namespace rollsense::dynamixel

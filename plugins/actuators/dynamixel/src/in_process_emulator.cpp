@@ -2,9 +2,6 @@
 
 #include "rollsense/etroll_hand/clamped_object.hpp"
 
-#include <chrono>
-#include <thread>
-
 namespace rollsense::dynamixel {
 namespace {
 
@@ -16,7 +13,7 @@ const JointMap* find(const BusConfig& c, const std::string& name) {
 
 }  // namespace
 
-Result<std::unique_ptr<InProcessEmulator>> InProcessEmulator::start(const BusConfig& config) {
+Result<std::unique_ptr<hal::dxl::VirtualBusLink>> start_in_process_emulator(const BusConfig& config) {
     const auto baud_index = hal::dxl::index_from_baud(config.baud);
     if (!baud_index)
         return Error{ErrorCode::invalid_argument, "device 'emulator': " + std::to_string(config.baud) +
@@ -55,33 +52,7 @@ Result<std::unique_ptr<InProcessEmulator>> InProcessEmulator::start(const BusCon
                                                           ", which is not on this bus (ids: see 'ids')"};
         bus.schedule(f);
     }
-    hal::dxl::PtyEmulatorOptions options;
-    options.real_time = false;  // time moves only through advance_to()
-    auto emulator = hal::dxl::PtyBusEmulator::start(std::move(bus), options);
-    if (!emulator.ok()) return emulator.error();
-    return std::unique_ptr<InProcessEmulator>(new InProcessEmulator(std::move(emulator).value()));
-}
-
-Status InProcessEmulator::advance_to(double time, std::uint64_t bytes_sent) {
-    // The serving thread may not have taken the client's last packet (a
-    // SYNC_WRITE gets no reply, so nothing waited for it): let it, so the
-    // servos move under the goals the client last wrote, as on a wire.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-    while (emulator_->bytes_handled() < bytes_sent) {
-        if (std::chrono::steady_clock::now() > deadline)
-            return {ErrorCode::timeout, "device 'emulator': the in-process servo emulator did not take the last "
-                                        "packet within 1 s (the machine is overloaded, or the emulator thread died)"};
-        std::this_thread::sleep_for(std::chrono::microseconds(20));
-    }
-    if (time_ && time > *time_) {
-        const double dt = time - *time_;
-        emulator_->with_bus([dt](hal::dxl::BusEmulator& b) {
-            b.advance(dt);
-            return 0;
-        });
-    }
-    if (!time_ || time > *time_) time_ = time;
-    return {};
+    return std::make_unique<hal::dxl::VirtualBusLink>(std::move(bus), config.baud, "emulator");
 }
 
 }  // namespace rollsense::dynamixel

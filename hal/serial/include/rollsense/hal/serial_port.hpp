@@ -13,14 +13,15 @@
 #include <span>
 #include <string>
 
+#include "rollsense/hal/serial_link.hpp"
 #include "rollsense/status.hpp"
 
 namespace rollsense::hal {
 
-class SerialPort {
+class SerialPort final : public SerialLink {
 public:
     SerialPort() = default;
-    ~SerialPort();
+    ~SerialPort() override;
     SerialPort(const SerialPort&) = delete;
     SerialPort& operator=(const SerialPort&) = delete;
     SerialPort(SerialPort&& other) noexcept;
@@ -36,34 +37,31 @@ public:
     static Result<SerialPort> adopt(int fd, std::string name, std::uint32_t baud);
 
     bool is_open() const noexcept { return fd_ >= 0; }
-    const std::string& name() const noexcept { return name_; }
-    std::uint32_t baud() const noexcept { return baud_; }
-    int fd() const noexcept { return fd_; }
+    const std::string& name() const noexcept override { return name_; }
+    std::uint32_t baud() const noexcept override { return baud_; }
+    int fd() const noexcept override { return fd_; }
 
-    Status set_baud(std::uint32_t baud);
+    Status set_baud(std::uint32_t baud) override;
 
     // Write every byte (retrying short writes); waits at most `timeout` for the
     // device to accept them.
     Status write_all(std::span<const std::uint8_t> bytes,
-                     std::chrono::milliseconds timeout = std::chrono::milliseconds(1000));
+                     std::chrono::milliseconds timeout = std::chrono::milliseconds(1000)) override;
 
     // Read whatever is available, waiting up to `timeout` for the first byte.
     // Returns the number of bytes read; 0 means the timeout expired.
-    Result<std::size_t> read_some(std::span<std::uint8_t> buffer, std::chrono::microseconds timeout);
+    Result<std::size_t> read_some(std::span<std::uint8_t> buffer, std::chrono::microseconds timeout) override;
 
     // Read exactly buffer.size() bytes, or fail with ErrorCode::timeout once
     // `timeout` has passed in total.
     Status read_exact(std::span<std::uint8_t> buffer, std::chrono::microseconds timeout);
 
     // Drop bytes received but not yet read (stale replies after a timeout).
-    Status discard_input();
+    Status discard_input() override;
     // Block until the kernel has sent everything written so far.
     Status drain();
 
     void close() noexcept;
-
-    // Time one byte takes on the wire at the current rate (start + 8 data + stop bits).
-    std::chrono::nanoseconds byte_time() const noexcept;
 
 private:
     SerialPort(int fd, std::string name, std::uint32_t baud) : fd_(fd), name_(std::move(name)), baud_(baud) {}

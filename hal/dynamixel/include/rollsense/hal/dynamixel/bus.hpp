@@ -10,12 +10,14 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "rollsense/hal/dynamixel/control_table.hpp"
 #include "rollsense/hal/dynamixel/protocol.hpp"
+#include "rollsense/hal/serial_link.hpp"
 #include "rollsense/hal/serial_port.hpp"
 #include "rollsense/status.hpp"
 
@@ -58,9 +60,12 @@ struct SyncWriteEntry {
 class Bus {
 public:
     Bus(SerialPort port, BusOptions options = {});
+    // Any other line, e.g. an emulated bus in memory (VirtualBusLink): reply
+    // timeouts and retry pauses run on the link's own clock.
+    Bus(std::unique_ptr<SerialLink> link, BusOptions options = {});
 
-    const SerialPort& port() const noexcept { return port_; }
-    SerialPort& port() noexcept { return port_; }
+    const SerialLink& port() const noexcept { return *port_; }
+    SerialLink& port() noexcept { return *port_; }
     const BusOptions& options() const noexcept { return options_; }
     void set_options(const BusOptions& options) { options_ = options; }
     const BusStatistics& statistics() const noexcept { return stats_; }
@@ -93,7 +98,7 @@ private:
     // Wait for the status packet of `id`; skips echoes and other ids.
     Result<Packet> receive_status(std::uint8_t id, Instruction inst);
 
-    SerialPort port_;
+    std::unique_ptr<SerialLink> port_;
     BusOptions options_;
     PacketParser parser_;
     BusStatistics stats_;
