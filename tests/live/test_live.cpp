@@ -1,0 +1,198 @@
+// The live view's parts (issue 27): the lossy event queue, the request parser,
+// what each site serves and refuses, and the server over real sockets (event
+// stream, slow and vanished clients, malformed requests).
+#include <catch2/catch.hpp>
+
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <thread>
+
+#include "http_client.hpp"
+#include "live/event_hub.hpp"
+#include "live/http.hpp"
+#include "live/http_server.hpp"
+#include "live/site.hpp"
+#include "rollsense/dataset.hpp"
+#include "temp_dir.hpp"
+
+using namespace rollsense;
+using namespace rollsense::live;
+using namespace std::chrono_literals;
+using rollsense::testing::http_exchange;
+using rollsense::testing::http_get;
+using rollsense::testing::status_of;
+
+TEST_CASE("the event queue keeps the latest events and counts what a slow client missed", "[live]") {
+    EventHub hub(4);
+    auto start = hub.join();
+    CHECK(start.events.empty());
+    for (int i = 0; i < 6; ++i) hub.publish(sse_event("sample", std::to_string(i)));
+    auto b = hub.take(start.next, 0ms);
+    CHECK(b.missed == 2);  // capacity 4: the two oldest were overwritten
+    REQUIRE(b.events.size() == 4);
+    CHECK(b.events.front() == "event: sample\ndata: 2\n\n");
+    CHECK(b.next == 6);
+    CHECK(hub.take(b.next, 0ms).events.empty());
+    CHECK(hub.dropped() == 0);
+}
+
+TEST_CASE("a client joining late gets the latest state of each kind first", "[live]") {
+    EventHub hub;
+    hub.publish_state("progress", sse_event("progress", "{\"done\":1}"));
+    hub.publish_state("progress", sse_event("progress", "{\"done\":2}"));
+    hub.publish_state("trial", sse_event("trial", "{}"));
+    auto j = hub.join();
+    REQUIRE(j.events.size() == 2);
+    CHECK_THAT(j.events[0], Catch::Contains("{\"done\":2}"));
+    CHECK(j.next == 3);
+}
+
+TEST_CASE("closing the queue wakes a waiting client", "[live]") {
+    EventHub hub;
+    std::thread closer([&] { hub.close(); });
+    auto b = hub.take(0, std::chrono::hours(1));
+    closer.join();
+    CHECK(b.closed);
+}
+
+TEST_CASE("request heads are parsed by Beast; incomplete, malformed and bodied ones are told apart", "[live][http]") {
+    auto ok = parse_request("GET /app.js?x=1 HTTP/1.1\r\nHost: a\r\n\r\n");
+    REQUIRE(ok.state == ParsedRequest::State::complete);
+    CHECK(ok.request.method == "GET");
+    CHECK(ok.request.target == "/app.js");
+    CHECK(parse_request("GET / HTTP/1.1\r\nHo").state == ParsedRequest::State::incomplete);
+    CHECK(parse_request("GARBAGE\r\n\r\n").state == ParsedRequest::State::malformed);
+    CHECK(parse_request("GET / HTTP/1.1\r\nContent-Length: x\r\n\r\n").state == ParsedRequest::State::malformed);
+    auto body = parse_request("POST / HTTP/1.1\r\nContent-Length: 3\r\n\r\nabc");
+    CHECK(body.state == ParsedRequest::State::malformed);
+    CHECK_THAT(body.error, Catch::Contains("read-only"));
+    CHECK(parse_request("GET /" + std::string(kMaxHead, 'a') + " HTTP/1.1\r\n").state ==
+          ParsedRequest::State::malformed);
+}
+
+TEST_CASE("the live site serves its page and stream only, read-only", "[live][http]") {
+    const Site site = live_site("demo.lua", "sim");
+    auto get = [&](const std::string& method, const std::string& target) { return site(Request{method, target}); };
+    CHECK(status_of(get("GET", "/").bytes) == 200);
+    CHECK_THAT(get("GET", "/").bytes, Catch::Contains("<canvas id=\"plot-channels\""));
+    CHECK_THAT(get("GET", "/app.js").bytes, Catch::Contains("text/javascript"));
+    CHECK_THAT(get("GET", "/info.json").bytes, Catch::Contains("\"mode\":\"live\""));
+    CHECK(get("GET", "/events").stream);
+    CHECK(status_of(get("GET", "/etc/passwd").bytes) == 404);
+    CHECK(status_of(get("GET", "/../index.html").bytes) == 404);
+    CHECK(status_of(get("GET", "/dataset/trials.json").bytes) == 404);
+    auto post = get("POST", "/events");
+    CHECK(status_of(post.bytes) == 405);
+    CHECK_FALSE(post.stream);
+    CHECK_THAT(post.bytes, Catch::Contains("Allow: GET, HEAD"));
+    auto head = get("HEAD", "/");
+    CHECK(status_of(head.bytes) == 200);
+    CHECK_THAT(head.bytes, !Catch::Contains("<canvas"));
+}
+
+TEST_CASE("the dataset site serves the manifest's trials by id and nothing else", "[live][http]") {
+    const rollsense::testing::TempDir tmp("rollsense-live-view");
+    DatasetInfo info;
+    info.channels = {"p1", "p2"};
+    info.channel_units = {"kPa", "kPa"};
+    info.joints = {"sensing_finger"};
+    info.profile = "test";
+    {
+        auto w = DatasetWriter::open(tmp.path(), info, DatasetOpenMode::create);
+        REQUIRE(w.ok());
+        TrialRecord rec;
+        rec.info.id = "C1-v10-r001";
+        rec.info.object = "C1";
+        rec.info.speed = "10";
+        rec.info.repetition = 1;
+        rec.file = "trials/C1-v10-r001.csv";
+        rec.samples = 3;
+        TrialData d;
+        d.time = {0, 0.5, 1};
+        d.channels = {{100, 101.5, 102}, {99, 98, 97}};
+        d.joints = {{10, 20, 30}};
+        d.valid = {1, 1, 1};
+        REQUIRE((*w)->add_trial(rec, d).ok());
+        REQUIRE((*w)->flush().ok());
+    }
+    auto reader = DatasetReader::open(tmp.path());
+    REQUIRE(reader.ok());
+    const Site site = dataset_site(std::make_shared<const DatasetReader>(std::move(*reader)));
+    auto get = [&](const std::string& target) { return site(Request{"GET", target}).bytes; };
+    CHECK_THAT(get("/info.json"), Catch::Contains("\"mode\":\"view\"") && Catch::Contains("\"trials\":1"));
+    CHECK_THAT(get("/dataset/trials.json"), Catch::Contains("\"id\":\"C1-v10-r001\""));
+    const auto trial = get("/dataset/trial/C1-v10-r001.json");
+    CHECK(status_of(trial) == 200);
+    CHECK_THAT(trial, Catch::Contains("\"c\":[[100,101.5,102],[99,98,97]]") && Catch::Contains("\"a\":[[10,20,30]]") &&
+                          Catch::Contains("\"channel_units\":[\"kPa\",\"kPa\"]"));
+    CHECK(status_of(get("/dataset/trial/C9-v10-r001.json")) == 404);
+    CHECK(status_of(get("/dataset/trial/../manifest.csv.json")) == 404);
+    CHECK(status_of(get("/manifest.csv")) == 404);
+    CHECK(status_of(get("/trials/C1-v10-r001.csv")) == 404);
+    CHECK(status_of(get("/events")) == 404);
+}
+
+TEST_CASE("the server streams events, refuses what it does not serve and survives malformed requests", "[live][http]") {
+    EventHub hub;
+    auto server = HttpServer::start("127.0.0.1", 0, live_site("demo.lua", "sim"), &hub);
+    REQUIRE(server.ok());
+    const auto port = (*server)->port();
+    CHECK((*server)->url() == "http://127.0.0.1:" + std::to_string(port) + "/");
+
+    CHECK(status_of(http_get(port, "/")) == 200);
+    CHECK(status_of(http_get(port, "/nothing")) == 404);
+    CHECK(status_of(http_get(port, "/", "DELETE")) == 405);
+    CHECK(status_of(http_exchange(port, "GARBAGE\r\n\r\n")) == 400);
+    CHECK(status_of(http_exchange(port, std::string(3 * kMaxHead, 'x'))) == 400);
+    CHECK(status_of(http_exchange(port, "GET / HTTP/1.1\r\nContent-Length: 99999999999999999999\r\n\r\n")) == 400);
+    CHECK(status_of(http_get(port, "/")) == 200);  // still serving
+
+    hub.publish_state("run", sse_event("run", "{\"outcome\":\"running\"}"));
+    const int fd = rollsense::testing::connect_local(port);
+    REQUIRE(fd >= 0);
+    const std::string req = "GET /events HTTP/1.1\r\nHost: x\r\n\r\n";
+    REQUIRE(::send(fd, req.data(), req.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(req.size()));
+    std::this_thread::sleep_for(300ms);  // the client has joined (its stream starts with the state)
+    hub.publish(sse_event("sample", "{\"n\":1}"));
+    hub.close();
+    const auto stream = rollsense::testing::read_reply(fd);
+    ::close(fd);
+    CHECK_THAT(stream, Catch::StartsWith("HTTP/1.1 200 OK") && Catch::Contains("Content-Type: text/event-stream") &&
+                           Catch::Contains("event: run\ndata: {\"outcome\":\"running\"}") &&
+                           Catch::Contains("event: sample\ndata: {\"n\":1}"));
+}
+
+TEST_CASE("a client that stops reading is dropped; publishing never waits for it", "[live][http]") {
+    EventHub hub(64);
+    auto server = HttpServer::start("127.0.0.1", 0, live_site("demo.lua", "sim"), &hub);
+    REQUIRE(server.ok());
+    const int fd = rollsense::testing::connect_local((*server)->port());
+    REQUIRE(fd >= 0);
+    const int small = 4096;
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+    const std::string req = "GET /events HTTP/1.1\r\n\r\n";
+    REQUIRE(::send(fd, req.data(), req.size(), MSG_NOSIGNAL) > 0);
+    // Far more than the socket buffers hold; the client reads nothing.
+    const std::string payload(16 * 1024, 'x');
+    for (int i = 0; i < 2000 && (*server)->clients_dropped() == 0; ++i) {
+        hub.publish(sse_event("sample", payload));
+        std::this_thread::sleep_for(5ms);
+    }
+    CHECK((*server)->clients_dropped() == 1);
+    ::close(fd);
+    CHECK(status_of(http_get((*server)->port(), "/")) == 200);
+}
+
+TEST_CASE("a port in use and an address that is none are clear errors", "[live][http]") {
+    EventHub hub;
+    auto first = HttpServer::start("127.0.0.1", 0, live_site("a", "b"), &hub);
+    REQUIRE(first.ok());
+    auto second = HttpServer::start("127.0.0.1", (*first)->port(), live_site("a", "b"), &hub);
+    REQUIRE_FALSE(second.ok());
+    CHECK_THAT(second.error().message, Catch::Contains("cannot listen on 127.0.0.1 port") &&
+                                           Catch::Contains("--live=PORT"));
+    auto bad = HttpServer::start("localhost:80", 0, live_site("a", "b"), &hub);
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error().message, Catch::Contains("not an IPv4 or IPv6 address"));
+}
