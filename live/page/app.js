@@ -89,9 +89,18 @@ function seconds(s) {
 function count(id, n) { $(id).textContent = String(Number($(id).textContent) + n); }
 
 // ---------------------------------------------------------------- live ------
+// ?events=N: stop following the stream after N events, leaving the page as it
+// is then (a snapshot: a headless browser's --dump-dom or --screenshot waits
+// for every connection to end).
 function live() {
   const source = new EventSource("events");
-  const on = (name, fn) => source.addEventListener(name, (e) => { count("n-events", 1); fn(JSON.parse(e.data)); });
+  const limit = Number(new URLSearchParams(location.search).get("events")) || Infinity;
+  let received = 0;
+  const on = (name, fn) => source.addEventListener(name, (e) => {
+    count("n-events", 1);
+    fn(JSON.parse(e.data));
+    if (++received >= limit) { source.close(); draw(); }
+  });
   on("run", (r) => {
     $("run").textContent = `${r.script} on ${r.profile}: ${r.outcome}` + (r.message ? ` — ${r.message}` : "");
     $("run").className = r.outcome === "failed" || r.outcome === "cancelled" ? "bad" : "";
@@ -108,6 +117,8 @@ function live() {
   });
   on("sample", (s) => {
     if (!present || s.serial !== present.header.serial) return;
+    $("latest-trial").textContent = String(s.serial);
+    $("latest-n").textContent = String(s.n);
     present.t.push(s.t);
     s.c.forEach((v, i) => present.series.channels[i].push(v));
     s.a.forEach((v, i) => present.series.angles[i] && present.series.angles[i].push(v));

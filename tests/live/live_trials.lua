@@ -2,7 +2,7 @@
 -- (tests/live/test_live_view.sh): each names its steps with rs.status.
 local rs = require "rollsense"
 local etroll = require "etroll"
-local trials = { { object = "C2", speed = 20, repetition = 1 }, { object = "C2", speed = 20, repetition = 2 } }
+local trials = { { object = "C2", speed = 5, repetition = 1 }, { object = "C2", speed = 5, repetition = 2 } }
 for i, t in ipairs(trials) do
   rs.status("trial " .. i .. ": opening")
   rs.trial(t)

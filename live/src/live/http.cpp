@@ -13,10 +13,10 @@ ParsedRequest parse_request(std::string_view bytes) {
     ParsedRequest out;
     http::request_parser<http::empty_body> parser;
     parser.header_limit(static_cast<std::uint32_t>(kMaxHead));
-    parser.eager(true);
+    parser.eager(false);  // stop after the head: a body is refused below, not parsed
     boost::beast::error_code ec;
     std::size_t used = 0;
-    while (used < bytes.size() && !parser.is_done()) {
+    while (used < bytes.size() && !parser.is_header_done()) {
         const std::size_t n = parser.put(boost::asio::buffer(bytes.data() + used, bytes.size() - used), ec);
         if (ec == http::error::need_more) break;
         if (ec) {
