@@ -25,7 +25,7 @@ let dirty = false;
 // Draw the series `key` of the present and previous trials on `canvas`.
 function plot(canvas, key, names, unit) {
   const ctx = canvas.getContext("2d");
-  const W = canvas.width, H = canvas.height, left = 60, right = 150, top = 8, bottom = 22;
+  const W = canvas.width, H = canvas.height, left = 72, right = 150, top = 8, bottom = 22;
   ctx.clearRect(0, 0, W, H);
   const trials = [previous, present].filter((tr) => tr && tr.series[key] && tr.series[key].length);
   let tmax = 1e-9, lo = Infinity, hi = -Infinity, points = 0;
@@ -41,8 +41,8 @@ function plot(canvas, key, names, unit) {
   ctx.strokeStyle = "#999"; ctx.fillStyle = "#444"; ctx.font = "11px sans-serif"; ctx.lineWidth = 1;
   ctx.strokeRect(left, top, W - left - right, H - top - bottom);
   ctx.textAlign = "right";
-  ctx.fillText(hi.toPrecision(5), left - 4, top + 10);
-  ctx.fillText(lo.toPrecision(5), left - 4, H - bottom);
+  ctx.fillText(hi.toPrecision(4), left - 4, top + 10);
+  ctx.fillText(lo.toPrecision(4), left - 4, H - bottom);
   ctx.fillText(unit, left - 4, (H - bottom) / 2 + 4);
   ctx.textAlign = "center";
   ctx.fillText("0 s", left, H - 6);
@@ -131,6 +131,8 @@ function live() {
   on("status", (s) => { $("step").textContent = s.step; });
   on("state", (s) => {
     $("modes").textContent = Object.entries(s.modes).map(([j, m]) => `${j}: ${m}`).join("; ");
+    const controllers = Object.entries(s.controllers);
+    $("controllers").textContent = controllers.length ? controllers.map(([c, on]) => `${c} ${on ? "on" : "off"}`).join("; ") : "none";
     $("estop").textContent = s.estop || "released";
     $("estop").className = s.estop ? "bad" : "";
     $("faults").textContent = s.faults.length ? s.faults.map((f) => `${f.device}${f.joint ? " (" + f.joint + ")" : ""}: ${f.reason}`).join("; ") : "none";

@@ -196,3 +196,103 @@ TEST_CASE("a port in use and an address that is none are clear errors", "[live][
     REQUIRE_FALSE(bad.ok());
     CHECK_THAT(bad.error().message, Catch::Contains("not an IPv4 or IPv6 address"));
 }
+
+// ------------------------------------------------------- a run's feed ------
+
+#include "kernel_fixture.hpp"
+#include "live/live_view.hpp"
+
+namespace {
+std::vector<std::string> all_events(EventHub& hub) {
+    std::vector<std::string> out;
+    for (std::uint64_t next = 0;;) {
+        auto b = hub.take(next, 0ms);
+        if (b.events.empty()) return out;
+        out.insert(out.end(), b.events.begin(), b.events.end());
+        next = b.next;
+    }
+}
+std::size_t count_of(const std::vector<std::string>& events, const std::string& name) {
+    std::size_t n = 0;
+    for (const auto& e : events) n += e.rfind("event: " + name + "\n", 0) == 0;
+    return n;
+}
+}  // namespace
+
+TEST_CASE("a run with the live view publishes its trials, samples, steps, progress and outcome", "[live][session]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, R"(
+local rs = require "rollsense"
+for i = 1, 3 do
+  rs.status("trial " .. i)
+  rs.trial{ object = "X", speed = 10, repetition = i }
+  rs.record_start(); rs.wait(300); rs.record_stop()
+  rs.save_trial(); rs.end_trial()
+  rs.progress(i, 3, "trials")
+end
+)");
+    auto view = LiveView::start(LiveOptions{"127.0.0.1", 0}, o);
+    REQUIRE(view.ok());
+    REQUIRE(o.on_sample);
+    runtime::RunSummary summary;
+    {
+        runtime::Session session(o);
+        summary = session.run();
+    }
+    REQUIRE(summary.status.ok());
+    (*view)->finished(summary);
+    const auto events = all_events((*view)->hub());
+    // The virtual clock runs the three trials in far less than the 250 ms a
+    // shown trial keeps the view: the first is shown, later ones may not be.
+    CHECK(count_of(events, "trial") >= 1);
+    CHECK(count_of(events, "trial") <= 3);
+    CHECK(count_of(events, "sample") >= 1);
+    CHECK(count_of(events, "status") == 3);
+    CHECK(count_of(events, "state") >= 1);
+    std::string first_trial, first_sample, last_progress, last_run;
+    for (const auto& e : events) {
+        if (first_trial.empty() && e.starts_with("event: trial")) first_trial = e;
+        if (first_sample.empty() && e.starts_with("event: sample")) first_sample = e;
+        if (e.starts_with("event: progress")) last_progress = e;
+        if (e.starts_with("event: run")) last_run = e;
+    }
+    CHECK_THAT(first_trial, Catch::Contains("\"id\":\"X-v10-r001\"") &&
+                                Catch::Contains("\"joints\":[\"finger\",\"pusher\"]") &&
+                                Catch::Contains("\"joint_unit\":\"deg\""));
+    // Channels of the bump sensor, and the angle and current of both joints.
+    CHECK_THAT(first_sample, Catch::Contains("\"serial\":1,\"n\":1,\"t\":0,") && Catch::Matches(
+                                 ".*\"a\":\\[[^,\\]]+,[^,\\]]+\\],\"i\":\\[[^,\\]]+,[^,\\]]+\\].*", Catch::CaseSensitive::Yes));
+    CHECK_THAT(last_progress, Catch::Contains("\"done\":3,\"total\":3,\"label\":\"trials\""));
+    CHECK_THAT(last_run, Catch::Contains("\"outcome\":\"done\"") && Catch::Contains("\"trials_saved\":3"));
+    // Its latest status, for a client that joins now.
+    CHECK((*view)->hub().join().events.size() >= 5);  // run, trial, status, state, progress
+}
+
+TEST_CASE("rs.status takes a short step name, with or without a live view", "[live][session]") {
+    kt::TempDir dir;
+    auto ok = kt::run_script(dir, "local rs = require 'rollsense'\nrs.status('clamping')\n");
+    CHECK(ok.summary.status.ok());
+    kt::TempDir dir2;
+    auto long_step = kt::run_script(dir2, "local rs = require 'rollsense'\nrs.status(string.rep('x', 300))\n");
+    REQUIRE_FALSE(long_step.summary.status.ok());
+    CHECK_THAT(long_step.summary.status.message(), Catch::Contains("rs.status: the step is 300 bytes, at most 200"));
+    kt::TempDir dir3;
+    auto not_text = kt::run_script(dir3, "local rs = require 'rollsense'\nrs.status({})\n");
+    REQUIRE_FALSE(not_text.summary.status.ok());
+    CHECK_THAT(not_text.summary.status.message(), Catch::Contains("status"));
+}
+
+TEST_CASE("an identification reaches the page with its trial, class and scores", "[live]") {
+    EventHub hub;
+    RunFeed feed(hub, "identify.lua", "sim");
+    Prediction p;
+    p.label = 1;
+    p.class_name = "C2";
+    p.scores = {0.25, 0.75};
+    feed.identified("C2-v10-r001", {"C1", "C2"}, p);
+    auto j = hub.join();
+    std::string result;
+    for (const auto& e : j.events)
+        if (e.starts_with("event: result")) result = e;
+    CHECK(result == "event: result\ndata: {\"trial\":\"C2-v10-r001\",\"object\":\"C2\",\"scores\":{\"C1\":0.25,\"C2\":0.75}}\n\n");
+}

@@ -29,7 +29,7 @@ public:
     std::string url() const { return server_->url(); }
     // The run's outcome, for the page (after Session::run).
     void finished(const runtime::RunSummary& summary);
-    const EventHub& hub() const { return hub_; }
+    EventHub& hub() { return hub_; }  // what the page's clients read
 
 private:
     LiveView(std::string script, std::string profile);

@@ -67,9 +67,13 @@ void RunFeed::publish_state(runtime::Session& session) {
         modes += (modes.size() > 1 ? "," : "") + json_quote(j.name) + ":" +
                  json_quote(std::string(to_string(j.state.mode)) + (j.state.torque_enabled ? "" : ", torque off"));
     }
+    std::string controllers = "{";
+    for (const auto& c : session.profile().controllers)
+        controllers += (controllers.size() > 1 ? "," : "") + json_quote(c.name) + ":" +
+                       (robot.controller_enabled(c.name) ? "true" : "false");
     const std::string estop = robot.commands_locked_reason();
     std::string json = "{\"estop\":" + (estop.empty() ? std::string("null") : json_quote(estop)) +
-                       ",\"faults\":" + faults + "],\"modes\":" + modes + "}}";
+                       ",\"faults\":" + faults + "],\"modes\":" + modes + "},\"controllers\":" + controllers + "}}";
     if (json == state_json_) return;
     state_json_ = json;
     hub_.publish_state("state", sse_event("state", json));

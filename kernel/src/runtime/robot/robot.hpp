@@ -90,6 +90,7 @@ public:
     void disable_controller(const std::string& name, double time);
     void disable_all_controllers(double time);
     Controller* find_controller(const std::string& name);
+    bool controller_enabled(const std::string& name) const;
 
     // Devices by name, for `device:call(...)` from scripts.
     ComponentHandle* find_device(const std::string& name);
