@@ -174,6 +174,10 @@ void HttpServer::stream(int fd) {
         }
         if ((batch.closed && batch.events.empty()) || stopping_) return;
         batch = hub_->take(batch.next, std::chrono::milliseconds(250));
+        // A client that has closed its end leaves now, not at the next event
+        // (between trials there may be none for a while): its slot is free.
+        pollfd p{fd, POLLRDHUP, 0};
+        if (::poll(&p, 1, 0) > 0 && (p.revents & (POLLRDHUP | POLLHUP | POLLERR))) return;
     }
 }
 

@@ -36,6 +36,7 @@ public:
     std::uint16_t port() const { return port_; }
     std::string url() const;
     std::uint64_t clients_dropped() const { return clients_dropped_; }  // too slow or gone
+    int active_clients() const { return active_; }
 
     static constexpr int kMaxClients = 8;
     static constexpr int kRequestTimeoutMs = 5000;  // to send the request head
