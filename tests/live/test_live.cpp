@@ -3,12 +3,15 @@
 // stream, slow and vanished clients, malformed requests).
 #include <catch2/catch.hpp>
 
+#include <signal.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <thread>
 
 #include "http_client.hpp"
+#include "run_command.hpp"
 #include "live/event_hub.hpp"
 #include "live/http.hpp"
 #include "live/http_server.hpp"
@@ -91,15 +94,16 @@ TEST_CASE("the live site serves its page and stream only, read-only", "[live][ht
     CHECK_THAT(head.bytes, !Catch::Contains("<canvas"));
 }
 
-TEST_CASE("the dataset site serves the manifest's trials by id and nothing else", "[live][http]") {
-    const rollsense::testing::TempDir tmp("rollsense-live-view");
+namespace {
+// One trial of two channels and one joint.
+void write_one_trial_dataset(const std::filesystem::path& dir) {
     DatasetInfo info;
     info.channels = {"p1", "p2"};
     info.channel_units = {"kPa", "kPa"};
     info.joints = {"sensing_finger"};
     info.profile = "test";
     {
-        auto w = DatasetWriter::open(tmp.path(), info, DatasetOpenMode::create);
+        auto w = DatasetWriter::open(dir, info, DatasetOpenMode::create);
         REQUIRE(w.ok());
         TrialRecord rec;
         rec.info.id = "C1-v10-r001";
@@ -116,6 +120,12 @@ TEST_CASE("the dataset site serves the manifest's trials by id and nothing else"
         REQUIRE((*w)->add_trial(rec, d).ok());
         REQUIRE((*w)->flush().ok());
     }
+}
+}  // namespace
+
+TEST_CASE("the dataset site serves the manifest's trials by id and nothing else", "[live][http]") {
+    const rollsense::testing::TempDir tmp("rollsense-live-view");
+    write_one_trial_dataset(tmp.path());
     auto reader = DatasetReader::open(tmp.path());
     REQUIRE(reader.ok());
     const Site site = dataset_site(std::make_shared<const DatasetReader>(std::move(*reader)));
@@ -317,4 +327,43 @@ TEST_CASE("clients that hang up leave their places to others", "[live][http]") {
         for (int k = 0; k < 600 && (*server)->active_clients() > 0; ++k) std::this_thread::sleep_for(100ms);
         REQUIRE((*server)->active_clients() == 0);
     }
+}
+
+TEST_CASE("rollsense view DATASET serves the dataset's page until its time is up", "[live][cli]") {
+    const rollsense::testing::TempDir tmp("rollsense-live-cli");
+    write_one_trial_dataset(tmp.path() / "ds");
+    const auto log = tmp.path() / "view.txt";
+    const std::string command = std::string(ROLLSENSE_BIN_DIR) + "/rollsense view " + (tmp.path() / "ds").string() +
+                                " --port 0 --for 30 2>" + log.string();
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    std::uint16_t port = 0;
+    for (int i = 0; i < 400 && port == 0; ++i) {
+        const auto text = rollsense::testing::read_file(log);
+        if (auto at = text.find("http://127.0.0.1:"); at != std::string::npos)
+            port = static_cast<std::uint16_t>(std::stoi(text.substr(at + 17)));
+        else
+            std::this_thread::sleep_for(25ms);
+    }
+    INFO(rollsense::testing::read_file(log));
+    CHECK_THAT(rollsense::testing::read_file(log), Catch::Contains("(1 trials)"));
+    if (port != 0) {
+        CHECK_THAT(http_get(port, "/dataset/trials.json"), Catch::Contains("\"id\":\"C1-v10-r001\""));
+        CHECK(status_of(http_get(port, "/manifest.csv")) == 404);
+        CHECK(status_of(http_get(port, "/dataset/trial/C1-v10-r001.json", "POST")) == 405);
+    }
+    ::kill(pid, SIGTERM);  // ends the view (sh passes it on: exec'd, or the view's group)
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    REQUIRE(port != 0);
+}
+
+TEST_CASE("rollsense view refuses what is not a dataset, naming it", "[live][cli]") {
+    const auto r = rollsense::testing::run_rollsense("view /nonexistent-dataset --port 0 --for 1");
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("/nonexistent-dataset"));
 }
