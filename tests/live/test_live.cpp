@@ -59,7 +59,7 @@ TEST_CASE("closing the queue wakes a waiting client", "[live]") {
     CHECK(b.closed);
 }
 
-TEST_CASE("request heads are parsed by Beast; incomplete, malformed and bodied ones are told apart", "[live][http]") {
+TEST_CASE("request heads are parsed by Beast: incomplete, malformed and bodied ones told apart", "[live][http]") {
     auto ok = parse_request("GET /app.js?x=1 HTTP/1.1\r\nHost: a\r\n\r\n");
     REQUIRE(ok.state == ParsedRequest::State::complete);
     CHECK(ok.request.method == "GET");
@@ -173,7 +173,7 @@ TEST_CASE("the server streams events, refuses what it does not serve and survive
                            Catch::Contains("event: sample\ndata: {\"n\":1}"));
 }
 
-TEST_CASE("a client that stops reading is dropped; publishing never waits for it", "[live][http]") {
+TEST_CASE("a client that stops reading is dropped, and publishing never waits for it", "[live][http]") {
     EventHub hub(64);
     auto server = HttpServer::start("127.0.0.1", 0, live_site("demo.lua", "sim"), &hub);
     REQUIRE(server.ok());
