@@ -8,6 +8,7 @@ The layers, bottom to top (docs/architecture.md):
   kernel    kernel/src/runtime               plugins, robot, control, session, profile, clock, Lua
   hands     hands/                           what belongs to one hand (the E-TRoll's palm-parallel controller)
   analysis  analysis/                        features, learning, tuning, report, the pipeline
+  live      live/                            the live view (rollsense run --live, rollsense view)
   plugins   plugins/                         sensors, actuators, classifiers
   cli       cli/                             the rollsense program
 A layer may include the layers listed for it in ALLOWED and nothing else.
@@ -30,6 +31,7 @@ LAYERS = [  # (name, path prefix); the first prefix that matches wins
     ("hal", "hal/"),
     ("hands", "hands/"),
     ("analysis", "analysis/"),
+    ("live", "live/"),
     ("plugins", "plugins/"),
     ("cli", "cli/"),
 ]
@@ -41,8 +43,9 @@ ALLOWED = {
     "kernel": {"sdk", "data", "kernel"},
     "hands": {"sdk", "data", "kernel", "hands"},
     "analysis": {"sdk", "data", "kernel", "analysis"},
+    "live": {"sdk", "data", "kernel", "analysis", "live"},
     "plugins": {"sdk", "data", "hal", "plugins"},
-    "cli": {"sdk", "data", "hal", "kernel", "hands", "analysis", "cli"},
+    "cli": {"sdk", "data", "hal", "kernel", "hands", "analysis", "live", "cli"},
 }
 
 KERNEL_LINE_BUDGET = 6000

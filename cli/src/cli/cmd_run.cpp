@@ -9,8 +9,10 @@
 #include "cli/paths.hpp"
 #include "cli/recorded_seed.hpp"
 #include "cli/run_dataset.hpp"
+#include "live/live_view.hpp"
 #include "analysis/lua/script_settings.hpp"
 #include "rollsense/hal/gpio.hpp"
+#include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
 #include "rollsense/shard.hpp"
 #include "runtime/session/session.hpp"
@@ -53,6 +55,12 @@ options:
   --commit-every N      trials per durable group commit (default 1 on hardware,
                         64 in simulation)
   --no-progress         no progress bar (it is off anyway when stderr is not a terminal)
+  --live[=PORT]         serve a live view of the run in the browser on
+                        http://127.0.0.1:PORT/ (default port 8027; 0: any free
+                        port, printed): signals, joints, progress, step, faults,
+                        identification; read-only (docs/live-view.md)
+  --live-bind ADDR      listen on ADDR instead of 127.0.0.1 (warns: anyone who
+                        can reach ADDR can watch the run)
   -v, --verbose         debug messages;   -q, --quiet   warnings and errors only)";
 
 std::string default_out(const std::filesystem::path& script) {
@@ -78,15 +86,41 @@ int print_script_help(const std::vector<std::string>& positionals) {
     return kExitOk;
 }
 
+// --live (the default port), --live=PORT, --live-bind ADDR; nothing without --live.
+// (Args::option would take the word after a bare --live as its value.)
+std::optional<live::LiveOptions> live_options_of(const std::vector<std::string>& argv, const Args& args) {
+    live::LiveOptions o;
+    bool wanted = false;
+    for (const auto& a : argv) {
+        if (a == "--live") wanted = true;
+        if (!a.starts_with("--live=")) continue;
+        const std::string port = a.substr(7);
+        auto p = csv::parse_unsigned(port, 65535, "--live");
+        if (!p) throw UsageError("--live=PORT expects a port number from 0 to 65535, got '" + port + "'");
+        o.port = static_cast<std::uint16_t>(*p);
+        wanted = true;
+    }
+    if (auto bind = args.option("--live-bind"); !bind.empty()) {
+        if (!wanted) throw UsageError("--live-bind needs --live (it says where the live view listens)");
+        o.address = bind;
+        if (bind != "127.0.0.1" && bind != "::1")
+            log_warning("rollsense", "--live-bind " + bind + ": the live view can be watched from other machines "
+                                     "(it is read-only, but shows the run's data to anyone who can reach it)");
+    }
+    if (!wanted) return std::nullopt;
+    return o;
+}
+
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
     const std::vector<std::string> valued = {"--profile", "--out", "--seed", "--shard", "--set", "--plugin-path",
-                                             "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every"};
+                                             "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every",
+                                             "--live-bind"};
     auto pos = args.positionals(valued);
     if (args.wants_help()) return print_script_help(pos);
     args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--shard", "--set", "--plugin-path", "--time-limit",
                          "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
-                         "--verbose", "-q", "--quiet"});
+                         "--verbose", "-q", "--quiet", "--live", "--live-bind"});
     if (pos.size() != 1) throw UsageError("expects one SCRIPT (see --help)");
     setup_logging(args);
 
@@ -136,6 +170,14 @@ int run(const std::vector<std::string>& argv) {
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
 
+    std::unique_ptr<live::LiveView> view;
+    if (auto live_options = live_options_of(argv, args)) {
+        auto started = live::LiveView::start(*live_options, o);
+        if (!started) throw StatusError(Status{started.error()});
+        view = std::move(*started);
+        std::fprintf(stderr, "live view: %s\n", view->url().c_str());
+    }
+
     std::error_code ec;
     const bool out_existed = std::filesystem::exists(o.out_dir, ec);
     runtime::RunSummary summary;
@@ -143,6 +185,7 @@ int run(const std::vector<std::string>& argv) {
         runtime::Session session(o);
         summary = session.run();
     }  // the dataset's folder lock is released here
+    if (view) view->finished(summary);
     std::fprintf(stderr, "%s: %zu trials saved, %zu already on disk; %.1f s robot time in %.2f s wall\n",
                  summary.status.ok() ? "done" : (summary.cancelled ? "cancelled" : "failed"), summary.trials_saved,
                  summary.trials_skipped, summary.run_time_s, summary.wall_time_s);

@@ -15,6 +15,7 @@
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
+#include "analysis/lua/prediction_observer.hpp"
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
 #include "analysis/report/report.hpp"
@@ -306,7 +307,13 @@ int l_classifier(lua_State* L) {
     return 1;
 }
 
+PredictionObserver& prediction_observer() {
+    static PredictionObserver observer;
+    return observer;
+}
+
 void push_prediction(lua_State* L, const Classifier& clf, const Prediction& p) {
+    if (const auto& observer = prediction_observer()) observer(L, clf.class_names(), p);
     lua_newtable(L);
     lua_pushstring(L, p.class_name.c_str());
     lua_setfield(L, -2, "object");
@@ -441,4 +448,7 @@ void register_learn(lua_State* L) {
 const ExtraRegistration registration{&register_learn};
 
 }  // namespace
+
+void set_prediction_observer(PredictionObserver observer) { prediction_observer() = std::move(observer); }
+
 }  // namespace rollsense::runtime::lua_api

@@ -370,6 +370,10 @@ Status Robot::set_command(const std::string& joint, const JointCommand& c) {
     return command_joint(*j, c);
 }
 
+bool Robot::controller_enabled(const std::string& name) const {
+    return std::any_of(controllers_.begin(), controllers_.end(), [&](const auto& c) { return c.name == name && c.enabled; });
+}
+
 Controller* Robot::find_controller(const std::string& name) {
     for (auto& c : controllers_)
         if (c.name == name) return c.controller.get();

@@ -53,6 +53,7 @@ public:
     void safe_state(double time) noexcept;
     // Refuse every command until released (emergency stop).
     void set_commands_locked(bool locked, std::string reason = {});
+    std::string commands_locked_reason() const { return locked_ ? lock_reason_ : std::string(); }  // "": not locked
 
     // Held on the script's thread around actuator I/O (activate, control_tick,
     // safe_state, shutdown; device:call and :recover), and by the cancel
@@ -89,6 +90,7 @@ public:
     void disable_controller(const std::string& name, double time);
     void disable_all_controllers(double time);
     Controller* find_controller(const std::string& name);
+    bool controller_enabled(const std::string& name) const;
 
     // Devices by name, for `device:call(...)` from scripts.
     ComponentHandle* find_device(const std::string& name);

@@ -84,6 +84,7 @@ Status Recorder::sample_tick(double now) {
     data_.time.back() = std::round(static_cast<double>(sample_m_) * sample_period_ * 1e6) / 1e6;
     ++sample_m_;
     next_sample_ = sample_epoch_ + clock_.quantize(static_cast<double>(sample_m_) * sample_period_);
+    if (on_sample) on_sample();
     return {};
 }
 

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <random>
@@ -60,6 +61,7 @@ public:
     // not recording), and taking it. A failed sample ends the recording.
     double next_sample() const { return recording_ ? next_sample_ : std::numeric_limits<double>::infinity(); }
     Status sample_tick(double now);
+    std::function<void()> on_sample;  // after each sample taken (Session: its options' observer)
     // The run failed or ended while recording: stop the sensors, keep nothing.
     void abort_recording();
 

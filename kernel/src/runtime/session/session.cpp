@@ -99,6 +99,7 @@ Status Session::prepare() {
     if (!clock_->is_virtual()) loop_timing_ = std::make_unique<LoopTiming>(1.0 / profile_.control_rate_hz);
     recorder_ = std::make_unique<Recorder>(*robot_, *clock_, profile_.sample_rate_hz, options_.seed);
     if (options_.shard) recorder_->set_shard(*options_.shard);
+    if (options_.on_sample) recorder_->on_sample = [this] { options_.on_sample(*this); };
 
     std::vector<fs::path> modules;
     if (!options_.script.empty()) modules.push_back(options_.script.parent_path().empty() ? fs::path(".") : options_.script.parent_path());
@@ -289,6 +290,7 @@ Status Session::record_start() {
 
 void Session::report_progress(std::size_t done, std::size_t total, const std::string& label) {
     if (progress_) progress_->update(done, total, label, now());
+    if (options_.on_progress) options_.on_progress(done, total, label);
 }
 
 Status Session::write_output_text(const std::string& name, const std::string& text) {

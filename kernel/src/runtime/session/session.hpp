@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -29,6 +30,8 @@
 
 namespace rollsense::runtime {
 
+class Session;
+
 struct SessionOptions {
     std::filesystem::path script;
     std::string profile = "sim";
@@ -47,6 +50,9 @@ struct SessionOptions {
     std::string command_line;                 // for run-info.csv
     RunConfig run_config;                     // for run-config.csv; --resume refuses another
     DigitalLines digital_lines;               // opens the profile's e-stop and trigger lines
+    // An observer (the live view): after each recorded sample and each rs.progress, on the script's thread; must not block.
+    std::function<void(Session&)> on_sample;
+    std::function<void(std::size_t done, std::size_t total, const std::string& label)> on_progress;
 };
 
 struct RunSummary {

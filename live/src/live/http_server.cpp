@@ -1,0 +1,184 @@
+#include "live/http_server.hpp"
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include "rollsense/log.hpp"
+
+namespace rollsense::live {
+
+namespace {
+
+using Steady = std::chrono::steady_clock;
+
+int remaining_ms(Steady::time_point deadline) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Steady::now()).count();
+    return left > 0 ? static_cast<int>(left) : 0;
+}
+
+// Everything, or false when the client takes nothing for kSendTimeoutMs or is gone.
+bool send_all(int fd, std::string_view data) {
+    while (!data.empty()) {
+        pollfd p{fd, POLLOUT, 0};
+        if (::poll(&p, 1, HttpServer::kSendTimeoutMs) <= 0 || (p.revents & (POLLERR | POLLHUP))) return false;
+        const ssize_t n = ::send(fd, data.data(), data.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (n < 0) {
+            if (errno == EAGAIN || errno == EINTR) continue;
+            return false;
+        }
+        data.remove_prefix(static_cast<std::size_t>(n));
+    }
+    return true;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<HttpServer>> HttpServer::start(const std::string& address, std::uint16_t port, Site site,
+                                                      EventHub* hub) {
+    sockaddr_storage ss{};
+    socklen_t len = 0;
+    int family = AF_INET;
+    if (auto* a4 = reinterpret_cast<sockaddr_in*>(&ss); ::inet_pton(AF_INET, address.c_str(), &a4->sin_addr) == 1) {
+        a4->sin_family = AF_INET;
+        a4->sin_port = htons(port);
+        len = sizeof(sockaddr_in);
+    } else if (auto* a6 = reinterpret_cast<sockaddr_in6*>(&ss); ::inet_pton(AF_INET6, address.c_str(), &a6->sin6_addr) == 1) {
+        a6->sin6_family = AF_INET6;
+        a6->sin6_port = htons(port);
+        len = sizeof(sockaddr_in6);
+        family = AF_INET6;
+    } else {
+        return Error{ErrorCode::invalid_argument, "live view: '" + address +
+                                                      "' is not an IPv4 or IPv6 address (e.g. 127.0.0.1 or ::1)"};
+    }
+    const int fd = ::socket(family, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) return Error{ErrorCode::io_error, std::string("live view: socket: ") + std::strerror(errno)};
+    const int one = 1;
+    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
+    if (::bind(fd, reinterpret_cast<sockaddr*>(&ss), len) != 0 || ::listen(fd, 16) != 0) {
+        const std::string why = std::strerror(errno);
+        ::close(fd);
+        return Error{ErrorCode::io_error, "live view: cannot listen on " + address + " port " + std::to_string(port) +
+                                              ": " + why + " (choose another with --live=PORT)"};
+    }
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&ss), &len);
+    const std::uint16_t bound = ntohs(family == AF_INET ? reinterpret_cast<sockaddr_in*>(&ss)->sin_port
+                                                        : reinterpret_cast<sockaddr_in6*>(&ss)->sin6_port);
+    return std::unique_ptr<HttpServer>(new HttpServer(fd, address, bound, std::move(site), hub));
+}
+
+HttpServer::HttpServer(int fd, std::string address, std::uint16_t port, Site site, EventHub* hub)
+    : listen_fd_(fd), address_(std::move(address)), port_(port), site_(std::move(site)), hub_(hub) {
+    acceptor_ = std::thread([this] { accept_loop(); });
+}
+
+HttpServer::~HttpServer() {
+    stopping_ = true;
+    if (acceptor_.joinable()) acceptor_.join();
+    std::lock_guard lock(threads_mutex_);
+    for (auto& c : clients_)
+        if (c.thread.joinable()) c.thread.join();
+    ::close(listen_fd_);
+}
+
+std::string HttpServer::url() const {
+    const bool v6 = address_.find(':') != std::string::npos;
+    return "http://" + (v6 ? "[" + address_ + "]" : address_) + ":" + std::to_string(port_) + "/";
+}
+
+void HttpServer::accept_loop() {
+    while (!stopping_) {
+        pollfd p{listen_fd_, POLLIN, 0};
+        if (::poll(&p, 1, 100) <= 0) continue;
+        const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+        if (fd < 0) continue;
+        std::lock_guard lock(threads_mutex_);
+        clients_.remove_if([](Client& c) {  // finished clients leave the list
+            if (!c.done) return false;
+            c.thread.join();
+            return true;
+        });
+        if (active_ >= kMaxClients) {
+            (void)send_all(fd, http_response(503, "text/plain", "too many viewers of this run\n"));
+            ::close(fd);
+            continue;
+        }
+        ++active_;
+        auto& c = clients_.emplace_back();
+        c.thread = std::thread([this, fd, &c] {
+            serve(fd);
+            ::close(fd);
+            --active_;
+            c.done = true;
+        });
+    }
+}
+
+void HttpServer::serve(int fd) {
+    std::string received;
+    const auto deadline = Steady::now() + std::chrono::milliseconds(kRequestTimeoutMs);
+    ParsedRequest parsed;
+    while (!stopping_) {
+        pollfd p{fd, POLLIN, 0};
+        const int ready = ::poll(&p, 1, std::min(remaining_ms(deadline), 100));
+        if (ready < 0 && errno != EINTR) return;
+        if (ready > 0) {
+            char buf[2048];
+            const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+            if (n <= 0) return;  // gone before asking anything
+            received.append(buf, static_cast<std::size_t>(n));
+            parsed = parse_request(received);
+            if (parsed.state != ParsedRequest::State::incomplete) break;
+        }
+        if (remaining_ms(deadline) == 0) return;  // too slow to ask: dropped without an answer
+    }
+    if (parsed.state == ParsedRequest::State::malformed) {
+        (void)send_all(fd, http_response(400, "text/plain; charset=utf-8", "malformed request: " + parsed.error + "\n"));
+        return;
+    }
+    if (parsed.state != ParsedRequest::State::complete) return;
+    Reply reply = site_(parsed.request);
+    if (!reply.stream) {
+        (void)send_all(fd, reply.bytes);
+        ::shutdown(fd, SHUT_WR);
+        return;
+    }
+    stream(fd);
+}
+
+void HttpServer::stream(int fd) {
+    if (!send_all(fd, sse_head())) return;
+    auto batch = hub_->join();
+    std::string out;
+    auto last_sent = Steady::now();
+    for (;;) {
+        out.clear();
+        for (const auto& e : batch.events) out += e;
+        if (batch.missed > 0) out += sse_event("lag", "{\"missed\":" + std::to_string(batch.missed) + "}");
+        // A comment now and then finds a client that went away without a word.
+        if (out.empty() && Steady::now() - last_sent > std::chrono::seconds(5)) out = ": alive\n\n";
+        if (!out.empty()) {
+            if (!send_all(fd, out)) {
+                ++clients_dropped_;
+                log_info("live", "a viewer was dropped (too slow or gone)");
+                return;
+            }
+            last_sent = Steady::now();
+        }
+        if ((batch.closed && batch.events.empty()) || stopping_) return;
+        batch = hub_->take(batch.next, std::chrono::milliseconds(250));
+        // A client that has closed its end leaves now, not at the next event
+        // (between trials there may be none for a while): its slot is free.
+        pollfd p{fd, POLLRDHUP, 0};
+        if (::poll(&p, 1, 0) > 0 && (p.revents & (POLLRDHUP | POLLHUP | POLLERR))) return;
+    }
+}
+
+}  // namespace rollsense::live

@@ -1,0 +1,68 @@
+// The live view's HTTP server: plain POSIX sockets with timeouts (so a slow
+// or vanished client is dropped, never waited for), Boost.Beast's parser for
+// requests (http.hpp), a thread per client up to kMaxClients. It serves only
+// what its Site answers; the event stream comes from an EventHub.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "live/event_hub.hpp"
+#include "live/http.hpp"
+#include "rollsense/status.hpp"
+
+namespace rollsense::live {
+
+// What a request gets: a whole response, or (stream) the event stream.
+struct Reply {
+    std::string bytes;
+    bool stream = false;
+};
+using Site = std::function<Reply(const Request&)>;
+
+class HttpServer {
+public:
+    // Listen on address:port (port 0: any free one). The hub may be null (no /events).
+    static Result<std::unique_ptr<HttpServer>> start(const std::string& address, std::uint16_t port, Site site,
+                                                      EventHub* hub);
+    ~HttpServer();  // stops accepting, ends every client and waits for their threads
+
+    std::uint16_t port() const { return port_; }
+    std::string url() const;
+    std::uint64_t clients_dropped() const { return clients_dropped_; }  // too slow or gone
+    int active_clients() const { return active_; }
+
+    static constexpr int kMaxClients = 8;
+    static constexpr int kRequestTimeoutMs = 5000;  // to send the request head
+    static constexpr int kSendTimeoutMs = 2000;     // a client that takes no data this long is dropped
+
+private:
+    HttpServer(int fd, std::string address, std::uint16_t port, Site site, EventHub* hub);
+    void accept_loop();
+    void serve(int fd);
+    void stream(int fd);
+
+    int listen_fd_;
+    std::string address_;
+    std::uint16_t port_;
+    Site site_;
+    EventHub* hub_;
+    std::atomic<bool> stopping_{false};
+    std::atomic<int> active_{0};
+    std::atomic<std::uint64_t> clients_dropped_{0};
+    std::mutex threads_mutex_;
+    struct Client {
+        std::thread thread;
+        std::atomic<bool> done{false};
+    };
+    std::list<Client> clients_;
+    std::thread acceptor_;
+};
+
+}  // namespace rollsense::live
