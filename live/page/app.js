@@ -43,7 +43,8 @@ function plot(canvas, key, names, unit) {
   ctx.textAlign = "right";
   ctx.fillText(hi.toPrecision(4), left - 4, top + 10);
   ctx.fillText(lo.toPrecision(4), left - 4, H - bottom);
-  ctx.fillText(unit, left - 4, (H - bottom) / 2 + 4);
+  // In brackets, so the unit is not read as a tick value between the two.
+  ctx.fillText("[" + unit + "]", left - 4, (H - bottom) / 2 + 4);
   ctx.textAlign = "center";
   ctx.fillText("0 s", left, H - 6);
   ctx.fillText(tmax.toFixed(1) + " s", W - right, H - 6);
@@ -71,7 +72,8 @@ function draw() {
   dirty = false;
   if (!present) return;
   const h = present.header;
-  const units = [...new Set(h.channel_units.filter((u) => u))].join(", ") || "value";
+  // "1" is how the dataset format writes a ratio without a unit (the MPL115A's scaled counts).
+  const units = [...new Set(h.channel_units.filter((u) => u).map((u) => (u === "1" ? "no unit" : u)))].join(", ") || "value";
   plot($("plot-channels"), "channels", h.channels, units);
   plot($("plot-angles"), "angles", h.joints, h.joint_unit || "deg");
   if (h.currents) plot($("plot-currents"), "currents", h.currents, h.current_unit || "mA");
