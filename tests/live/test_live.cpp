@@ -279,6 +279,32 @@ end
     CHECK((*view)->hub().join().events.size() >= 5);  // run, trial, status, state, progress
 }
 
+TEST_CASE("a step named between recordings brings the state that changed with it", "[live][session]") {
+    // Before the fix the state went out only with a shown sample, so a change
+    // made between recordings (here: the pusher to current mode) waited for
+    // the next recording; this script records nothing.
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, R"(
+local rs = require "rollsense"
+rs.status("ready")
+rs.joint("pusher"):push(50)
+rs.wait(100)  -- a control period, so the joint table holds the new mode
+rs.status("pushing")
+)");
+    auto view = LiveView::start(LiveOptions{"127.0.0.1", 0}, o);
+    REQUIRE(view.ok());
+    {
+        runtime::Session session(o);
+        REQUIRE(session.run().status.ok());
+    }
+    std::vector<std::string> states;
+    for (const auto& e : all_events((*view)->hub()))
+        if (e.starts_with("event: state")) states.push_back(e);
+    REQUIRE(states.size() == 2);
+    CHECK_THAT(states[0], !Catch::Contains("\"pusher\":\"current"));
+    CHECK_THAT(states[1], Catch::Contains("\"pusher\":\"current"));
+}
+
 TEST_CASE("rs.status takes a short step name, with or without a live view", "[live][session]") {
     kt::TempDir dir;
     auto ok = kt::run_script(dir, "local rs = require 'rollsense'\nrs.status('clamping')\n");

@@ -19,7 +19,7 @@ int l_status(lua_State* L) {
     if (len > kMaxStatus)
         return luaL_error(L, "rs.status: the step is %d bytes, at most %d are shown (name the step, e.g. \"clamping\")",
                           static_cast<int>(len), static_cast<int>(kMaxStatus));
-    if (auto* feed = status_feed.load()) feed->status(std::string(text, len));
+    if (auto* feed = status_feed.load()) feed->status(runtime::Session::of(L), std::string(text, len));
     return 0;
 }
 

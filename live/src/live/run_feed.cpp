@@ -122,8 +122,9 @@ void RunFeed::progress(std::size_t done, std::size_t total, const std::string& l
                                                              std::to_string(hub_.dropped()) + "}"));
 }
 
-void RunFeed::status(const std::string& step) {
+void RunFeed::status(runtime::Session& session, const std::string& step) {
     hub_.publish_state("status", sse_event("status", "{\"step\":" + json_quote(step) + "}"));
+    publish_state(session);
 }
 
 void RunFeed::identified(const std::string& trial, const std::vector<std::string>& classes, const Prediction& p) {

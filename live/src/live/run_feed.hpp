@@ -28,7 +28,9 @@ public:
 
     void sampled(runtime::Session& session);
     void progress(std::size_t done, std::size_t total, const std::string& label);
-    void status(const std::string& step);
+    // The script's step; the state (controllers, e-stop, faults) goes with it, so
+    // a change between recordings shows without waiting for the next sample.
+    void status(runtime::Session& session, const std::string& step);
     void identified(const std::string& trial, const std::vector<std::string>& classes, const Prediction& p);
     // The run's end: its outcome ("done", "failed", "cancelled") and message.
     void finished(const std::string& outcome, const std::string& message, std::size_t trials_saved);
