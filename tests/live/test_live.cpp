@@ -66,6 +66,11 @@ TEST_CASE("request heads are parsed by Beast: incomplete, malformed and bodied o
     CHECK(ok.request.target == "/app.js");
     CHECK(parse_request("GET / HTTP/1.1\r\nHo").state == ParsedRequest::State::incomplete);
     CHECK(parse_request("GARBAGE\r\n\r\n").state == ParsedRequest::State::malformed);
+    // Found by fuzz_http_request: Beast takes any token as the target.
+    auto not_a_path = parse_request("G ET/events HTTP/1.1\r\nHost: a\r\n\r\n");
+    CHECK(not_a_path.state == ParsedRequest::State::malformed);
+    CHECK_THAT(not_a_path.error, Catch::Contains("not a path"));
+    CHECK(parse_request("GET * HTTP/1.1\r\n\r\n").state == ParsedRequest::State::malformed);
     CHECK(parse_request("GET / HTTP/1.1\r\nContent-Length: x\r\n\r\n").state == ParsedRequest::State::malformed);
     auto body = parse_request("POST / HTTP/1.1\r\nContent-Length: 3\r\n\r\nabc");
     CHECK(body.state == ParsedRequest::State::malformed);

@@ -40,9 +40,16 @@ ParsedRequest parse_request(std::string_view bytes) {
         out.error = "a request with a body (the live view is read-only)";
         return out;
     }
+    std::string target(head.target());
+    // Only a path is ever served (origin form); Beast lets any token through
+    // as the target ("G ET/events" parses as method G, target ET/events).
+    if (target.empty() || target[0] != '/') {
+        out.state = ParsedRequest::State::malformed;
+        out.error = "the request target is not a path starting with '/'";
+        return out;
+    }
     out.state = ParsedRequest::State::complete;
     out.request.method = std::string(head.method_string());
-    std::string target(head.target());
     if (auto q = target.find('?'); q != std::string::npos) target.resize(q);
     out.request.target = std::move(target);
     out.request.keep_alive = head.keep_alive();
