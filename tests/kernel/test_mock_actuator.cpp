@@ -71,3 +71,44 @@ rs.write_output("result.txt", string.format("%s %.3f %.1f", tostring(ok), p:posi
     REQUIRE(r.summary.status.ok());
     CHECK(kt::read_file(r.out / "result.txt") == "true 20.000 100.0");
 }
+
+// read() writes over the caller's states (the robot reuses them every control
+// period): nothing of an earlier reading may stay behind.
+TEST_CASE("the mock actuator's reads leave nothing stale in reused states", "[mock]") {
+    runtime::PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    auto lib = reg.find("mock_actuator", PluginKind::actuator);
+    REQUIRE(lib.ok());
+    std::unique_ptr<Actuator> a((*lib)->manifest().create_actuator());
+    REQUIRE(a->on_configure(*validate_params(*runtime::PluginRegistry::schema_of(**lib), {}, "test"), {}).ok());
+    REQUIRE(a->on_activate().ok());
+    const auto joints = a->joints();
+    REQUIRE_FALSE(joints.empty());
+    std::vector<JointCommand> cmd(joints.size());
+    for (auto& c : cmd) {
+        c.position = 10.0;
+        c.profile_velocity = 5.0;
+    }
+    REQUIRE(a->write(0.0, cmd).ok());
+    std::vector<JointState> states(joints.size());
+    REQUIRE(a->read(0.5, states).ok());
+    CHECK(states[0].moving);
+    CHECK(states[0].velocity > 0.0);
+    CHECK(states[0].current > 0.0);
+
+    REQUIRE(a->invoke("inject_fault", {{"joint", joints[0].name}}).ok());
+    REQUIRE(a->read(0.6, states).ok());
+    CHECK(states[0].fault == "overload");
+    CHECK(states[0].fault_bits != 0u);
+    REQUIRE(a->invoke("clear_fault", {{"joint", joints[0].name}}).ok());
+    REQUIRE(a->read(0.7, states).ok());
+    CHECK(states[0].fault.empty());
+    CHECK(states[0].fault_bits == 0u);
+
+    for (auto& c : cmd) c.torque_enabled = false;
+    REQUIRE(a->write(0.8, cmd).ok());
+    REQUIRE(a->read(0.9, states).ok());
+    CHECK_FALSE(states[0].torque_enabled);
+    CHECK_FALSE(states[0].moving);
+    CHECK(states[0].velocity == 0.0);
+    CHECK(states[0].current == 0.0);
+}

@@ -29,6 +29,34 @@ TEST_CASE("cross_validate predicts every row out of fold", "[learn][cv]") {
     CHECK(cv->accuracy() > 0.95);  // well separated classes
 }
 
+TEST_CASE("repeated_cv on several threads gives the serial result", "[learn][cv]") {
+    const auto rows = synthetic_rows(12, 0.6, 3);  // overlapping: some rows misclassified
+    const auto table = features::to_feature_table(rows);
+    auto plan = make_fold_plan(table.y, nullptr, 5, 6, 7);
+    REQUIRE(plan.ok());
+    ParamSet p;
+    p.set("learners", std::int64_t{12});
+    auto serial = repeated_cv(table, bagged_trees_factory(), p, *plan, 1);
+    auto parallel = repeated_cv(table, bagged_trees_factory(), p, *plan, 3);
+    REQUIRE(serial.ok());
+    REQUIRE(parallel.ok());
+    CHECK(serial->correct < serial->total);
+    CHECK(parallel->repeat_accuracy == serial->repeat_accuracy);
+    CHECK(parallel->fold_accuracy == serial->fold_accuracy);
+    CHECK(parallel->first_predicted == serial->first_predicted);
+    CHECK(parallel->first_scores == serial->first_scores);
+    CHECK(parallel->confusion.correct() == serial->confusion.correct());
+    CHECK(parallel->mean == serial->mean);
+
+    // A failing repetition is reported once, naming the first that failed.
+    const ClassifierFactory failing = [](const ParamSet&) -> Result<ClassifierPtr> {
+        return Error{ErrorCode::plugin_error, "no classifier today"};
+    };
+    auto failed = repeated_cv(table, failing, p, *plan, 3);
+    REQUIRE_FALSE(failed.ok());
+    CHECK_THAT(failed.error().message, Catch::Contains("repetition 1") && Catch::Contains("no classifier today"));
+}
+
 TEST_CASE("evaluate: repeated CV, confusion, paper analyses, reproducible", "[learn][evaluate]") {
     const auto rows = synthetic_rows(15, 0.6, 2);  // overlapping: accuracy well below 1
     EvaluationOptions o;

@@ -154,7 +154,7 @@ public:
         last_time_ = time;
         apply_injections(time);
         for (std::size_t i = 0; i < servos_.size() && i < states.size(); ++i)
-            if (!silent_[i]) states[i] = servos_[i].state(time);
+            if (!silent_[i]) servos_[i].state(time, states[i]);
         return silence();
     }
 

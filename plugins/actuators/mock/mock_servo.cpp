@@ -21,13 +21,20 @@ double MockServo::current_mode_position(double t) const {
 
 JointState MockServo::state(double t) const {
     JointState s;
+    state(t, s);
+    return s;
+}
+
+void MockServo::state(double t, JointState& s) const {
     s.mode = last_.mode;
     s.torque_enabled = torque_;
-    s.fault = fault_;
+    if (s.fault != fault_) s.fault = fault_;
     s.fault_bits = fault_.empty() ? 0u : 1u;
+    s.velocity = s.current = 0.0;
+    s.moving = false;
     if (!torque_) {
         s.position = p0_;
-        return s;
+        return;
     }
     switch (last_.mode) {
         case ControlMode::position:
@@ -56,7 +63,6 @@ JointState MockServo::state(double t) const {
             break;
         }
     }
-    return s;
 }
 
 bool MockServo::same(const JointCommand& a, const JointCommand& b) const {

@@ -25,6 +25,9 @@ public:
     MockServo(ServoModel model, double initial_position);
 
     JointState state(double t) const;
+    // The same, written over `s`: the read of every control period reuses the
+    // caller's states, and its fault text is copied only when it changed.
+    void state(double t, JointState& s) const;
     // Apply a command at time t (re-plans only when the command changed).
     void command(double t, const JointCommand& c);
     void set_contact(double position) { model_.contact = position; }

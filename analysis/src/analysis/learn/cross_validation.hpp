@@ -19,6 +19,7 @@ namespace rollsense::learn {
 using ClassifierPtr = std::shared_ptr<Classifier>;
 // Makes a configured, untrained classifier. `params` are raw values: keys the
 // optimiser or the user set; the factory fills defaults and validates them.
+// Called from several threads at once (repeated_cv runs repetitions in parallel).
 using ClassifierFactory = std::function<Result<ClassifierPtr>(const ParamSet& params)>;
 
 // The rows `rows` of `table`, keeping every class name (so labels stay valid).

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "analysis/learn/folds.hpp"
+#include "analysis/learn/parallel_for.hpp"
 
 namespace rollsense::learn {
 namespace {
@@ -39,13 +40,21 @@ Objective cv_error(const FeatureTable& table, const std::vector<int>& folds, int
 }  // namespace
 
 Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
-                               const FoldPlan& plan) {
+                               const FoldPlan& plan, unsigned threads) {
     RepeatedCv r;
     r.folds = plan.folds;
     r.repeats = static_cast<int>(plan.repeats());
     r.confusion = ConfusionMatrix(table.class_names);
+    // The repetitions are independent: run them on all cores (a classifier
+    // that trains on several threads itself still gains, its serial parts -
+    // presorting, prediction - overlap), then combine them in order, so the
+    // result is the serial one whatever the thread count.
+    std::vector<Result<CvResult>> runs(plan.repeats(), Error{ErrorCode::state_error, "repetition not run"});
+    parallel_for(plan.repeats(), threads, [&](std::size_t rep) {
+        runs[rep] = cross_validate(table, plan.assignment[rep], plan.folds, factory, params);
+    });
     for (std::size_t rep = 0; rep < plan.repeats(); ++rep) {
-        auto cv = cross_validate(table, plan.assignment[rep], plan.folds, factory, params);
+        auto& cv = runs[rep];
         if (!cv) return Status(cv.error()).with_context("repetition " + std::to_string(rep + 1));
         r.repeat_accuracy.push_back(cv->accuracy());
         r.fold_accuracy.insert(r.fold_accuracy.end(), cv->fold_accuracy.begin(), cv->fold_accuracy.end());

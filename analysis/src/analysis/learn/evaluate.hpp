@@ -143,8 +143,9 @@ struct Evaluation {
     const EvaluationReport& primary() const { return classifiers.front(); }
 };
 
+// The repetitions run on `threads` threads (0 = all cores); the result does not depend on it.
 Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
-                               const FoldPlan& plan);
+                               const FoldPlan& plan, unsigned threads = 0);
 Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
                                int folds, int repeats, std::uint64_t seed,
                                const std::vector<std::string>* groups = nullptr);

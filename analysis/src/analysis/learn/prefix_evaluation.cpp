@@ -1,14 +1,13 @@
 #include "analysis/learn/prefix_evaluation.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <set>
-#include <thread>
 
 #include "analysis/learn/cross_validation.hpp"
+#include "analysis/learn/parallel_for.hpp"
 #include "analysis/series/series_table.hpp"
 
 namespace rollsense::learn {
@@ -19,21 +18,6 @@ double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t m = v.size() / 2;
     return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-// Runs work(i) for i in [0, n) on `threads` threads; results go to slots by index.
-template <typename F>
-void parallel_for(std::size_t n, unsigned threads, F&& work) {
-    unsigned t = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-    t = static_cast<unsigned>(std::min<std::size_t>(t, std::max<std::size_t>(n, 1)));
-    std::atomic<std::size_t> next{0};
-    auto loop = [&] {
-        for (std::size_t i; (i = next.fetch_add(1)) < n;) work(i);
-    };
-    std::vector<std::thread> pool;
-    for (unsigned k = 1; k < t; ++k) pool.emplace_back(loop);
-    loop();
-    for (auto& th : pool) th.join();
 }
 
 // The samples a prefix keeps: fraction × the speed's nominal length, never

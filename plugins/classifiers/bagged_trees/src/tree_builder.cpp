@@ -54,7 +54,11 @@ Tree TreeBuilder::build(std::span<const std::uint32_t> weights, const TreeOption
         sample_size += weights[r];
     }
     in_bag_ = in_bag;
-    for (auto& b : buffers_) b.resize(p * in_bag + 1);  // + 1: see the fill below
+    // Sized once for the largest possible bag (every row in it): the bag size
+    // changes from tree to tree, and growing would zero and move the buffers.
+    // + 1: see the fill below.
+    for (auto& b : buffers_)
+        if (b.size() < p * in_bag + 1) b.resize(p * data_.rows + 1);
     for (std::size_t f = 0; f < p; ++f) {
         // Branch-free (about a third of the rows is out of bag, at random):
         // every row is written, and the cursor advances only for in-bag rows.
