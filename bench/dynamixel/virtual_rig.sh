@@ -15,6 +15,7 @@ build=${2:-build}
 repeats=${3:-1}
 seed=${4:-11}
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/same_dataset.sh"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 now() { date +%s.%N; }
@@ -31,10 +32,7 @@ run() {  # BUILD OUT [extra args]: prints the wall time in s
 for i in $(seq 1 "$repeats"); do
   ref=$(run "$reference" "$out/ref$i" --set devices.hand.params.timeout_ms=1000)
   new=$(run "$build" "$out/new$i")
-  for f in manifest.csv dataset-info.csv features.csv; do
-    cmp -s "$out/ref$i/$f" "$out/new$i/$f" || { echo "run $i: $f differs from the reference" >&2; exit 1; }
-  done
-  diff -rq "$out/ref$i/trials" "$out/new$i/trials" >/dev/null || { echo "run $i: trials/ differ" >&2; exit 1; }
+  same_dataset "$out/ref$i" "$out/new$i" || { echo "run $i: the dataset differs from the reference" >&2; exit 1; }
   trials=$(($(wc -l <"$out/new$i/manifest.csv") - 1))
   awk -v r="$ref" -v n="$new" -v t="$trials" -v i="$i" -v cores="$(nproc)" 'BEGIN {
     printf "run %d: %d trials on etroll-virtual: reference %.1f s, this build %.1f s = %.2fx the reference'"'"'s time (%.1fx faster) on %d cores; dataset byte-identical\n",

@@ -13,6 +13,7 @@ build=${1:-build}
 shards=${2:-4}
 repeats=${3:-3}
 root=$(cd "$(dirname "$0")/../.." && pwd)
+source "$root/bench/same_dataset.sh"
 rollsense=$build/bin/rollsense
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -41,10 +42,7 @@ for i in $(seq 1 "$repeats"); do
   sharded=$(minus "$end" "$start")
   merge=$(minus "$end" "$recorded")
 
-  for f in manifest.csv dataset-info.csv features.csv; do
-    cmp -s "$out/single$i/$f" "$out/merged$i/$f" || { echo "run $i: $f differs between the single and the merged run" >&2; exit 1; }
-  done
-  diff -rq "$out/single$i/trials" "$out/merged$i/trials" >/dev/null || { echo "run $i: trials differ" >&2; exit 1; }
+  same_dataset "$out/single$i" "$out/merged$i" || { echo "run $i: the merged dataset differs from the single run" >&2; exit 1; }
   trials=$(($(wc -l <"$out/merged$i/manifest.csv") - 1))
   awk -v s="$single" -v p="$sharded" -v m="$merge" -v n="$shards" -v t="$trials" -v i="$i" -v cores="$(nproc)" 'BEGIN {
     printf "run %d: %d trials; single process %.2f s; %d shards in parallel + merge %.2f s (merge %.2f s) = %.2fx the single run'"'"'s time on %d cores; merged dataset byte-identical\n",
