@@ -231,9 +231,12 @@ void append_manifest_row(std::string& out, const TrialRecord& t) {
 }
 
 // A manifest is appended to batch by batch; a crash in the middle of an
-// append can leave its last line without the line end. Returns the size of
-// the file without that torn line and the line's number, or nothing when the
-// file ends with a line end (or is empty).
+// append can leave its last row without its line end. Returns the size of the
+// file without that torn row and the number of the line it starts on, or
+// nothing when the file ends with a row's line end (or is empty). A row ends
+// at a line end outside quotes: a quoted field may hold line ends (an `extra`
+// value), so a crash just after one of those leaves a file that ends with a
+// line end inside an unclosed quote, which is torn too.
 struct TornLine {
     std::uintmax_t keep_bytes = 0;
     std::size_t line = 0;
@@ -241,15 +244,17 @@ struct TornLine {
 Result<std::optional<TornLine>> find_torn_line(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) return Error{ErrorCode::io_error, file.string() + ": cannot be opened for reading (check permissions)"};
-    char last = '\n';
-    if (in.seekg(0, std::ios::end).tellg() > 0) in.seekg(-1, std::ios::end).get(last);
-    if (last == '\n') return std::optional<TornLine>{};  // the common case reads one byte
-    in.seekg(0);
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const auto last_end = text.rfind('\n');
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::size_t row_end = 0;  // bytes up to the last line end outside quotes
+    bool quoted = false;      // a doubled quote inside a field toggles twice: no net change
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '"') quoted = !quoted;
+        else if (text[i] == '\n' && !quoted) row_end = i + 1;
+    }
+    if (row_end == text.size()) return std::optional<TornLine>{};
     TornLine torn;
-    torn.keep_bytes = last_end == std::string::npos ? 0 : last_end + 1;
-    torn.line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+    torn.keep_bytes = row_end;
+    torn.line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(row_end), '\n'));
     return std::optional<TornLine>{torn};
 }
 
@@ -262,7 +267,7 @@ Status drop_torn_line(const fs::path& manifest) {
     if (!torn) return torn.error();
     if (!*torn) return {};
     log_warning("dataset", manifest.string() + ":" + std::to_string((*torn)->line) +
-                               ": the last line has no line end (a crash while listing a trial); it is dropped and "
+                               ": the last row has no line end (a crash while listing a trial); it is dropped and "
                                "its trial recorded again");
     if ((*torn)->keep_bytes == 0) {  // the header itself was cut: write it again
         std::string header;
@@ -330,7 +335,7 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
         if (*torn)
             return Error{ErrorCode::parse_error,
                          (dir / "manifest.csv").string() + ":" + std::to_string((*torn)->line) +
-                             ": the last line has no line end: the recording was interrupted while listing a trial. "
+                             ": the last row has no line end: the recording was interrupted while listing a trial. "
                              "Continue the run with --resume (it drops that line and records the trial again)"};
     }
     auto manifest = read_manifest(dir / "manifest.csv");

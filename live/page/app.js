@@ -75,7 +75,14 @@ function draw() {
   // "1" is how the dataset format writes a ratio without a unit (the MPL115A's scaled counts).
   const units = [...new Set(h.channel_units.filter((u) => u).map((u) => (u === "1" ? "no unit" : u)))].join(", ") || "value";
   plot($("plot-channels"), "channels", h.channels, units);
-  plot($("plot-angles"), "angles", h.joints, h.joint_unit || "deg");
+  // Fingers turn in deg, the palm and the winch move in mm: when both are
+  // plotted, each curve names its unit. A recorded dataset does not say.
+  const jointUnits = h.joint_units || [];
+  const distinct = [...new Set(jointUnits)];
+  const jointNames = distinct.length > 1 ? h.joints.map((n, i) => `${n} [${jointUnits[i]}]`) : h.joints;
+  const jointUnit = distinct.join(", ") || "deg or mm";
+  $("cap-angles").textContent = `joint positions (${jointUnit})`;
+  plot($("plot-angles"), "angles", jointNames, jointUnit);
   if (h.currents) plot($("plot-currents"), "currents", h.currents, h.current_unit || "mA");
   $("n-samples").textContent = String(present.t.length);
 }

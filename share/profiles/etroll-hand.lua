@@ -7,6 +7,6 @@
 -- --finger-offset-sum and --array-distance). Measure your hand and change
 -- them here, or for one run: --set devices.tactile.params.array_distance=72
 return {
-  finger_offset_sum = 41,  -- mm: joint axis to contact surface, both fingers summed (T)
+  finger_offset_sum = 42,  -- mm: joint axis to contact surface, both fingers summed (T)
   array_distance = 70,     -- mm: along a finger from its joint axis to barometer 2 (the lever arm)
 }

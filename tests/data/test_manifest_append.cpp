@@ -129,7 +129,7 @@ TEST_CASE("a torn last manifest line is refused by the reader and cut off by --r
 
     auto refused = DatasetReader::open(torn.path() / "ds");
     REQUIRE_FALSE(refused.ok());
-    CHECK_THAT(refused.error().message, Catch::Contains("manifest.csv:5: the last line has no line end") &&
+    CHECK_THAT(refused.error().message, Catch::Contains("manifest.csv:5: the last row has no line end") &&
                                             Catch::Contains("--resume"));
 
     SECTION("resuming cuts the line and records the trial again: the dataset of an uninterrupted run") {
@@ -146,6 +146,42 @@ TEST_CASE("a torn last manifest line is refused by the reader and cut off by --r
         record_trials(torn.path() / "ds", 4, 2, DatasetOpenMode::resume);
         CHECK(testing::read_file(manifest) == full);
     }
+}
+
+TEST_CASE("a manifest cut just after a line end inside a quoted extra value is torn too", "[data][manifest][resume]") {
+    // A row whose `extra` holds a line end is written quoted over two lines; a
+    // crash right after that inner line end leaves a file ending in '\n' with
+    // the quote still open.
+    const auto record = [](const std::filesystem::path& dir, int n, DatasetOpenMode mode) {
+        auto w = DatasetWriter::open(dir, tiny_info(), mode);
+        REQUIRE(w.ok());
+        (*w)->set_commit_every(1);
+        for (int i = 0; i < n; ++i) {
+            auto rec = tiny_record("t" + std::to_string(i));
+            rec.info.extra["note"] = "first line\nsecond line";
+            if (!(*w)->has_trial(rec.info.id)) REQUIRE((*w)->add_trial(rec, tiny_samples()).ok());
+        }
+        REQUIRE((*w)->flush().ok());
+    };
+    TempDir whole, torn;
+    record(whole.path() / "ds", 3, DatasetOpenMode::create);
+    record(torn.path() / "ds", 2, DatasetOpenMode::create);
+    const auto manifest = torn.path() / "ds" / "manifest.csv";
+    std::filesystem::copy_file(whole.path() / "ds" / "trials" / "t2.csv", torn.path() / "ds" / "trials" / "t2.csv");
+    const std::string full = testing::read_file(whole.path() / "ds" / "manifest.csv");
+    const std::string before = testing::read_file(manifest);
+    const auto inner = full.find("first line\n", before.size());
+    REQUIRE(inner != std::string::npos);
+    testing::write_file(manifest, full.substr(0, inner + 11));  // t2's row up to its inner line end
+    auto refused = DatasetReader::open(torn.path() / "ds");
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error().message, Catch::Contains("manifest.csv:6: the last row has no line end"));
+    record(torn.path() / "ds", 3, DatasetOpenMode::resume);
+    CHECK(testing::read_file(manifest) == full);
+    auto back = DatasetReader::open(torn.path() / "ds");
+    REQUIRE(back.ok());
+    CHECK(back->trials().size() == 3);
+    CHECK(back->trials().back().info.extra.at("note") == "first line\nsecond line");
 }
 
 TEST_CASE("a hand-made manifest without a final line end is read as before", "[data][manifest]") {

@@ -198,7 +198,7 @@ TEST_CASE("servo specs parse and explain what is wrong") {
 }
 
 TEST_CASE("the clamped object's contact angle is parallel at w = d / cos(theta), more open with a narrower palm") {
-    ClampedObject o;  // W 24 + T 41 = d 65 mm, lever 70 mm, palm 0.349 mm/deg about 65 mm
+    ClampedObject o;  // W 24 + T 42 = d 66 mm, lever 70 mm, palm 0.349 mm/deg about 65 mm
     const double deg = 180.0 / M_PI;
     const auto palm_degrees_for = [&](double width) { return (width - o.palm_centre_mm) / o.palm_mm_per_degree; };
     for (double theta : {-44.0, -20.0, 0.0, 30.0, 44.0}) {
@@ -221,13 +221,13 @@ TEST_CASE("on a bus with a clamped object, the palm width sets where the clampin
     auto& pushing = *bus.servo(2);
     REQUIRE(write(pushing, addr::goal_current, 45, 2) == 0);  // 121 mA, the Table I clamp
     bus.advance(1.0);
-    // Palm too narrow for parallel fingers at -44 deg: held open at about -59 deg.
+    // Palm too narrow for parallel fingers at -44 deg: held open at about -60 deg.
     const double narrow = ticks_to_degrees(pushing.position_ticks());
     const double sensing = ticks_to_degrees(bus.servo(1)->position_ticks());  // -44 to the tick
     CHECK(narrow == Approx(pushing_contact_degrees(o, sensing, 0.0)).margin(0.01));
     CHECK(narrow < -58.0);
     CHECK(pushing.item(addr::present_current, 2) == 45);  // pressing on the object
-    // Open the palm to the parallel width (90.4 mm): the finger follows the object to -44 deg.
+    // Open the palm to the parallel width (d / cos 44 deg, about 92 mm): the finger follows the object to -44 deg.
     const double parallel_palm_degrees = (o.effective_width_mm() / std::cos(44.0 * M_PI / 180.0) - 65.0) /
                                          o.palm_mm_per_degree;
     REQUIRE(write(*bus.servo(3), addr::goal_position, degrees_to_ticks(parallel_palm_degrees), 4) == 0);
@@ -243,7 +243,7 @@ TEST_CASE("the clamped object takes its geometry from the hand, and needs its th
     ClampedObject o;
     // The defaults are the simulation's calibrated hand (one home: HandGeometry).
     CHECK(o.hand.finger_offset_sum == rollsense::etroll::HandGeometry{}.finger_offset_sum);
-    CHECK(o.effective_width_mm() == Approx(65.0));
+    CHECK(o.effective_width_mm() == Approx(rollsense::etroll::kDefaultEmulatedObjectWidth + o.hand.finger_offset_sum));
     // A wider object needs a wider palm for the same contact angle.
     ClampedObject wide = o;
     wide.object_width_mm += 10.0;

@@ -19,7 +19,7 @@ namespace {
 
 class FingerPlant final : public JointAccess {
 public:
-    etroll::ClampedObject object;  // effective width 24 + 41 = 65 mm, lever 70 mm
+    etroll::ClampedObject object;  // effective width d = 24 mm + T, lever 70 mm
     std::function<double(double)> sensing_angle = [](double) { return -44.0; };
     void set_clamped(bool on) {
         clamped = on;
@@ -122,8 +122,8 @@ TEST_CASE("palm_parallel widens the palm until the clamped fingers are parallel 
     REQUIRE(plant.error_deg() > 14.0);
     const double residual = run(*c, plant, 3.0, 2.5);
     CHECK(residual < 0.5);
-    // Parallel at -44 deg needs w = d / cos(44 deg) = 90.4 mm.
-    CHECK(plant.palm_width() == Approx(65.0 / std::cos(44.0 * M_PI / 180.0)).margin(0.8));
+    // Parallel at -44 deg needs w = d / cos(44 deg), about 92 mm.
+    CHECK(plant.palm_width() == Approx(plant.object.effective_width_mm() / std::cos(44.0 * M_PI / 180.0)).margin(0.8));
     CHECK(c->telemetry().at("tracking") == 1.0);
 }
 

@@ -46,14 +46,57 @@ TEST_CASE("stratified folds: balanced per class, seeded, every row once", "[lear
 
 TEST_CASE("grouped folds keep a group together", "[learn][folds]") {
     std::vector<std::string> groups;
+    std::vector<int> labels;
     for (int g = 0; g < 12; ++g)
-        for (int i = 0; i < 3 + g % 4; ++i) groups.push_back("session" + std::to_string(g));
-    auto f = grouped_folds(groups, 4, 1);
+        for (int i = 0; i < 3 + g % 4; ++i) {
+            groups.push_back("session" + std::to_string(g));
+            labels.push_back(i % 2);
+        }
+    auto f = grouped_folds(groups, labels, 4, 1);
     REQUIRE(f.ok());
     std::map<std::string, std::set<int>> folds_of;
     for (std::size_t i = 0; i < groups.size(); ++i) folds_of[groups[i]].insert((*f)[i]);
     for (auto& [g, s] : folds_of) CHECK(s.size() == 1);
-    CHECK_FALSE(grouped_folds(groups, 13, 1).ok());
+    CHECK_THAT(grouped_folds(groups, labels, 13, 1).error().message, Catch::Contains("at least 13 groups; there are 12"));
+    CHECK_FALSE(grouped_folds(groups, std::vector<int>{0, 1}, 4, 1).ok());
+}
+
+TEST_CASE("grouped folds are stratified as far as whole groups allow", "[learn][folds]") {
+    // Blocks of one class each (the blocked CV of a mount per object): 9
+    // classes x 15 blocks of 10 rows into 5 folds. Dealt by size alone, a fold
+    // can get 5 of a class's blocks and another 1; stratified, every fold holds
+    // 3 blocks of every class, whatever the seed.
+    std::vector<std::string> groups;
+    std::vector<int> labels;
+    for (int c = 0; c < 9; ++c)
+        for (int b = 0; b < 15; ++b)
+            for (int i = 0; i < 10; ++i) {
+                groups.push_back("c" + std::to_string(c) + "-b" + std::to_string(b));
+                labels.push_back(c);
+            }
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        auto f = grouped_folds(groups, labels, 5, seed);
+        REQUIRE(f.ok());
+        std::map<std::pair<int, int>, int> rows;  // (fold, class) → rows
+        for (std::size_t i = 0; i < labels.size(); ++i) ++rows[{(*f)[i], labels[i]}];
+        for (int fold = 0; fold < 5; ++fold)
+            for (int c = 0; c < 9; ++c) CHECK(rows[{fold, c}] == 30);
+    }
+    // Mixed groups (leave one speed out): every group holds every class; one group per fold.
+    std::vector<std::string> speeds;
+    std::vector<int> classes;
+    for (int s = 0; s < 3; ++s)
+        for (int c = 0; c < 9; ++c)
+            for (int i = 0; i < 5 + s; ++i) {
+                speeds.push_back("v" + std::to_string(s));
+                classes.push_back(c);
+            }
+    auto by_speed = grouped_folds(speeds, classes, 3, 7);
+    REQUIRE(by_speed.ok());
+    std::map<int, std::set<std::string>> in_fold;
+    for (std::size_t i = 0; i < speeds.size(); ++i) in_fold[(*by_speed)[i]].insert(speeds[i]);
+    REQUIRE(in_fold.size() == 3);
+    for (auto& [fold, names] : in_fold) CHECK(names.size() == 1);
 }
 
 TEST_CASE("confusion matrix, true-positive rates, Wilson interval", "[learn][metrics]") {

@@ -273,7 +273,7 @@ end
     }
     CHECK_THAT(first_trial, Catch::Contains("\"id\":\"X-v10-r001\"") &&
                                 Catch::Contains("\"joints\":[\"finger\",\"pusher\"]") &&
-                                Catch::Contains("\"joint_unit\":\"deg\""));
+                                Catch::Contains("\"joint_units\":[\"deg\",\"deg\"]"));
     // Channels of the bump sensor, and the angle and current of both joints.
     // (both joints still at 0 deg, drawing nothing, when the first trial starts)
     CHECK_THAT(first_sample, Catch::Contains("\"serial\":1,\"n\":1,\"t\":0,\"valid\":true,\"c\":[") &&

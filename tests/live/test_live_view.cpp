@@ -169,6 +169,8 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
     CHECK(samples1 > 0);
     CHECK(points_drawn(dump.output) > 0);
     CHECK(dump.output.find("waiting for the first trial") == std::string::npos);
+    // The fingers in deg and the palm and the winch in mm, on one plot: its caption says both.
+    CHECK(dump.output.find("joint positions (deg, mm)") != std::string::npos);
     const fs::path shot = tmp.path() / "shot.png";
     auto screenshot = rollsense::testing::run_command(snapshot(120, "--screenshot=" + shot.string()));
     INFO(screenshot.output << read_file(tmp.path() / "chromium.log"));

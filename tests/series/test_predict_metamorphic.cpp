@@ -9,13 +9,15 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
+#include <memory>
+#include <string>
 
 #include "analysis/learn/cross_validation.hpp"
 #include "analysis/series/series_table.hpp"
 #include "classifier_factory.hpp"
 #include "rollsense/minirocket/minirocket.hpp"
 #include "run_command.hpp"
-#include "stock_run.hpp"
 #include "stretch.hpp"
 #include "temp_dir.hpp"
 
@@ -27,22 +29,33 @@ namespace {
 const std::vector<std::string> kChannels{"ch1", "ch2", "ch3"};
 const std::vector<std::size_t> kChannelIdx{0, 1, 2};
 
-// A second small stock run, its own seed (two runs per object and speed: 54 trials).
-const DatasetReader& other_run() {
-    static rollsense::testing::TempDir dir("rollsense-series-other");
-    static const DatasetReader reader = [] {
-        const auto out = dir.path() / "run";
-        const auto run = rollsense::testing::run_rollsense(
-            "run " + std::string(ROLLSENSE_SOURCE_DIR) +
-            "/scripts/paper_experiment.lua --profile sim --set runs=2 --set analyse=false --seed 12 -q --out " +
-            out.string());
-        INFO(run.output);
-        REQUIRE(run.status == 0);
-        auto r = DatasetReader::open(out);
-        REQUIRE(r.ok());
-        return *r;
-    }();
-    return reader;
+// A small stock run of its own seed: four runs per object and speed, 108
+// trials. (Models trained on fewer cannot resolve the 5 % the rule promises:
+// trained on 27 trials, one borderline flip among 75 answers is 1.3 %.)
+DatasetReader record_small_run(const rollsense::testing::TempDir& dir, int seed) {
+    const auto out = dir.path() / "run";
+    const auto run = rollsense::testing::run_rollsense(
+        "run " + std::string(ROLLSENSE_SOURCE_DIR) +
+        "/scripts/paper_experiment.lua --profile sim --set runs=4 --set analyse=false --seed " + std::to_string(seed) +
+        " -q --out " + out.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    auto reader = DatasetReader::open(out);
+    REQUIRE(reader.ok());
+    return *reader;
+}
+
+struct SmallRun {
+    explicit SmallRun(int seed) : dir("rollsense-series-seed-" + std::to_string(seed)), reader(record_small_run(dir, seed)) {}
+    rollsense::testing::TempDir dir;
+    DatasetReader reader;
+};
+
+const DatasetReader& small_run(int seed) {
+    static std::map<int, std::unique_ptr<SmallRun>> runs;
+    auto& run = runs[seed];
+    if (!run) run = std::make_unique<SmallRun>(seed);
+    return run->reader;
 }
 
 learn::ClassifierPtr trained_on(const DatasetReader& run) {
@@ -87,14 +100,14 @@ void tally(const learn::ClassifierPtr& model, const DatasetReader& run, Change c
     }
 }
 
-// Both directions: trained on the stock run, predicting the other, and back.
+// Both directions: trained on one small run, predicting the other, and back.
 template <typename Change>
 Tally both_ways(Change change) {
-    static const auto on_stock = trained_on(rollsense::testing::stock_run());
-    static const auto on_other = trained_on(other_run());
+    static const auto on_a = trained_on(small_run(12));
+    static const auto on_b = trained_on(small_run(13));
     Tally t;
-    tally(on_stock, other_run(), change, t);
-    tally(on_other, rollsense::testing::stock_run(), change, t);
+    tally(on_a, small_run(13), change, t);
+    tally(on_b, small_run(12), change, t);
     return t;
 }
 

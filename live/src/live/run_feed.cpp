@@ -39,13 +39,17 @@ void RunFeed::publish_trial(runtime::Session& session) {
     const auto& robot = session.robot();
     const auto& t = session.trial();
     std::vector<std::string> joints, joint_units;
-    for (const auto& j : robot.joints()) joints.push_back(j.name);
+    for (const auto& j : robot.joints()) {
+        joints.push_back(j.name);
+        joint_units.push_back(j.info.unit);  // fingers in deg, the palm and the winch in mm
+    }
     std::string json = "{\"id\":" + json_quote(t.id) + ",\"object\":" + json_quote(t.object) +
                        ",\"speed\":" + json_quote(t.speed) + ",\"repetition\":" + std::to_string(t.repetition) +
                        ",\"serial\":" + std::to_string(trial_serial_) +
                        ",\"channels\":" + json_strings(robot.channel_columns()) +
                        ",\"channel_units\":" + json_strings(robot.channel_units()) +
-                       ",\"joints\":" + json_strings(joints) + ",\"joint_unit\":\"deg\",\"current_unit\":\"mA\"}";
+                       ",\"joints\":" + json_strings(joints) + ",\"joint_units\":" + json_strings(joint_units) +
+                       ",\"current_unit\":\"mA\"}";
     hub_.publish_state("trial", sse_event("trial", json));
 }
 

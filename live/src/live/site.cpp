@@ -41,7 +41,8 @@ std::string trial_json(const DatasetReader& d, const TrialRecord& rec, const Tri
            ",\"speed\":" + json_quote(rec.info.speed) + ",\"repetition\":" + std::to_string(rec.info.repetition) +
            ",\"channels\":" + json_strings(d.info().channels) + ",\"channel_units\":" +
            json_strings(d.info().channel_units) + ",\"joints\":" + json_strings(d.info().joints) +
-           ",\"joint_unit\":\"deg\",\"time\":" + json_numbers(data.time) + ",\"c\":" + c + "],\"a\":" + a + "]}";
+           // The dataset format does not record the joints' units (deg or mm): none sent.
+           ",\"joint_units\":[],\"time\":" + json_numbers(data.time) + ",\"c\":" + c + "],\"a\":" + a + "]}";
 }
 
 }  // namespace

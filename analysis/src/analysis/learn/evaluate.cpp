@@ -24,7 +24,7 @@ std::string pct(double v) {
 
 Result<std::vector<int>> make_folds(std::span<const int> labels, const std::vector<std::string>* groups, int k,
                                     std::uint64_t seed) {
-    if (groups) return grouped_folds(*groups, k, seed);
+    if (groups) return grouped_folds(*groups, labels, k, seed);
     return stratified_folds(labels, k, seed);
 }
 

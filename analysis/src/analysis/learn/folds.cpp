@@ -24,10 +24,18 @@ Result<std::vector<int>> stratified_folds(std::span<const int> labels, int k, st
     return fold;
 }
 
-Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int k, std::uint64_t seed) {
+Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, std::span<const int> labels, int k,
+                                       std::uint64_t seed) {
     if (k < 2) return Error{ErrorCode::invalid_argument, "cross-validation needs at least 2 folds"};
+    if (groups.size() != labels.size())
+        return Error{ErrorCode::invalid_argument, "grouped folds: " + std::to_string(groups.size()) + " groups for " +
+                                                      std::to_string(labels.size()) + " rows"};
     std::map<std::string, std::vector<std::size_t>> by_group;
-    for (std::size_t i = 0; i < groups.size(); ++i) by_group[groups[i]].push_back(i);
+    std::map<int, double> class_rows;
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+        by_group[groups[i]].push_back(i);
+        ++class_rows[labels[i]];
+    }
     if (by_group.size() < static_cast<std::size_t>(k))
         return Error{ErrorCode::invalid_argument, std::to_string(k) + " grouped folds need at least " +
                                                       std::to_string(k) + " groups; there are " +
@@ -38,12 +46,29 @@ Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int 
     rng.shuffle(order);
     // Largest groups first keeps the folds balanced (stable for equal sizes).
     std::stable_sort(order.begin(), order.end(), [](auto* a, auto* b) { return a->size() > b->size(); });
-    std::vector<std::size_t> size(static_cast<std::size_t>(k), 0);
+    const auto folds = static_cast<std::size_t>(k);
+    std::vector<std::size_t> size(folds, 0);
+    std::vector<std::map<int, double>> held(folds);  // rows of each class a fold holds
     std::vector<int> fold(groups.size(), 0);
     for (const auto* rows : order) {
-        const auto f = static_cast<std::size_t>(std::min_element(size.begin(), size.end()) - size.begin());
-        for (std::size_t r : *rows) fold[r] = static_cast<int>(f);
-        size[f] += rows->size();
+        std::map<int, double> adds;
+        for (std::size_t r : *rows) ++adds[labels[r]];
+        // What the group adds to the fold's imbalance: the growth of the sum over
+        // classes of (the class's share in this fold)². A group of one class then
+        // goes where that class is scarcest, a mixed group where it fits best.
+        const auto growth = [&](std::size_t f) {
+            double g = 0.0;
+            for (const auto& [label, n] : adds) g += n * (2.0 * held[f][label] + n) / (class_rows[label] * class_rows[label]);
+            return g;
+        };
+        std::size_t best = 0;
+        for (std::size_t f = 1; f < folds; ++f) {
+            const double gf = growth(f), gb = growth(best);
+            if (gf < gb || (gf == gb && size[f] < size[best])) best = f;
+        }
+        for (std::size_t r : *rows) fold[r] = static_cast<int>(best);
+        for (const auto& [label, n] : adds) held[best][label] += n;
+        size[best] += rows->size();
     }
     return fold;
 }
@@ -58,7 +83,7 @@ Result<FoldPlan> make_fold_plan(std::span<const int> labels, const std::vector<s
     plan.grouped = groups != nullptr;
     for (int rep = 0; rep < repeats; ++rep) {
         const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(rep);
-        auto f = groups ? grouped_folds(*groups, k, seed) : stratified_folds(labels, k, seed);
+        auto f = groups ? grouped_folds(*groups, labels, k, seed) : stratified_folds(labels, k, seed);
         if (!f) return f.error();
         plan.seeds.push_back(seed);
         plan.assignment.push_back(std::move(f).value());

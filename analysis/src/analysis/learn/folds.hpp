@@ -17,9 +17,14 @@ namespace rollsense::learn {
 Result<std::vector<int>> stratified_folds(std::span<const int> labels, int k, std::uint64_t seed);
 
 // Grouped folds: all rows of a group (a session, a rig state) land in one fold,
-// so correlated trials never straddle training and test. Groups are shuffled
-// with the seed and assigned greedily to the currently smallest fold.
-Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, int k, std::uint64_t seed);
+// so correlated trials never straddle training and test. Stratified as far as
+// whole groups allow (like scikit-learn's StratifiedGroupKFold), so that a
+// grouped figure differs from a random one by what the groups share, not by
+// folds short of a class: groups are shuffled with the seed, taken largest
+// first, and each goes to the fold where it adds least to the imbalance of the
+// classes' shares (ties: the smallest fold).
+Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, std::span<const int> labels, int k,
+                                       std::uint64_t seed);
 
 // The partitions of a repeated k-fold CV, made once so that every classifier
 // compared is trained and tested on exactly the same rows. Repetition r uses

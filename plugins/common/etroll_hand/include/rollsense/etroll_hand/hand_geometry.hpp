@@ -13,7 +13,7 @@ namespace rollsense::etroll {
 struct HandGeometry {
     // T: sum of the distances from each finger's joint axis to its contact
     // surface (finger body, PCB, rubber), mm. Fitted (docs/simulation.md §6).
-    double finger_offset_sum = 41.0;
+    double finger_offset_sum = 42.0;
     // Distance along a finger from its joint axis to barometer 2, mm: the lever
     // arm of the pushing finger's constant torque, and where it meets the object.
     double array_distance = 70.0;
@@ -30,7 +30,7 @@ struct HandGeometry {
 
 // The width between the fingers of the object the emulator clamps when it is
 // told no other, mm: the mean flat width of the paper's nine objects (Table
-// II), so that d = 24 + 41 = 65 mm sits in the middle of the stock set.
+// II), so that d = 24 mm + T sits in the middle of the stock set.
 inline constexpr double kDefaultEmulatedObjectWidth = 24.0;
 
 // The geometry as plugin parameters (finger_offset_sum, array_distance, in
