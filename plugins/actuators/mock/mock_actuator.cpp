@@ -162,11 +162,12 @@ public:
 
     Status write(double time, std::span<const JointCommand> commands) override {
         last_time_ = time;
-        if (commands.size() != servos_.size())
+        const std::size_t n = servos_.size();
+        if (commands.size() != n)
             return {ErrorCode::invalid_argument, "write: " + std::to_string(commands.size()) + " commands for " +
-                                                     std::to_string(servos_.size()) + " joints"};
+                                                     std::to_string(n) + " joints"};
         apply_injections(time);
-        for (std::size_t i = 0; i < servos_.size(); ++i)
+        for (std::size_t i = 0; i < n; ++i)
             if (!silent_[i]) servos_[i].command(time, commands[i]);
         return silence();
     }
