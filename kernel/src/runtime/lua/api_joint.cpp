@@ -24,8 +24,8 @@ void command_or_raise(lua_State* L, Joint& j, const JointCommand& c) {
     if (!st.ok()) raise_status(L, st);
 }
 
-// Wait until every joint in `joints` has arrived (not moving, within tolerance
-// of its goal), or raise on timeout.
+// Have the task wait until every joint in `joints` has arrived (not moving,
+// within tolerance of its goal); finish_wait raises on timeout.
 bool wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout_s, double tolerance,
                   const std::string& what) {
     Session& s = Session::of(L);
