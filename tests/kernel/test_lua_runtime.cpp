@@ -124,6 +124,31 @@ table.sort(t, function(a, b) rs.wait(1); return a < b end)
     CHECK_THAT(r.summary.status.message(), Catch::Contains("cannot wait here"));
 }
 
+TEST_CASE("the waiting calls refuse bad arguments before any wait, naming the call and the line", "[lua]") {
+    // They only ask the task to wait (the shared wrapper yields): a refusal
+    // raises from the call itself, and a move told not to wait returns at once.
+    for (const auto& [call, expected] :
+         {std::pair{"rs.wait(-1)", "rs.wait: milliseconds must be a number >= 0"},
+          std::pair{"rs.joint('finger'):move(10, { mode = 'current' })", "move: mode 'current' is not a position mode"},
+          std::pair{"rs.wait_until(42)", "bad argument #1 to 'wait_until'"}}) {
+        INFO(call);
+        kt::TempDir dir;
+        auto r = kt::run_script(dir, std::string("local rs = require 'rollsense'\n") + call + "\n");
+        REQUIRE_FALSE(r.summary.status.ok());
+        CHECK_THAT(r.summary.status.message(), Catch::Contains(expected) && Catch::Contains("script.lua:2:"));
+    }
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local t0 = rs.now()
+        local n = select("#", rs.joint("finger"):move(30, { velocity = 30, wait = false }))
+        local t1 = rs.now()
+        rs.wait_joints({ rs.joint("finger") })
+        local arrived = rs.now() - t1                 -- 1 s, noticed at the next control tick
+        rs.write_output("result.txt", string.format("%d %.3f %s %s", n, t1 - t0, tostring(arrived >= 1 and arrived <= 1.02),
+                                                    tostring(rs.wait_until(function() return true end, 100)))))");
+    CHECK(out == "0 0.000 true true");
+}
+
 TEST_CASE("recording samples sensors and joints at the profile's rate", "[lua]") {
     kt::TempDir dir;
     auto out = run_and_read(dir, R"(

@@ -112,3 +112,38 @@ TEST_CASE("the mock actuator's reads leave nothing stale in reused states", "[mo
     CHECK(states[0].velocity == 0.0);
     CHECK(states[0].current == 0.0);
 }
+
+TEST_CASE("a silent joint: reads and writes fail naming it from its time on, the others are served; "
+          "reconfiguring brings it back", "[mock][fault]") {
+    runtime::PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
+    auto lib = reg.find("mock_actuator", PluginKind::actuator);
+    REQUIRE(lib.ok());
+    const ParamSchema schema = *runtime::PluginRegistry::schema_of(**lib);
+    std::unique_ptr<Actuator> a((*lib)->manifest().create_actuator());
+    // The same joint twice (the mock counts it once) and a later one.
+    const std::map<std::string, ParamValue> faults{{"inject", std::vector<std::string>{"palm:silent:1", "palm:silent:2", "winch:silent:3"}}};
+    REQUIRE(a->on_configure(*validate_params(schema, faults, "test"), {}).ok());
+    REQUIRE(a->on_activate().ok());
+    std::vector<JointState> states(a->joints().size());
+    std::vector<JointCommand> cmd(states.size());
+    for (auto& c : cmd) c.position = 10.0;
+    REQUIRE(a->read(0.5, states).ok());
+    REQUIRE(a->write(0.5, cmd).ok());
+
+    for (double t : {1.0, 2.5}) {
+        INFO(t);
+        const Status r = a->read(t, states);
+        CHECK(r.code() == ErrorCode::timeout);
+        CHECK_THAT(r.message(), Catch::Contains("joint 'palm'"));
+        CHECK(states[0].position > 0.0);  // the others were read
+        const Status w = a->write(t, cmd);
+        CHECK(w.code() == ErrorCode::timeout);
+        CHECK_THAT(w.message(), Catch::Contains("joint 'palm'"));
+    }
+    CHECK(a->read(3.5, states).code() == ErrorCode::timeout);  // palm and winch now: the first is named
+    CHECK_THAT(a->read(3.5, states).message(), Catch::Contains("joint 'palm'"));
+
+    REQUIRE(a->on_configure(*validate_params(schema, {}, "test"), {}).ok());
+    CHECK(a->read(4.0, states).ok());
+    CHECK(a->write(4.0, cmd).ok());
+}

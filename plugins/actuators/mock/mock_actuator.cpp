@@ -119,7 +119,8 @@ public:
             injections.push_back(inj);
         }
         injections_ = std::move(injections);
-        silent_.assign(n, false);
+        silent_.assign(n, 0);
+        silent_count_ = 0;
         infos_ = std::move(infos);
         return {};
     }
@@ -153,18 +154,20 @@ public:
     Status read(double time, std::span<JointState> states) override {
         last_time_ = time;
         apply_injections(time);
-        for (std::size_t i = 0; i < servos_.size() && i < states.size(); ++i)
+        const std::size_t n = std::min(servos_.size(), states.size());
+        for (std::size_t i = 0; i < n; ++i)
             if (!silent_[i]) servos_[i].state(time, states[i]);
         return silence();
     }
 
     Status write(double time, std::span<const JointCommand> commands) override {
         last_time_ = time;
-        if (commands.size() != servos_.size())
+        const std::size_t n = servos_.size();
+        if (commands.size() != n)
             return {ErrorCode::invalid_argument, "write: " + std::to_string(commands.size()) + " commands for " +
-                                                     std::to_string(servos_.size()) + " joints"};
+                                                     std::to_string(n) + " joints"};
         apply_injections(time);
-        for (std::size_t i = 0; i < servos_.size(); ++i)
+        for (std::size_t i = 0; i < n; ++i)
             if (!silent_[i]) servos_[i].command(time, commands[i]);
         return silence();
     }
@@ -222,13 +225,16 @@ private:
         for (auto& inj : injections_) {
             if (inj.done || time < inj.after) continue;
             inj.done = true;
-            if (inj.silent)
-                silent_[inj.joint] = true;
-            else
+            if (inj.silent) {
+                silent_count_ += silent_[inj.joint] ? 0 : 1;
+                silent_[inj.joint] = 1;
+            } else {
                 servos_[inj.joint].inject_fault(time, "overload (injected)");
+            }
         }
     }
     Status silence() const {
+        if (silent_count_ == 0) return {};  // every control period: no scan
         for (std::size_t i = 0; i < silent_.size(); ++i)
             if (silent_[i])
                 return {ErrorCode::timeout, "joint '" + infos_[i].name +
@@ -237,7 +243,10 @@ private:
     }
 
     std::vector<Injection> injections_;
-    std::vector<bool> silent_;
+    // Per joint (chars, not vector<bool>: read and write test them for every
+    // joint every control period), and how many are set.
+    std::vector<char> silent_;
+    std::size_t silent_count_ = 0;
     std::vector<JointInfo> infos_;
     std::vector<MockServo> servos_;
     double last_time_ = 0;

@@ -3,6 +3,15 @@
 #include <algorithm>
 
 namespace rollsense::mock {
+namespace {
+// Every control period writes every joint's command, almost always unchanged:
+// local to this file, so the compiler inlines the test into command().
+bool same(const JointCommand& a, const JointCommand& b) {
+    return a.mode == b.mode && a.position == b.position && a.velocity == b.velocity && a.current == b.current &&
+           a.profile_velocity == b.profile_velocity && a.profile_acceleration == b.profile_acceleration &&
+           a.torque_enabled == b.torque_enabled;
+}
+}  // namespace
 
 MockServo::MockServo(ServoModel model, double initial_position) : model_(model) {
     profile_.stop(0.0, std::clamp(initial_position, model_.min_position, model_.max_position));
@@ -63,12 +72,6 @@ void MockServo::state(double t, JointState& s) const {
             break;
         }
     }
-}
-
-bool MockServo::same(const JointCommand& a, const JointCommand& b) const {
-    return a.mode == b.mode && a.position == b.position && a.velocity == b.velocity && a.current == b.current &&
-           a.profile_velocity == b.profile_velocity && a.profile_acceleration == b.profile_acceleration &&
-           a.torque_enabled == b.torque_enabled;
 }
 
 void MockServo::command(double t, const JointCommand& c) {

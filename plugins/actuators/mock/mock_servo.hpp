@@ -37,7 +37,6 @@ public:
 
 private:
     double current_mode_position(double t) const;
-    bool same(const JointCommand& a, const JointCommand& b) const;
 
     ServoModel model_;
     JointCommand last_{};

@@ -68,11 +68,6 @@ LuaTask& waiting_task(lua_State* L, const char* function) {
     return *t;
 }
 
-int yield_task(lua_State* L, LuaTask& task, Wait wait, lua_KFunction k) {
-    task.request(std::move(wait));
-    return lua_yieldk(L, 0, 0, k);
-}
-
 namespace {
 LuaTask* resumed_task(lua_State* L) { return dynamic_cast<LuaTask*>(Session::of(L).scheduler().current()); }
 }  // namespace
@@ -149,12 +144,12 @@ int l_now(lua_State* L) {
 }
 
 // rs.wait(ms)
-int l_wait(lua_State* L) {
+bool l_wait(lua_State* L) {
     const double ms = luaL_checknumber(L, 1);
-    if (!(ms >= 0) || !std::isfinite(ms)) return luaL_error(L, "rs.wait: milliseconds must be a number >= 0");
+    if (!(ms >= 0) || !std::isfinite(ms)) luaL_error(L, "rs.wait: milliseconds must be a number >= 0");
     Session& s = Session::of(L);
-    LuaTask& t = waiting_task(L, "rs.wait");
-    return yield_task(L, t, Wait::for_time(s.now() + s.quantize(ms / 1000.0)), finish_wait);
+    waiting_task(L, "rs.wait").request(Wait::for_time(s.now() + s.quantize(ms / 1000.0)));
+    return true;
 }
 
 int after_wait_until(lua_State* L, int, lua_KContext) {
@@ -169,7 +164,7 @@ int after_wait_until(lua_State* L, int, lua_KContext) {
 
 // rs.wait_until(condition, timeout_ms) → true, or false on timeout. The
 // condition is checked once per control period; it must not wait itself.
-int l_wait_until(lua_State* L) {
+bool l_wait_until(lua_State* L) {
     luaL_checktype(L, 1, LUA_TFUNCTION);
     const double ms = luaL_optnumber(L, 2, -1);
     Session& s = Session::of(L);
@@ -182,7 +177,8 @@ int l_wait_until(lua_State* L) {
     w.predicate = lua_predicate(s.sandbox(), ref);
     w.until = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
     w.what = "a condition";
-    return yield_task(L, t, std::move(w), after_wait_until);
+    t.request(std::move(w));
+    return true;
 }
 
 // rs.setting(key, default): a --set value (converted to the default's type
@@ -327,8 +323,8 @@ int l_random_normal(lua_State* L) {
 
 void register_core(lua_State* L) {
     static const luaL_Reg fns[] = {{"now", l_now},
-                                   {"wait", l_wait},
-                                   {"wait_until", l_wait_until},
+                                   {"wait", waiting<l_wait, finish_wait>},
+                                   {"wait_until", waiting<l_wait_until, after_wait_until>},
                                    {"setting", l_setting},
                                    {"seed", l_seed},
                                    {"profile", l_profile},

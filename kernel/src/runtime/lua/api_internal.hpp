@@ -14,9 +14,14 @@ namespace rollsense::runtime::lua_api {
 // The task running this Lua code; raises if the caller cannot wait here
 // (inside a wait_until condition, at load time of a module, ...).
 LuaTask& waiting_task(lua_State* L, const char* function);
-// Yield the current task until the scheduler resumes it, waiting for `wait`;
-// `k` is the continuation.
-int yield_task(lua_State* L, LuaTask& task, Wait wait, lua_KFunction k);
+// A binding that may wait: `request` checks its arguments and, to wait, gives
+// the task its Wait and returns true; the task then yields, `k` continuing. The
+// Lua library yields by throwing a C++ exception: yielding here, where no C++
+// object is alive, spares the unwinder a second walk for every destructor.
+template <bool (*request)(lua_State*), lua_KFunction k>
+int waiting(lua_State* L) {
+    return request(L) ? lua_yieldk(L, 0, 0, k) : 0;
+}
 // Continuation that turns a cancelled or timed-out wait into an error and
 // returns nothing otherwise.
 int finish_wait(lua_State* L, int status, lua_KContext ctx);

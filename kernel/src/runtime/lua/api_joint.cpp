@@ -24,10 +24,10 @@ void command_or_raise(lua_State* L, Joint& j, const JointCommand& c) {
     if (!st.ok()) raise_status(L, st);
 }
 
-// Wait until every joint in `joints` has arrived (not moving, within tolerance
-// of its goal), or raise on timeout.
-int wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout_s, double tolerance,
-                 const std::string& what) {
+// Have the task wait until every joint in `joints` has arrived (not moving,
+// within tolerance of its goal); finish_wait raises on timeout.
+bool wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout_s, double tolerance,
+                  const std::string& what) {
     Session& s = Session::of(L);
     LuaTask& t = waiting_task(L, "move");
     Wait w;
@@ -36,7 +36,8 @@ int wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout_
     w.tolerance = tolerance;
     w.until = s.now() + s.quantize(timeout_s);
     w.what = what + " (timeout " + std::to_string(timeout_s) + " s)";
-    return yield_task(L, t, std::move(w), finish_wait);
+    t.request(std::move(w));
+    return true;
 }
 
 // A timeout that fits the move: trapezoid duration plus a margin.
@@ -49,7 +50,7 @@ double default_timeout(const Joint& j, double goal, double velocity, double acce
 }
 
 // j:move(position, {velocity=, acceleration=, timeout_ms=, tolerance=, wait=true})
-int l_move(lua_State* L) {
+bool l_move(lua_State* L) {
     Joint& j = check_joint(L, 1);
     const double goal = luaL_checknumber(L, 2);
     check_options(L, 3, "move", {"velocity", "acceleration", "mode", "current", "wait", "timeout_ms", "tolerance"});
@@ -63,12 +64,12 @@ int l_move(lua_State* L) {
         c.mode = ControlMode::current_based_position;
         c.current = opt_field_number(L, 3, "current", j.limit.max_current);
     } else if (!mode.empty() && mode != "position" && mode != "extended_position") {
-        return luaL_error(L, "move: mode '%s' is not a position mode", mode.c_str());
+        luaL_error(L, "move: mode '%s' is not a position mode", mode.c_str());
     } else if (!mode.empty()) {
         c.mode = mode == "extended_position" ? ControlMode::extended_position : ControlMode::position;
     }
     command_or_raise(L, j, c);
-    if (!opt_field_bool(L, 3, "wait", true)) return 0;
+    if (!opt_field_bool(L, 3, "wait", true)) return false;
     const double timeout_ms = opt_field_number(L, 3, "timeout_ms", -1);
     const double timeout = timeout_ms >= 0 ? timeout_ms / 1000.0
                                            : default_timeout(j, goal, j.command.profile_velocity, c.profile_acceleration);
@@ -118,7 +119,7 @@ int l_torque(lua_State* L) {
 }
 
 // j:wait({timeout_ms=, tolerance=}): until the present goal is reached.
-int l_wait_arrived(lua_State* L) {
+bool l_wait_arrived(lua_State* L) {
     Joint& j = check_joint(L, 1);
     check_options(L, 2, "wait", {"timeout_ms", "tolerance"});
     const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
@@ -211,7 +212,7 @@ int l_joints(lua_State* L) {
 }
 
 // rs.wait_joints({j1, j2, ...}, {timeout_ms=, tolerance=})
-int l_wait_joints(lua_State* L) {
+bool l_wait_joints(lua_State* L) {
     luaL_checktype(L, 1, LUA_TTABLE);
     std::vector<const Joint*> list;
     std::string names;
@@ -231,11 +232,12 @@ int l_wait_joints(lua_State* L) {
 }  // namespace
 
 void register_joints(lua_State* L) {
-    static const luaL_Reg methods[] = {{"move", l_move},         {"push", l_push},       {"spin", l_spin},
-                                       {"hold", l_hold},         {"torque", l_torque},   {"wait", l_wait_arrived},
-                                       {"position", l_position}, {"velocity", l_velocity}, {"current", l_current},
-                                       {"moving", l_moving},     {"name", l_name},       {"state", l_state},
-                                       {"limits", l_limits},     {nullptr, nullptr}};
+    static const luaL_Reg methods[] = {{"move", waiting<l_move, finish_wait>},
+                                       {"wait", waiting<l_wait_arrived, finish_wait>},
+                                       {"push", l_push},         {"spin", l_spin},         {"hold", l_hold},
+                                       {"torque", l_torque},     {"position", l_position}, {"velocity", l_velocity},
+                                       {"current", l_current},   {"moving", l_moving},     {"name", l_name},
+                                       {"state", l_state},       {"limits", l_limits},     {nullptr, nullptr}};
     luaL_newmetatable(L, kJointMeta);
     protect_metatable(L);
     lua_newtable(L);
@@ -244,7 +246,10 @@ void register_joints(lua_State* L) {
     lua_pushcfunction(L, l_tostring);
     lua_setfield(L, -2, "__tostring");
     lua_pop(L, 1);
-    static const luaL_Reg fns[] = {{"joint", l_joint}, {"joints", l_joints}, {"wait_joints", l_wait_joints}, {nullptr, nullptr}};
+    static const luaL_Reg fns[] = {{"joint", l_joint},
+                                   {"joints", l_joints},
+                                   {"wait_joints", waiting<l_wait_joints, finish_wait>},
+                                   {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
 }
 

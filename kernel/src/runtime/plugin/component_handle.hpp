@@ -44,16 +44,18 @@ public:
     // command refused as out of range).
     template <class F>
     Status call(const char* what, F&& fn, bool keeps_state = false) {
-        Status s;
-        try {
-            s = fn();
-        } catch (const StatusError& e) {
-            s = e.status();
-        } catch (const std::exception& e) {
-            s = Status(ErrorCode::plugin_error, std::string("threw an exception in ") + what + ": " + e.what());
-        } catch (...) {
-            s = Status(ErrorCode::plugin_error, std::string("threw a non-standard exception in ") + what);
-        }
+        // Initialised by the call itself, not assigned over: several calls per control period.
+        Status s = [&]() -> Status {
+            try {
+                return fn();
+            } catch (const StatusError& e) {
+                return e.status();
+            } catch (const std::exception& e) {
+                return {ErrorCode::plugin_error, std::string("threw an exception in ") + what + ": " + e.what()};
+            } catch (...) {
+                return {ErrorCode::plugin_error, std::string("threw a non-standard exception in ") + what};
+            }
+        }();
         if (s.ok()) return s;
         s = std::move(s).with_context(describe());
         if (!keeps_state) enter_error(s);

@@ -211,7 +211,7 @@ Status Robot::activate(double time) {
 
 Status Robot::read_actuators(double time) {
     for (auto& a : actuators_) {
-        if (auto s = a.handle->require_active("read"); !s.ok()) return s;
+        if (a.handle->state() != LifecycleState::active) return a.handle->require_active("read");
         auto st = a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); });
         if (!st.ok()) return st;
         for (std::size_t i = 0; i < a.joints.size(); ++i) {
