@@ -16,8 +16,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kManifestColumns = {"trial_id",   "file", "object",  "speed",          "repetition",
-                                                    "seed",       "samples", "invalid_samples", "extra"};
+const std::vector<std::string> kManifestColumns = {"trial_id", "file",    "object",          "speed",
+                                                    "repetition", "seed", "samples", "invalid_samples",
+                                                    "mount",    "index_in_mount", "extra"};
+
+// The paper's protocol (one mounting of a specimen on the winch, rolled many
+// times): which mounting a roll belongs to and how many rolls of it came
+// before. A script gives them as trial metadata (etroll.run_trial{mount=,
+// index_in_mount=}, in TrialInfo::extra); the manifest holds them in columns
+// of their own, so that MATLAB or pandas group by them without parsing
+// `extra`. Reading puts them back among the metadata.
+const std::vector<std::string> kProtocolKeys = {"mount", "index_in_mount"};
 
 std::string join(const std::vector<std::string>& v, char sep) {
     std::string out;
@@ -181,7 +190,9 @@ Result<TrialRecord> parse_manifest_row(const csv::Reader& reader, const std::vec
     auto invalid = integer(col[7]);
     if (!invalid) return invalid.error();
     r.invalid_samples = static_cast<std::size_t>(*invalid);
-    if (col[8] != SIZE_MAX) r.info.extra = parse_extra(f[col[8]]);
+    if (col[10] != SIZE_MAX) r.info.extra = parse_extra(f[col[10]]);
+    for (std::size_t k = 0; k < kProtocolKeys.size(); ++k)
+        if (col[8 + k] != SIZE_MAX && !f[col[8 + k]].empty()) r.info.extra[kProtocolKeys[k]] = f[col[8 + k]];
     if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader.where(col[0]) + ": empty trial id"};
     // A manifest names files inside its dataset folder only.
     const fs::path listed(r.file);
@@ -197,7 +208,8 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
     if (!reader) return reader.error();
     ManifestColumns col;
     for (const auto& name : kManifestColumns) {
-        if (name == "extra" || name == "invalid_samples" || name == "seed") {
+        if (name == "extra" || name == "invalid_samples" || name == "seed" || name == "mount" ||
+            name == "index_in_mount") {
             auto c = reader->column(name);
             col.push_back(c ? *c : SIZE_MAX);  // optional in hand-made manifests
             continue;
@@ -225,9 +237,16 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
 
 // One manifest row, '\n' terminated: what a batch appends for each of its trials.
 void append_manifest_row(std::string& out, const TrialRecord& t) {
+    auto extra = t.info.extra;
+    std::vector<std::string> protocol;
+    for (const auto& key : kProtocolKeys) {
+        auto it = extra.find(key);
+        protocol.push_back(it == extra.end() ? "" : it->second);
+        if (it != extra.end()) extra.erase(it);
+    }
     csv::append_row(out, {t.info.id, t.file, t.info.object, t.info.speed, std::to_string(t.info.repetition),
                           std::to_string(t.info.seed), std::to_string(t.samples), std::to_string(t.invalid_samples),
-                          format_extra(t.info.extra)});
+                          protocol[0], protocol[1], format_extra(extra)});
 }
 
 // A manifest is appended to batch by batch; a crash in the middle of an

@@ -165,7 +165,7 @@ end
 -- One whole trial of the stock experiment. Returns the number of samples.
 -- mount (which mounting of the specimen on the winch string, a name unique in
 -- the run) and index_in_mount (rolls before this one in that mounting, from 0)
--- go into the manifest's extra column; the simulated sensor draws its
+-- go into the manifest's columns of those names; the simulated sensor draws its
 -- per-mount effects from them, and `rollsense evaluate --cv blocked` groups by them.
 function M.run_trial(t)
   local extra = nil

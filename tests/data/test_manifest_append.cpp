@@ -184,6 +184,35 @@ TEST_CASE("a manifest cut just after a line end inside a quoted extra value is t
     CHECK(back->trials().back().info.extra.at("note") == "first line\nsecond line");
 }
 
+TEST_CASE("mount and index_in_mount have manifest columns of their own; reading puts them back", "[data][manifest]") {
+    TempDir dir;
+    {
+        auto w = DatasetWriter::open(dir.path() / "ds", tiny_info(), DatasetOpenMode::create);
+        REQUIRE(w.ok());
+        auto mounted = tiny_record("t0");
+        mounted.info.extra = {{"mount", "C1-1"}, {"index_in_mount", "4"}, {"operator", "ab"}};
+        REQUIRE((*w)->add_trial(mounted, tiny_samples()).ok());
+        REQUIRE((*w)->add_trial(tiny_record("t1"), tiny_samples()).ok());  // no protocol: empty cells
+        REQUIRE((*w)->flush().ok());
+    }
+    const std::string text = testing::read_file(dir.path() / "ds" / "manifest.csv");
+    CHECK(text.rfind("trial_id,file,object,speed,repetition,seed,samples,invalid_samples,mount,index_in_mount,extra\n", 0) == 0);
+    CHECK(text.find(",C1-1,4,operator=ab\n") != std::string::npos);
+    CHECK(text.find(",,,\n") != std::string::npos);
+    auto back = DatasetReader::open(dir.path() / "ds");
+    REQUIRE(back.ok());
+    CHECK(back->trials()[0].info.extra ==
+          std::map<std::string, std::string>{{"index_in_mount", "4"}, {"mount", "C1-1"}, {"operator", "ab"}});
+    CHECK(back->trials()[1].info.extra.empty());
+    // A manifest of an earlier version kept them in `extra`: read the same.
+    testing::write_file(dir.path() / "ds" / "manifest.csv",
+                        "trial_id,file,object,speed,repetition,seed,samples,invalid_samples,extra\n"
+                        "t0,trials/t0.csv,C1,10,1,0,0,0,index_in_mount=4;mount=C1-1;operator=ab\n");
+    auto earlier = DatasetReader::open(dir.path() / "ds");
+    REQUIRE(earlier.ok());
+    CHECK(earlier->trials()[0].info.extra == back->trials()[0].info.extra);
+}
+
 TEST_CASE("a hand-made manifest without a final line end is read as before", "[data][manifest]") {
     TempDir dir;
     std::filesystem::create_directories(dir.path() / "trials");

@@ -34,8 +34,9 @@ Result<std::vector<CvScheme>> parse_cv_schemes(const std::string& list, const st
                                                const std::string& block);
 
 // The value of manifest column `column` for a row: trial_id, object, speed,
-// repetition, or a key of the manifest's `extra` column (mount, index_in_mount
-// in datasets that record them). nullopt: the row has no such column.
+// repetition, mount, index_in_mount (in datasets that record them; the reader
+// keeps them with the trial's metadata), or a key of the manifest's `extra`
+// column. nullopt: the row has no such column.
 std::optional<std::string> manifest_value(const features::FeatureRow& row, const std::string& column);
 
 // The group of every used row (rows[row_of[i]]). Blocked: mount (the `mount`
