@@ -24,9 +24,15 @@ in this one process, on the stock script scripts/paper_experiment.lua with
 
 Each figure is the median of the repeats; ratios are reference / new (> 1:
 the new build is faster). Both builds' datasets are compared byte for byte
-(trials/, manifest.csv, dataset-info.csv; and features.csv for the stock run).
-The CPU seconds (user + system of the child) are printed beside the wall
-time: on a shared machine they vary less. Every dataset gets a fresh folder and
+(trials/, manifest.csv, dataset-info.csv; and features.csv for the stock run):
+a reference from before a deliberate change of the recorded data (e.g. the
+simulation's calibration) says DIFFER, and then times similar, not identical,
+work. The CPU seconds (user + system of the child) are printed beside the wall
+time: on a shared machine they vary less. From them, a "ceiling" line: the
+new build's CPU spread perfectly over this machine's cores is the least wall
+time it can take, so ref wall / (new CPU / cores) is the largest ratio that
+build can reach here without doing less work (like every wall figure here,
+meaningful on an idle machine only). Every dataset gets a fresh folder and
 all are deleted at the end (ext4 scans past recently deleted inodes when it
 allocates new ones, which would charge a run for deleting the one before): the
 135k size (--runs 5000) takes minutes and ~1.3 GB of disk per build.
@@ -83,6 +89,13 @@ def folder_bytes(path):
     return total
 
 
+def ceiling(label, new_cpu, ref_wall):
+    cores = os.cpu_count() or 1
+    best = new_cpu / cores
+    print(f"ceiling {label}: new {new_cpu:.2f} s CPU over {cores} cores = at least {best:.2f} s wall, "
+          f"so ref/new at most {ref_wall / best:.2f}x")
+
+
 def same_dataset(a, b, files):
     for name in files:
         if not filecmp.cmp(os.path.join(a, name), os.path.join(b, name), shallow=False):
@@ -115,7 +128,7 @@ def main():
         return ["new", "ref"] if i % 2 == 0 else ["ref", "new"]
 
     try:
-        record_1k = {}
+        record_1k, record_cpu = {}, {}
         for runs in [int(r) for r in a.runs.split(",")]:
             trials = TRIALS_PER_RUN * runs
             repeats = 1 if trials > 20000 else a.repeats
@@ -145,6 +158,7 @@ def main():
             print(f"record {trials:>6} trials  ref/new time {statistics.median(t['ref']) / statistics.median(t['new']):.2f}x; "
                   f"datasets {'byte-identical' if why is None else 'DIFFER: ' + why}")
             record_1k.setdefault(runs, {b: statistics.median(t[b]) for b in t})
+            record_cpu.setdefault(runs, statistics.median(cpu["new"]))
         sizes = sorted(record_1k)
         for small, big in zip(sizes, sizes[1:]):
             for b in ("new", "ref"):
@@ -162,20 +176,25 @@ def main():
             rf_new, rf_ref = record_1k[50]["new"], record_1k[50]["ref"] + f["ref"]
             print(f"record+features 1350 trials: new {rf_new:.2f} s (features from memory), ref {rf_ref:.2f} s "
                   f"(record + features from disk), ref/new {rf_ref / rf_new:.2f}x")
+            ceiling("record+features", record_cpu[50], rf_ref)
 
         if a.stock_repeats == 0:
             return
         t = {"new": [], "ref": []}
+        cpu = {"new": [], "ref": []}
         for i in range(a.stock_repeats):
             for b in order(i):
                 out = os.path.join(work, f"{b}-stock-{i}")
                 t[b].append(run([builds[b], "run", *base, "--out", out])[0])
+                cpu[b].append(CPU[builds[b]])
         why = same_dataset(os.path.join(work, "new-stock-0"), os.path.join(work, "ref-stock-0"),
                            ["manifest.csv", "dataset-info.csv", "features.csv", "model.rsm"])
         s = {b: statistics.median(t[b]) for b in t}
         print(f"stock run (1350 trials, record + features + 10x5-fold CV + final fit + report): new {s['new']:.2f} s, "
               f"ref {s['ref']:.2f} s, ref/new {s['ref'] / s['new']:.2f}x; outputs "
               f"{'byte-identical' if why is None else 'DIFFER: ' + why}")
+        print(f"stock run CPU: new {statistics.median(cpu['new']):.2f} s, ref {statistics.median(cpu['ref']):.2f} s")
+        ceiling("stock run", statistics.median(cpu["new"]), s["ref"])
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
