@@ -9,7 +9,8 @@
 using namespace rollsense::testing;
 
 TEST_CASE("`rollsense help CMD` prints what `rollsense CMD --help` prints") {
-    for (const char* cmd : {"run", "features", "train", "predict", "evaluate"}) {
+    for (const char* cmd : {"run", "features", "train", "predict", "evaluate", "report", "merge", "view", "dxl",
+                             "plugins", "probe"}) {
         INFO(cmd);
         const auto a = run_rollsense(std::string("help ") + cmd);
         const auto b = run_rollsense(std::string(cmd) + " --help");

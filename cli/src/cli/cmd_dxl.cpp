@@ -5,6 +5,7 @@
 //   set-id / set-baud   give a fresh servo (they all ship as id 1, 57600) its place on the E-TRoll bus
 // Works the same on /dev/ttyUSB0 and on the pty of `rollsense-dxl-emu`.
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -148,12 +149,17 @@ int info(const Common& c, int id) {
     return kExitOk;
 }
 
-int write_eeprom(const Common& c, int id, std::uint16_t address, int value, const std::string& what) {
+// `answers_after`, if given, settles a write whose status packet never came:
+// a servo given a new id takes it as it executes the WRITE, so its reply may
+// come from the new id, which a transaction addressed to the old one ignores.
+int write_eeprom(const Common& c, int id, std::uint16_t address, int value, const std::string& what,
+                 std::optional<std::uint8_t> answers_after = std::nullopt) {
     auto bus = open_bus(c, 50ms);
     if (!bus.ok()) return fail(bus.status());
     const auto u8 = static_cast<std::uint8_t>(id);
     if (auto st = bus->write_value(u8, dxl::addr::torque_enable, 1, 0); !st.ok()) return fail(st);
-    if (auto st = bus->write_value(u8, address, 1, value); !st.ok()) return fail(st);
+    if (auto st = bus->write_value(u8, address, 1, value); !st.ok())
+        if (st.code() != ErrorCode::timeout || !answers_after || !bus->ping(*answers_after).ok()) return fail(st);
     std::printf("id %d: %s\n", id, what.c_str());
     return kExitOk;
 }
@@ -184,7 +190,8 @@ int run_dxl(const std::vector<std::string>& raw) {
         const auto n = args.option("--new-id");
         if (n.empty()) throw UsageError("set-id needs --new-id M");
         const int new_id = parse_int(n, "--new-id", 0, dxl::kMaxId);
-        return write_eeprom(c, id, dxl::addr::id, new_id, "id is now " + std::to_string(new_id));
+        return write_eeprom(c, id, dxl::addr::id, new_id, "id is now " + std::to_string(new_id),
+                            static_cast<std::uint8_t>(new_id));
     }
     if (action == "set-baud") {
         const auto n = args.option("--new-baud");

@@ -209,7 +209,8 @@ options:
                       blocked (needs --block), comma-separated; figures in the
                       report and evaluation.json (docs/identification.md)
   --group-by COLUMN   grouped CV: a manifest column (trial_id, object, speed,
-                      repetition, or a key of its extra column, e.g. mount);
+                      repetition, mount, index_in_mount, or a key of its
+                      extra column);
                       with no more groups than folds, leave one group out
                       (speed: a speed-transfer test)
   --block N           blocked CV: runs of N consecutive trials within a mount

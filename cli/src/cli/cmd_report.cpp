@@ -53,11 +53,14 @@ options:
                       several, comma-separated; NAME:KEY=VALUE gives one
                       entry its own parameters
   --set KEY=VALUE     classifier parameter for every listed classifier, repeatable
+  --trials SET, --series-amplitude MODE
+                      which trials are evaluated and the series rule's
+                      amplitude (as 'rollsense evaluate --help' says)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'
 
-exit codes: 0 ok, 1 evaluation or writing failed, 2 bad command line,
-            3 DATASET or a plugin is wrong)";
+exit codes: 0 ok, 1 the evaluation failed, 2 bad command line,
+            3 DATASET or a plugin is wrong, 5 the report could not be written)";
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);

@@ -35,10 +35,6 @@ exit codes: 0 ok, 2 bad command line, 3 DATASET cannot be read,
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    if (args.wants_help()) {
-        std::printf("%s\n", kHelp);
-        return kExitOk;
-    }
     args.reject_unknown({"--port", "--bind", "--for", "-v", "--verbose", "-q", "--quiet"});
     auto pos = args.positionals({"--port", "--bind", "--for"});
     if (pos.size() != 1) throw UsageError("expects one DATASET (see --help)");
@@ -76,7 +72,7 @@ int run(const std::vector<std::string>& argv) {
     return kExitOk;
 }
 
-const Registration reg{{"view", "browse a recorded dataset in the live view's page", kHelp, &run, true}};
+const Registration reg{{"view", "browse a recorded dataset in the live view's page", kHelp, &run}};
 
 }  // namespace
 }  // namespace rollsense::cli
