@@ -17,6 +17,13 @@ bool is_position_mode(ControlMode m) {
     return m == ControlMode::position || m == ControlMode::extended_position ||
            m == ControlMode::current_based_position;
 }
+// Every control period copies every joint's state, field by field (JointState's
+// fields, all of them): its fault text only when it changed.
+void take_state(JointState& to, const JointState& from) {
+    if (to.fault != from.fault) to.fault = from.fault;
+    to.position = from.position, to.velocity = from.velocity, to.current = from.current, to.moving = from.moving;
+    to.torque_enabled = from.torque_enabled, to.mode = from.mode, to.fault_bits = from.fault_bits;
+}
 }  // namespace
 
 ControlMode position_mode_of(const JointInfo& info) {
@@ -214,9 +221,7 @@ Status Robot::read_actuators(double time) {
         if (a.handle->state() != LifecycleState::active) return a.handle->require_active("read");
         auto st = a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); });
         if (!st.ok()) return st;
-        for (std::size_t i = 0; i < a.joints.size(); ++i) {
-            joints_[a.joints[i]].state = a.states[i];
-        }
+        for (std::size_t i = 0; i < a.joints.size(); ++i) take_state(joints_[a.joints[i]].state, a.states[i]);
     }
     return {};
 }
