@@ -2,7 +2,10 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <optional>
 
 namespace rollsense::csv {
 
@@ -191,13 +194,79 @@ void append_number(std::string& out, double value) {
     }
 }
 
-void append_sample(std::string& out, double value) {
-    if (!std::isfinite(value)) return append_number(out, value);
+namespace {
+// "%.9g" of a sample in [1e-11, 1e9) by exact integer arithmetic, several times
+// faster than std::to_chars with a precision (every recorded sample goes through
+// here). value = M·2^e exactly, so value·10^k = M·10^k·2^e is rounded to a whole
+// number of 9 digits without error, half to even as printf rounds. Returns what
+// the text reads back as (digits / 10^k: both exact, one correctly rounded
+// division, as from_chars gives it), or nullopt outside that range.
+__extension__ using Wide = unsigned __int128;  // holds a 53-bit mantissa times 10^19
+
+std::optional<double> append_sample_fast(std::string& out, double value) {
+    const double magnitude = std::abs(value);
+    if (!(magnitude >= 1e-11 && magnitude < 1e9)) return std::nullopt;
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    const Wide mantissa = (bits & ((std::uint64_t{1} << 52) - 1)) | (std::uint64_t{1} << 52);
+    const int shift = 1075 - static_cast<int>((bits >> 52) & 0x7ff);  // value = mantissa / 2^shift
+    static constexpr std::uint64_t kPow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000,
+                                               1000000000, 10000000000, 100000000000, 1000000000000,
+                                               10000000000000, 100000000000000, 1000000000000000,
+                                               10000000000000000, 100000000000000000, 1000000000000000000,
+                                               10000000000000000000u};
+    int exponent = static_cast<int>(std::floor(std::log10(magnitude)));  // of the leading digit; corrected below
+    std::uint64_t digits = 0;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        const int k = 8 - exponent;
+        if (k < 0 || k > 19) return std::nullopt;  // at the range's ends: to_chars decides
+        const Wide scaled = mantissa * kPow10[k];
+        const Wide whole = scaled >> shift;
+        if (whole >= 1000000000) { ++exponent; continue; }
+        if (whole < 100000000) { --exponent; continue; }
+        const Wide rest = scaled - (whole << shift), half = Wide{1} << (shift - 1);
+        digits = static_cast<std::uint64_t>(whole) + (rest > half || (rest == half && (whole & 1)) ? 1 : 0);
+        break;
+    }
+    if (digits == 0) return std::nullopt;  // log10 far off: cannot happen, but never guess
+    const double read_back = static_cast<double>(digits) / static_cast<double>(kPow10[8 - exponent]);
+    if (digits == 1000000000) digits = 100000000, ++exponent;  // 9.999999995 -> 10.0000000
+    char text[9];
+    for (int i = 8; i >= 0; --i, digits /= 10) text[i] = static_cast<char>('0' + digits % 10);
+    int used = 9;
+    while (used > 1 && text[used - 1] == '0') --used;  // %g drops trailing zeros
+    if (value < 0) out.push_back('-');
+    if (exponent < -4 || exponent >= 9) {  // d.ddde-XX
+        out.push_back(text[0]);
+        if (used > 1) out.push_back('.'), out.append(text + 1, text + used);
+        out.push_back('e'), out.push_back(exponent < 0 ? '-' : '+');
+        const int e = std::abs(exponent);
+        if (e >= 100) out.push_back(static_cast<char>('0' + e / 100));
+        out.push_back(static_cast<char>('0' + e / 10 % 10)), out.push_back(static_cast<char>('0' + e % 10));
+    } else if (exponent >= 0) {  // ddd.ddd
+        out.append(text, text + std::min(used, exponent + 1));
+        if (used < exponent + 1) out.append(static_cast<std::size_t>(exponent + 1 - used), '0');
+        if (used > exponent + 1) out.push_back('.'), out.append(text + exponent + 1, text + used);
+    } else {  // 0.000ddd
+        out.append("0.").append(static_cast<std::size_t>(-exponent - 1), '0').append(text, text + used);
+    }
+    return value < 0 ? -read_back : read_back;
+}
+}  // namespace
+
+double append_sample(std::string& out, double value) {
+    if (!std::isfinite(value)) {
+        append_number(out, value);
+        return std::isnan(value) ? std::numeric_limits<double>::quiet_NaN() : value;  // as "NaN" parses
+    }
+    if (auto read_back = append_sample_fast(out, value)) return *read_back;
+    const std::size_t from = out.size();
     char buf[32];
     // As "%.9g": 9 significant digits, trailing zeros dropped, an exponent of
     // at least two digits outside [1e-4, 1e9) (16 chars at most).
     const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 9);
     out.append(buf, ptr);
+    return parse_number(std::string_view(out).substr(from), {}).value();
 }
 
 std::string format_number(double value) {
