@@ -1,5 +1,6 @@
 #include "rollsense/csv.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -190,7 +191,7 @@ void append_number(std::string& out, double value) {
         char buf[32];
         // Shortest representation that round-trips exactly (24 chars at most).
         const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value);
-        out.append(buf, ptr);
+        out.append(buf, static_cast<std::size_t>(ptr - buf));  // (buf, size): no replace() of a range
     }
 }
 
@@ -215,7 +216,9 @@ std::optional<double> append_sample_fast(std::string& out, double value) {
                                                10000000000000, 100000000000000, 1000000000000000,
                                                10000000000000000, 100000000000000000, 1000000000000000000,
                                                10000000000000000000u};
-    int exponent = static_cast<int>(std::floor(std::log10(magnitude)));  // of the leading digit; corrected below
+    // Decimal exponent of the leading digit, from the binary one: right or one
+    // too small (log10 2 = 0.30103); the loop corrects it.
+    int exponent = static_cast<int>(std::floor((52 - shift) * 0.30102999566398120));
     std::uint64_t digits = 0;
     for (int attempt = 0; attempt < 3; ++attempt) {
         const int k = 8 - exponent;
@@ -228,28 +231,32 @@ std::optional<double> append_sample_fast(std::string& out, double value) {
         digits = static_cast<std::uint64_t>(whole) + (rest > half || (rest == half && (whole & 1)) ? 1 : 0);
         break;
     }
-    if (digits == 0) return std::nullopt;  // log10 far off: cannot happen, but never guess
+    if (digits == 0) return std::nullopt;  // the estimate far off: cannot happen, but never guess
     const double read_back = static_cast<double>(digits) / static_cast<double>(kPow10[8 - exponent]);
     if (digits == 1000000000) digits = 100000000, ++exponent;  // 9.999999995 -> 10.0000000
     char text[9];
     for (int i = 8; i >= 0; --i, digits /= 10) text[i] = static_cast<char>('0' + digits % 10);
     int used = 9;
     while (used > 1 && text[used - 1] == '0') --used;  // %g drops trailing zeros
-    if (value < 0) out.push_back('-');
-    if (exponent < -4 || exponent >= 9) {  // d.ddde-XX
-        out.push_back(text[0]);
-        if (used > 1) out.push_back('.'), out.append(text + 1, text + used);
-        out.push_back('e'), out.push_back(exponent < 0 ? '-' : '+');
+    char buf[24];  // "-0.000123456789" or "-1.23456789e-11" at most
+    char* p = buf;
+    if (value < 0) *p++ = '-';
+    if (exponent < -4 || exponent >= 9) {  // d.dddde-XX
+        *p++ = text[0];
+        if (used > 1) *p++ = '.', p = std::copy(text + 1, text + used, p);
         const int e = std::abs(exponent);
-        if (e >= 100) out.push_back(static_cast<char>('0' + e / 100));
-        out.push_back(static_cast<char>('0' + e / 10 % 10)), out.push_back(static_cast<char>('0' + e % 10));
+        *p++ = 'e', *p++ = exponent < 0 ? '-' : '+';
+        *p++ = static_cast<char>('0' + e / 10), *p++ = static_cast<char>('0' + e % 10);  // |exponent| <= 11 here
     } else if (exponent >= 0) {  // ddd.ddd
-        out.append(text, text + std::min(used, exponent + 1));
-        if (used < exponent + 1) out.append(static_cast<std::size_t>(exponent + 1 - used), '0');
-        if (used > exponent + 1) out.push_back('.'), out.append(text + exponent + 1, text + used);
+        p = std::copy(text, text + std::min(used, exponent + 1), p);
+        for (int i = used; i < exponent + 1; ++i) *p++ = '0';
+        if (used > exponent + 1) *p++ = '.', p = std::copy(text + exponent + 1, text + used, p);
     } else {  // 0.000ddd
-        out.append("0.").append(static_cast<std::size_t>(-exponent - 1), '0').append(text, text + used);
+        *p++ = '0', *p++ = '.';
+        for (int i = 0; i < -exponent - 1; ++i) *p++ = '0';
+        p = std::copy(text, text + used, p);
     }
+    out.append(buf, static_cast<std::size_t>(p - buf));
     return value < 0 ? -read_back : read_back;
 }
 }  // namespace
@@ -265,7 +272,7 @@ double append_sample(std::string& out, double value) {
     // As "%.9g": 9 significant digits, trailing zeros dropped, an exponent of
     // at least two digits outside [1e-4, 1e9) (16 chars at most).
     const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 9);
-    out.append(buf, ptr);
+    out.append(buf, static_cast<std::size_t>(ptr - buf));
     return parse_number(std::string_view(out).substr(from), {}).value();
 }
 

@@ -422,7 +422,7 @@ void Robot::disable_all_controllers(double time) {
 // the one store of joint state (a copy updated on read went stale when the
 // safe state re-read the joints).
 SampleInput Robot::sample_input(double time) {
-    for (std::size_t i = 0; i < joints_.size(); ++i) joint_states_[i] = joints_[i].state;
+    for (std::size_t i = 0; i < joints_.size(); ++i) take_state(joint_states_[i], joints_[i].state);
     return SampleInput{time, &joint_names_, &joint_states_};
 }
 
