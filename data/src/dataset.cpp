@@ -320,8 +320,8 @@ std::string format_trial_csv(const DatasetInfo& info, const TrialData& data, Tri
         const std::size_t from = out.size();
         const double read_back = sample ? csv::append_sample(out, value) : (csv::append_number(out, value), value);
         if (!back) return;
-        back->push_back(sample || std::isfinite(value) ? read_back
-                                                       : csv::parse_number(std::string_view(out).substr(from), {}).value());
+        const bool known = sample || std::isfinite(value);  // else "NaN" / "Inf", as parse_number reads them
+        back->push_back(known ? read_back : csv::parse_number(std::string_view(out).substr(from), {}).value());
     };
     for (std::size_t i = 0; i < data.samples(); ++i) {
         put(data.time[i], false, as_written ? &as_written->time : nullptr);

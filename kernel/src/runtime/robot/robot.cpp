@@ -17,8 +17,9 @@ bool is_position_mode(ControlMode m) {
     return m == ControlMode::position || m == ControlMode::extended_position ||
            m == ControlMode::current_based_position;
 }
-// Every control period copies every joint's state, field by field (JointState's
-// fields, all of them): its fault text only when it changed.
+// Every control period copies every joint's state: its fault text only when it changed.
+struct StateFields { double p, v, c; bool m, t; ControlMode mode; std::uint32_t bits; std::string fault; };
+static_assert(sizeof(JointState) == sizeof(StateFields), "JointState changed: take_state copies it field by field");
 void take_state(JointState& to, const JointState& from) {
     if (to.fault != from.fault) to.fault = from.fault;
     to.position = from.position, to.velocity = from.velocity, to.current = from.current, to.moving = from.moving;
@@ -94,8 +95,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
 
     // Channel columns: a lone sensor's channel names; several sensors are prefixed.
     for (auto& s : r->sensors_) {
-        for (const auto& ch : s.handle->plugin().channels())
-        {
+        for (const auto& ch : s.handle->plugin().channels()) {
             r->channel_columns_.push_back(r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name);
             r->channel_units_.push_back(ch.unit);
         }
