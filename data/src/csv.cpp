@@ -1,8 +1,12 @@
 #include "rollsense/csv.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <optional>
 
 namespace rollsense::csv {
 
@@ -187,17 +191,89 @@ void append_number(std::string& out, double value) {
         char buf[32];
         // Shortest representation that round-trips exactly (24 chars at most).
         const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value);
-        out.append(buf, ptr);
+        out.append(buf, static_cast<std::size_t>(ptr - buf));  // (buf, size): no replace() of a range
     }
 }
 
-void append_sample(std::string& out, double value) {
-    if (!std::isfinite(value)) return append_number(out, value);
+namespace {
+// "%.9g" of a sample in [1e-11, 1e9) by exact integer arithmetic, several times
+// faster than std::to_chars with a precision (every recorded sample goes through
+// here). value = M·2^e exactly, so value·10^k = M·10^k·2^e is rounded to a whole
+// number of 9 digits without error, half to even as printf rounds. Returns what
+// the text reads back as (digits / 10^k: both exact, one correctly rounded
+// division, as from_chars gives it), or nullopt outside that range.
+__extension__ using Wide = unsigned __int128;  // holds a 53-bit mantissa times 10^19
+
+std::optional<double> append_sample_fast(std::string& out, double value) {
+    const double magnitude = std::abs(value);
+    if (!(magnitude >= 1e-11 && magnitude < 1e9)) return std::nullopt;
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    const Wide mantissa = (bits & ((std::uint64_t{1} << 52) - 1)) | (std::uint64_t{1} << 52);
+    const int shift = 1075 - static_cast<int>((bits >> 52) & 0x7ff);  // value = mantissa / 2^shift
+    static constexpr std::uint64_t kPow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000,
+                                               1000000000, 10000000000, 100000000000, 1000000000000,
+                                               10000000000000, 100000000000000, 1000000000000000,
+                                               10000000000000000, 100000000000000000, 1000000000000000000,
+                                               10000000000000000000u};
+    // Decimal exponent of the leading digit, from the binary one: right or one
+    // too small (log10 2 = 0.30103); the loop corrects it.
+    int exponent = static_cast<int>(std::floor((52 - shift) * 0.30102999566398120));
+    std::uint64_t digits = 0;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        const int k = 8 - exponent;
+        if (k < 0 || k > 19) return std::nullopt;  // at the range's ends: to_chars decides
+        const Wide scaled = mantissa * kPow10[k];
+        const Wide whole = scaled >> shift;
+        if (whole >= 1000000000) { ++exponent; continue; }
+        if (whole < 100000000) { --exponent; continue; }
+        const Wide rest = scaled - (whole << shift), half = Wide{1} << (shift - 1);
+        digits = static_cast<std::uint64_t>(whole) + (rest > half || (rest == half && (whole & 1)) ? 1 : 0);
+        break;
+    }
+    if (digits == 0) return std::nullopt;  // the estimate far off: cannot happen, but never guess
+    const double read_back = static_cast<double>(digits) / static_cast<double>(kPow10[8 - exponent]);
+    if (digits == 1000000000) digits = 100000000, ++exponent;  // 9.999999995 -> 10.0000000
+    char text[9];
+    for (int i = 8; i >= 0; --i, digits /= 10) text[i] = static_cast<char>('0' + digits % 10);
+    int used = 9;
+    while (used > 1 && text[used - 1] == '0') --used;  // %g drops trailing zeros
+    char buf[24];  // "-0.000123456789" or "-1.23456789e-11" at most
+    char* p = buf;
+    if (value < 0) *p++ = '-';
+    if (exponent < -4 || exponent >= 9) {  // d.dddde-XX
+        *p++ = text[0];
+        if (used > 1) *p++ = '.', p = std::copy(text + 1, text + used, p);
+        const int e = std::abs(exponent);
+        *p++ = 'e', *p++ = exponent < 0 ? '-' : '+';
+        *p++ = static_cast<char>('0' + e / 10), *p++ = static_cast<char>('0' + e % 10);  // |exponent| <= 11 here
+    } else if (exponent >= 0) {  // ddd.ddd
+        p = std::copy(text, text + std::min(used, exponent + 1), p);
+        for (int i = used; i < exponent + 1; ++i) *p++ = '0';
+        if (used > exponent + 1) *p++ = '.', p = std::copy(text + exponent + 1, text + used, p);
+    } else {  // 0.000ddd
+        *p++ = '0', *p++ = '.';
+        for (int i = 0; i < -exponent - 1; ++i) *p++ = '0';
+        p = std::copy(text, text + used, p);
+    }
+    out.append(buf, static_cast<std::size_t>(p - buf));
+    return value < 0 ? -read_back : read_back;
+}
+}  // namespace
+
+double append_sample(std::string& out, double value) {
+    if (!std::isfinite(value)) {
+        append_number(out, value);
+        return std::isnan(value) ? std::numeric_limits<double>::quiet_NaN() : value;  // as "NaN" parses
+    }
+    if (auto read_back = append_sample_fast(out, value)) return *read_back;
+    const std::size_t from = out.size();
     char buf[32];
     // As "%.9g": 9 significant digits, trailing zeros dropped, an exponent of
     // at least two digits outside [1e-4, 1e9) (16 chars at most).
     const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 9);
-    out.append(buf, ptr);
+    out.append(buf, static_cast<std::size_t>(ptr - buf));
+    return parse_number(std::string_view(out).substr(from), {}).value();
 }
 
 std::string format_number(double value) {

@@ -313,12 +313,15 @@ std::string format_trial_csv(const DatasetInfo& info, const TrialData& data, Tri
         as_written->channels.resize(data.channels.size());
         as_written->joints.resize(data.joints.size());
     }
-    // Appends one value; with `as_written`, also reads it back from the text
-    // as DatasetReader::load() would (9 significant digits for samples).
+    // Appends one value; with `as_written`, also the value DatasetReader::load()
+    // reads back from the text: samples have 9 significant digits, and the
+    // shortest form of a finite time reads back as itself.
     auto put = [&out](double value, bool sample, std::vector<double>* back) {
         const std::size_t from = out.size();
-        sample ? csv::append_sample(out, value) : csv::append_number(out, value);
-        if (back) back->push_back(csv::parse_number(std::string_view(out).substr(from), {}).value());
+        const double read_back = sample ? csv::append_sample(out, value) : (csv::append_number(out, value), value);
+        if (!back) return;
+        const bool known = sample || std::isfinite(value);  // else "NaN" / "Inf", as parse_number reads them
+        back->push_back(known ? read_back : csv::parse_number(std::string_view(out).substr(from), {}).value());
     };
     for (std::size_t i = 0; i < data.samples(); ++i) {
         put(data.time[i], false, as_written ? &as_written->time : nullptr);

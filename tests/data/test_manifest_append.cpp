@@ -59,7 +59,10 @@ TEST_CASE("format_sample writes exactly what \"%.9g\" wrote, for random and edge
     std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.1, 1e-4, 9.99999999e-5, 1e-5, 123456789.0, 1234567890.0,
                                   999999999.0, 999999999.5, 1e9, 1e100, -1e-100, 5e-324, 2.2250738585072014e-308,
                                   std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(), 44.0,
-                                  -44.0, 0.00102348, 0.5, 2.5, 1.0000000005, 100.0, 1e21, 1e22, 123.456};
+                                  -44.0, 0.00102348, 0.5, 2.5, 1.0000000005, 100.0, 1e21, 1e22, 123.456,
+                                  // exact ties at the 10th digit (rounded half to even), the fast range's ends
+                                  1234567.125, 1234567.375, -12345678.5, 12345679.5, 999999999.7, 1e-11, 9.99999999e-12,
+                                  std::nextafter(1e9, 0.0), std::nextafter(1e-11, 0.0), 0.0001, 9.9999999995e-5};
     std::mt19937_64 rng(25);
     std::uniform_real_distribution<double> mantissa(-10.0, 10.0);
     std::uniform_int_distribution<int> exponent(-320, 308);
@@ -85,6 +88,24 @@ TEST_CASE("format_sample writes exactly what \"%.9g\" wrote, for random and edge
     CHECK(csv::format_sample(-std::numeric_limits<double>::infinity()) == "-Inf");
     CHECK(csv::format_sample(1e-5) == "1e-05");
     CHECK(csv::format_sample(-0.0) == "-0");
+}
+
+TEST_CASE("append_sample returns, bit for bit, what its text reads back as", "[data][format]") {
+    std::mt19937_64 rng(26);
+    std::uniform_real_distribution<double> mantissa(-10.0, 10.0);
+    std::uniform_int_distribution<int> exponent(-14, 11);
+    std::vector<double> values = {1234567.125, -12345678.5, 999999999.7, 1e-11, 0.0, -0.0, 1e300, 5e-324,
+                                  std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+    for (int i = 0; i < 200000; ++i) values.push_back(mantissa(rng) * std::pow(10.0, exponent(rng)));
+    std::size_t differ = 0;
+    for (double v : values) {
+        std::string out = "x,";
+        const double back = csv::append_sample(out, v);
+        const double parsed = csv::parse_number(std::string_view(out).substr(2), "test").value();
+        if (std::memcmp(&back, &parsed, sizeof back) != 0 && ++differ <= 5)
+            FAIL_CHECK(std::hexfloat << v << " written as '" << out << "': returned " << back << ", parsed " << parsed);
+    }
+    CHECK(differ == 0);
 }
 
 TEST_CASE("the manifest is appended batch by batch, never rewritten, and equals one written whole",

@@ -84,6 +84,8 @@ std::string format_number(double value);
 std::string format_sample(double value);
 // The same two, appended to `out` without a temporary string (trial files).
 void append_number(std::string& out, double value);
-void append_sample(std::string& out, double value);
+// Returns the value as the text reads back (parse_number of what was appended):
+// a trial's as-written samples without parsing them again.
+double append_sample(std::string& out, double value);
 
 }  // namespace rollsense::csv

@@ -17,6 +17,14 @@ bool is_position_mode(ControlMode m) {
     return m == ControlMode::position || m == ControlMode::extended_position ||
            m == ControlMode::current_based_position;
 }
+// Every control period copies every joint's state: its fault text only when it changed.
+struct StateFields { double p, v, c; bool m, t; ControlMode mode; std::uint32_t bits; std::string fault; };
+static_assert(sizeof(JointState) == sizeof(StateFields), "JointState changed: take_state copies it field by field");
+void take_state(JointState& to, const JointState& from) {
+    if (to.fault != from.fault) to.fault = from.fault;
+    to.position = from.position, to.velocity = from.velocity, to.current = from.current, to.moving = from.moving;
+    to.torque_enabled = from.torque_enabled, to.mode = from.mode, to.fault_bits = from.fault_bits;
+}
 }  // namespace
 
 ControlMode position_mode_of(const JointInfo& info) {
@@ -87,8 +95,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
 
     // Channel columns: a lone sensor's channel names; several sensors are prefixed.
     for (auto& s : r->sensors_) {
-        for (const auto& ch : s.handle->plugin().channels())
-        {
+        for (const auto& ch : s.handle->plugin().channels()) {
             r->channel_columns_.push_back(r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name);
             r->channel_units_.push_back(ch.unit);
         }
@@ -214,9 +221,7 @@ Status Robot::read_actuators(double time) {
         if (a.handle->state() != LifecycleState::active) return a.handle->require_active("read");
         auto st = a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); });
         if (!st.ok()) return st;
-        for (std::size_t i = 0; i < a.joints.size(); ++i) {
-            joints_[a.joints[i]].state = a.states[i];
-        }
+        for (std::size_t i = 0; i < a.joints.size(); ++i) take_state(joints_[a.joints[i]].state, a.states[i]);
     }
     return {};
 }
@@ -417,7 +422,7 @@ void Robot::disable_all_controllers(double time) {
 // the one store of joint state (a copy updated on read went stale when the
 // safe state re-read the joints).
 SampleInput Robot::sample_input(double time) {
-    for (std::size_t i = 0; i < joints_.size(); ++i) joint_states_[i] = joints_[i].state;
+    for (std::size_t i = 0; i < joints_.size(); ++i) take_state(joint_states_[i], joints_[i].state);
     return SampleInput{time, &joint_names_, &joint_states_};
 }
 
