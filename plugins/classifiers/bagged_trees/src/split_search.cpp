@@ -20,11 +20,13 @@ inline double xlogx(double v) { return v > 0.0 ? v * std::log(v) : 0.0; }
 // (sql·wr + sqr·wl) / (wl·wr): one division per accepted candidate, the same
 // rounding as the builder before it, so the trees are unchanged.
 //
-// The loop is bound by how many instructions it issues per entry, not by the
-// running count left[c] (loading the next class's count ahead of the store
-// measured no faster), so each step is kept short:
-// - sqr is not updated per class: Σ(counts − left)² = sq_parent − 2·cross +
-//   sql, with cross = Σ counts[c]·left[c] growing by w·counts[c];
+// The loop is bound by the work per entry (fewer integer multiplies and
+// conversions measured faster), not by the running count left[c]: loading the
+// next class's count ahead of the store measured no faster. So each step is
+// kept short:
+// - sqr is not kept per step: with d = sq_parent − 2·Σ counts[c]·left[c]
+//   (down by 2·w·counts[c] per entry), sqr = d + sql and the numerator
+//   sql·wr + sqr·wl is total·sql + wl·d;
 // - when every product is below 2^53 (Exact: total < 2^17, so total³ < 2^51)
 //   num and den are formed in integers and converted once each: the doubles
 //   the old formula formed from four conversions were exact too, so they are
@@ -34,13 +36,13 @@ void TreeBuilder::sweep_gini(std::size_t f, const Entry* e, std::size_t count, c
                              std::int64_t total, std::int64_t sq_parent, std::int64_t min_leaf, Split& best) {
     std::int64_t* left = left_.data();
     std::fill(left_.begin(), left_.end(), 0);
-    std::int64_t wl = 0, sql = 0, cross = 0;  // left weight, Σ left², Σ counts·left
+    std::int64_t wl = 0, sql = 0, d = sq_parent;  // left weight, Σ left², sq_parent − 2·Σ counts·left
     auto add_left = [&](const Entry& x) {
         const std::uint32_t c = x.label;
         const std::int64_t w = x.weight;
         const std::int64_t lc = left[c];
         sql += w * (2 * lc + w);
-        cross += w * counts[c];
+        d -= 2 * (w * counts[c]);
         left[c] = lc + w;
         wl += w;
     };
@@ -57,16 +59,15 @@ void TreeBuilder::sweep_gini(std::size_t f, const Entry* e, std::size_t count, c
     for (; i < last; ++i) {
         add_left(e[i]);
         const std::int64_t wr = total - wl;
-        const std::int64_t sqr = sq_parent - 2 * cross + sql;
         // sql/wl + sqr/wr > best without two divisions per candidate.
         double num, den;
         if constexpr (Exact) {
-            num = static_cast<double>(sql * wr + sqr * wl);
+            num = static_cast<double>(total * sql + wl * d);
             den = static_cast<double>(wl * wr);
         } else {
             const double dl = static_cast<double>(wl), dr = static_cast<double>(wr);
             den = dl * dr;
-            num = static_cast<double>(sql) * dr + static_cast<double>(sqr) * dl;
+            num = static_cast<double>(sql) * dr + static_cast<double>(d + sql) * dl;
         }
         // No threshold between equal values. Ties are common in some features
         // and rare in others, so that test is folded without a branch into the
