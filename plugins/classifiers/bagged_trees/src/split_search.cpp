@@ -20,10 +20,10 @@ inline double xlogx(double v) { return v > 0.0 ? v * std::log(v) : 0.0; }
 // (sql·wr + sqr·wl) / (wl·wr): one division per accepted candidate, the same
 // rounding as the builder before it, so the trees are unchanged.
 //
-// The loop is bound by the work per entry (fewer integer multiplies and
-// conversions measured faster), not by the running count left[c]: loading the
-// next class's count ahead of the store measured no faster. So each step is
-// kept short:
+// The loop is bound by its work per entry, not by the running count left[c]
+// (loading the next class's count ahead of the store, which takes the
+// store-to-load wait off the chain, measured slower), so each step is kept
+// short:
 // - sqr is not kept per step: with d = sq_parent − 2·Σ counts[c]·left[c]
 //   (down by 2·w·counts[c] per entry), sqr = d + sql and the numerator
 //   sql·wr + sqr·wl is total·sql + wl·d;

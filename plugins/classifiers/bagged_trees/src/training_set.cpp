@@ -24,8 +24,9 @@ struct Keyed {
 
 // Least-significant-digit radix sort on the keys, a byte per pass. Each pass
 // is stable, and the rows start in order, so equal values keep row order:
-// the order std::stable_sort by value gives, at a fraction of its cost
-// (measured 4x on the stock features: no data-dependent branches). Passes
+// the order std::stable_sort by value gives, without its mispredicted
+// comparisons (measured 2.7x faster: 645 -> 238 us CPU for the 1,151 stock
+// rows; std::sort by (value, row) was slower than stable_sort). Passes
 // whose byte is the same in every key (the sign and exponent bytes, mostly)
 // move nothing and are skipped.
 void sort_by_key(std::vector<Keyed>& a, std::vector<Keyed>& scratch) {
