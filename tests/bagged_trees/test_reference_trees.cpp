@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "rollsense/bagged_trees/ensemble.hpp"
 #include "toy_data.hpp"
@@ -63,6 +65,27 @@ TEST_CASE("the builder grows the reference trees, bit for bit", "[bagged_trees][
     }
 }
 
+TEST_CASE("a training set above 2^17 rows grows the reference trees too", "[bagged_trees][reference]") {
+    // The Gini sweep forms its score's numerator and denominator in integers
+    // only while the node's weight is below 2^17 (every product then stays
+    // below 2^53, so they are exact); nodes above that, near the root here,
+    // take the double formula. Both must grow what the builder before that
+    // change grew (fingerprints from commit 97abbb4), grown out and cut short.
+    const auto big = toy::ties(140000, 24);
+    const std::pair<int, std::uint64_t> runs[] = {{0, 0xf72eac61aaa0f3b7ull}, {40, 0x4d99e6598e9268c5ull}};
+    for (const auto& [max_num_splits, hash] : runs) {
+        INFO("max_num_splits " << max_num_splits);
+        EnsembleOptions o;
+        o.learners = 2;
+        o.seed = 5;
+        o.threads = 1;
+        o.tree.max_num_splits = max_num_splits;
+        Ensemble m;
+        REQUIRE(m.train(big, o).ok());
+        CHECK(toy::tree_hash(m) == hash);
+    }
+}
+
 TEST_CASE("thresholds fall halfway between distinct training values", "[bagged_trees][reference]") {
     // Features on grids: a threshold halfway between two grid values is on the
     // half grid, strictly inside the range, and never on a value itself
@@ -93,4 +116,38 @@ TEST_CASE("thresholds fall halfway between distinct training values", "[bagged_t
         }
     }
     CHECK(grid_splits > 0);
+}
+
+TEST_CASE("negative values sort below positive ones, and -0 and +0 are one value", "[bagged_trees][reference]") {
+    // The presort ranks values through their bit patterns: negative numbers
+    // must come out in value order below the positive ones, and -0 with +0
+    // (equal values) must share a rank so that no threshold separates them.
+    // Class 0 below -0.5, class 1 at 2, and the zeros half class 1 (+0) and
+    // half class 2 (-0): the only thresholds are -2, -0.5 and 1, and the
+    // zeros end in mixed leaves.
+    auto data = toy::empty_table(1, 3);
+    const double values[] = {-3.0, -1.0, -0.0, 0.0, 2.0};
+    for (std::size_t r = 0; r < 400; ++r) {
+        const double v = values[r % 5];
+        data.x.push_back(v);
+        data.y.push_back(v < -0.5 ? 0 : v > 0.0 ? 1 : std::signbit(v) ? 2 : 1);
+        ++data.rows;
+    }
+    Ensemble m;
+    REQUIRE(m.train(data, {}).ok());
+    bool cut_at_minus_half = false;
+    for (const auto& t : m.trees()) {
+        for (std::size_t i = 0; i < t.nodes(); ++i) {
+            if (t.feature[i] < 0) continue;
+            const double th = t.threshold[i];
+            CHECK((th == -2.0 || th == -0.5 || th == 1.0));
+            cut_at_minus_half = cut_at_minus_half || th == -0.5;
+        }
+    }
+    CHECK(cut_at_minus_half);
+    std::vector<double> scores(3);
+    m.predict(std::vector<double>{-0.0}, scores);
+    CHECK(scores[0] == 0.0);  // the zeros' leaves hold both of their classes
+    CHECK(scores[1] > 0.0);
+    CHECK(scores[2] > 0.0);
 }

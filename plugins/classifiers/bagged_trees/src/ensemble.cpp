@@ -64,8 +64,12 @@ Status Ensemble::train(const FeatureTable& data, const EnsembleOptions& options)
     if (threads <= 1) {
         work();
     } else {
+        // The calling thread is one of the workers: a fit starts one thread
+        // fewer (about 20 us of CPU each here, paid on every fold of a
+        // cross-validation) and does not sit idle while the trees grow.
         std::vector<std::thread> pool;
-        for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
+        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+        work();
         for (auto& t : pool) t.join();
     }
     if (failure) {

@@ -15,22 +15,34 @@ inline double xlogx(double v) { return v > 0.0 ? v * std::log(v) : 0.0; }
 
 // Gini (the default, and the hot loop of training). Bootstrap weights are
 // whole numbers, so the counts and the sums of squared counts per side are
-// kept in integers: exact, and a shorter dependency chain than doubles. A
-// candidate's score is sql/wl + sqr/wr (maximised, which minimises the
-// weighted Gini index), computed in double as (sql·wr + sqr·wl) / (wl·wr) from
-// the exact integers: one division per accepted candidate, the same rounding
-// as the builder before it, so the trees are unchanged.
+// kept in integers. A candidate's score is sql/wl + sqr/wr (maximised, which
+// minimises the weighted Gini index), computed in double as
+// (sql·wr + sqr·wl) / (wl·wr): one division per accepted candidate, the same
+// rounding as the builder before it, so the trees are unchanged.
+//
+// The loop is bound by its work per entry, not by the running count left[c]
+// (loading the next class's count ahead of the store, which takes the
+// store-to-load wait off the chain, measured slower), so each step is kept
+// short:
+// - sqr is not kept per step: with d = sq_parent − 2·Σ counts[c]·left[c]
+//   (down by 2·w·counts[c] per entry), sqr = d + sql and the numerator
+//   sql·wr + sqr·wl is total·sql + wl·d;
+// - when every product is below 2^53 (Exact: total < 2^17, so total³ < 2^51)
+//   num and den are formed in integers and converted once each: the doubles
+//   the old formula formed from four conversions were exact too, so they are
+//   the same numbers.
+template <bool Exact>
 void TreeBuilder::sweep_gini(std::size_t f, const Entry* e, std::size_t count, const std::int64_t* counts,
                              std::int64_t total, std::int64_t sq_parent, std::int64_t min_leaf, Split& best) {
     std::int64_t* left = left_.data();
     std::fill(left_.begin(), left_.end(), 0);
-    std::int64_t wl = 0, sql = 0, sqr = sq_parent;  // weight and Σ count² per side
+    std::int64_t wl = 0, sql = 0, d = sq_parent;  // left weight, Σ left², sq_parent − 2·Σ counts·left
     auto add_left = [&](const Entry& x) {
         const std::uint32_t c = x.label;
         const std::int64_t w = x.weight;
         const std::int64_t lc = left[c];
         sql += w * (2 * lc + w);
-        sqr -= w * (2 * (counts[c] - lc) - w);
+        d -= 2 * (w * counts[c]);
         left[c] = lc + w;
         wl += w;
     };
@@ -47,10 +59,16 @@ void TreeBuilder::sweep_gini(std::size_t f, const Entry* e, std::size_t count, c
     for (; i < last; ++i) {
         add_left(e[i]);
         const std::int64_t wr = total - wl;
-        const double dl = static_cast<double>(wl), dr = static_cast<double>(wr);
         // sql/wl + sqr/wr > best without two divisions per candidate.
-        const double den = dl * dr;
-        const double num = static_cast<double>(sql) * dr + static_cast<double>(sqr) * dl;
+        double num, den;
+        if constexpr (Exact) {
+            num = static_cast<double>(total * sql + wl * d);
+            den = static_cast<double>(wl * wr);
+        } else {
+            const double dl = static_cast<double>(wl), dr = static_cast<double>(wr);
+            den = dl * dr;
+            num = static_cast<double>(sql) * dr + static_cast<double>(d + sql) * dl;
+        }
         // No threshold between equal values. Ties are common in some features
         // and rare in others, so that test is folded without a branch into the
         // (well predicted) test against the best score.
@@ -154,7 +172,12 @@ TreeBuilder::Split TreeBuilder::best_split(std::size_t buffer, std::size_t begin
         // constant in this node and offers no threshold.
         if (e[0].rank == e[count - 1].rank) continue;
         switch (opt.criterion) {
-            case SplitCriterion::gdi: sweep_gini(f, e, count, counts, total, sq_parent, min_leaf, best); break;
+            case SplitCriterion::gdi:
+                if (total < (std::int64_t{1} << 17))
+                    sweep_gini<true>(f, e, count, counts, total, sq_parent, min_leaf, best);
+                else
+                    sweep_gini<false>(f, e, count, counts, total, sq_parent, min_leaf, best);
+                break;
             case SplitCriterion::deviance:
                 sweep_real<SplitCriterion::deviance>(f, e, count, counts, dtotal, h_parent,
                                                      static_cast<double>(min_leaf), best);

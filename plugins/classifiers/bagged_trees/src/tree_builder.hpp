@@ -63,6 +63,7 @@ private:
 
     Split best_split(std::size_t buffer, std::size_t begin, std::size_t count, const std::int64_t* counts,
                      std::int64_t total, const TreeOptions& options, random::Xoshiro256ss& rng);
+    template <bool Exact>
     void sweep_gini(std::size_t f, const Entry* e, std::size_t count, const std::int64_t* counts, std::int64_t total,
                     std::int64_t sq_parent, std::int64_t min_leaf, Split& best);
     template <SplitCriterion C>
