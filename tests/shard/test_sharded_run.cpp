@@ -83,6 +83,36 @@ TEST_CASE("a shard stopped halfway is refused by the merge, and resumed it equal
     CHECK(rt::same_trials(dir / "uninterrupted", dir / "shard") == 18);
 }
 
+TEST_CASE("a shard's folder is resumed as that shard only, and a whole run's without --shard", "[shard][resume]") {
+    rt::TempDir dir;
+    const std::string small = "--set runs=1 --set objects=C1,P1,S2 --set speeds=10 --set analyse=false ";
+    const auto shard = dir / "shard", whole = dir / "whole";
+    REQUIRE(rt::record(shard, small + "--shard 0/2").status == 0);
+    REQUIRE(rt::record(whole, small).status == 0);
+    const auto manifest = rt::read_file(shard / "manifest.csv");
+    for (const std::string& as : {"", "--shard 1/2 ", "--shard 0/3 "}) {
+        INFO(as);
+        auto r = rt::record(shard, small + as + "--resume");
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output.find("cannot resume " + shard.string()) != std::string::npos);
+        CHECK(r.output.find("it holds shard 0/2 of a run") != std::string::npos);
+        CHECK(r.output.find("resume it with --shard 0/2") != std::string::npos);
+        CHECK(r.output.find("rollsense merge") != std::string::npos);
+        if (!as.empty()) CHECK(r.output.find("as " + as.substr(0, as.size() - 1)) != std::string::npos);
+        CHECK(r.output.find("results:") == std::string::npos);
+    }
+    CHECK(rt::read_file(shard / "manifest.csv") == manifest);
+    auto same = rt::record(shard, small + "--shard 0/2 --resume");
+    INFO(same.output);
+    CHECK(same.status == 0);
+    auto as_shard = rt::record(whole, small + "--shard 0/2 --resume");
+    INFO(as_shard.output);
+    CHECK(as_shard.status == 2);
+    CHECK(as_shard.output.find("it holds a whole run") != std::string::npos);
+    CHECK(rt::record(whole, small + "--resume").status == 0);
+}
+
 TEST_CASE("a bad shard K/N is refused before anything runs", "[shard]") {
     rt::TempDir dir;
     for (const char* bad : {"3/3", "1/0", "x", "-1/2"}) {
