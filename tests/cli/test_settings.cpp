@@ -305,6 +305,26 @@ TEST_CASE("a resumed run records again a trial whose file is truncated or that t
     CHECK(std::set<std::string>(ids.begin(), ids.end()).size() == 6);
 }
 
+TEST_CASE("a trial recorded again on resume takes its place again: the manifest is the uninterrupted run's") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(out)).status == 0);
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(dir / "whole")).status == 0);
+    for (const char* id : {"C1-v10-r002", "P2-v10-r001"}) {  // two in the middle, cut mid-row
+        const auto cut = out / "trials" / (std::string(id) + ".csv");
+        const auto text = read_file(cut);
+        write_file(cut, text.substr(0, text.size() / 2));
+    }
+    const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --commit-every 1 --out " + shell_quoted(out));
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("2 trials saved, 4 already on disk") != std::string::npos);
+    CHECK(same_files(out / "manifest.csv", dir / "whole" / "manifest.csv"));
+    // and a resume with nothing to record again leaves it as it is
+    CHECK(run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out)).status == 0);
+    CHECK(same_files(out / "manifest.csv", dir / "whole" / "manifest.csv"));
+}
+
 // ------------------------------------------------- live identification --
 
 TEST_CASE("the live-identification example rolls trials the model was not trained on") {
