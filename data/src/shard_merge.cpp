@@ -384,6 +384,7 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
     std::error_code ec;
     for (auto p = out.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
     const MergeSummary summary{shards.size(), placed->size(), shards.front().value("command_line")};
+    fs::remove_all(staged, ec);  // a killed merge's, whose process id this one reuses
     Status st = write_merged(staged, shards, *placed, manifests);
     if (st && finish) st = finish(staged, summary);
     if (st) st = rename_durable(staged, out);
