@@ -41,8 +41,9 @@ local speeds = list(rs.setting("speeds"))
 
 rs.on_cleanup(etroll.park)
 
+local shard, shards = rs.shard()
 local total = #objects * #speeds * runs
-local done = 0
+local done, recorded, on_disk = 0, 0, 0
 for _, object in ipairs(objects) do
   local mount, index_in_mount = object .. "-1", 0
   for _, speed in ipairs(speeds) do
@@ -51,6 +52,9 @@ for _, object in ipairs(objects) do
       if not rs.has_trial(id) then
         etroll.run_trial{ object = object, speed = tonumber(speed), repetition = repetition,
                           mount = mount, index_in_mount = index_in_mount }
+        recorded = recorded + 1
+      elseif done % shards == shard then  -- this process's trial (a shard's: every Nth), kept from before
+        on_disk = on_disk + 1
       end
       index_in_mount = index_in_mount + 1
       done = done + 1
@@ -58,9 +62,9 @@ for _, object in ipairs(objects) do
     end
   end
 end
-rs.log(string.format("recorded %d trials into %s", total, rs.output_dir()))
+rs.log(string.format("recorded %d trials into %s%s", recorded, rs.output_dir(),
+  on_disk > 0 and string.format(" (%d already on disk)", on_disk) or ""))
 
-local shard, shards = rs.shard()
 if shards > 1 then
   rs.log(string.format("shard %d/%d: its trials are recorded; the analysis runs on the merged dataset "
     .. "(rollsense merge, then this script with --resume on it)", shard, shards))

@@ -35,19 +35,21 @@ Status write_all(int fd, const std::filesystem::path& path, std::string_view con
 }
 
 // Write a file; with `sync` also flush it to stable storage before closing.
-Status write_and_sync(const std::filesystem::path& path, std::string_view content, bool sync = true) {
+// Errors name `target`, the file the caller asked for (not its temporary).
+Status write_and_sync(const std::filesystem::path& path, std::string_view content, bool sync,
+                      const std::filesystem::path& target) {
     int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return {ErrorCode::io_error, path.string() + ": cannot create: " + errno_text()};
-    if (auto s = write_all(fd, path, content); !s.ok()) {
+    if (fd < 0) return {ErrorCode::io_error, target.string() + ": cannot create: " + errno_text()};
+    if (auto s = write_all(fd, target, content); !s.ok()) {
         ::close(fd);
         return s;
     }
     if (sync && ::fdatasync(fd) != 0) {
-        Status s{ErrorCode::io_error, path.string() + ": fsync failed: " + errno_text()};
+        Status s{ErrorCode::io_error, target.string() + ": fsync failed: " + errno_text()};
         ::close(fd);
         return s;
     }
-    if (::close(fd) != 0) return {ErrorCode::io_error, path.string() + ": close failed: " + errno_text()};
+    if (::close(fd) != 0) return {ErrorCode::io_error, target.string() + ": close failed: " + errno_text()};
     return {};
 }
 
@@ -76,7 +78,7 @@ Status write_files_synced(const std::vector<PendingFile>& files) {
     // several are flushed by one syncfs().
     const bool group = files.size() > 1;
     for (const auto& f : files)
-        if (auto s = write_and_sync(f.file, f.content, !group); !s.ok()) return s;
+        if (auto s = write_and_sync(f.file, f.content, !group, f.file); !s.ok()) return s;
     if (files.empty()) return {};
     return group ? sync_filesystem_of(files.front().file) : sync_folder(files.front().file.parent_path());
 }
@@ -94,7 +96,7 @@ Status write_files_atomic(std::vector<PendingFile>& files) {
     const bool group = files.size() > 1;
     for (const auto& f : files) {
         temps.push_back(temporary_for(f.file));
-        if (auto s = write_and_sync(temps.back(), f.content, !group); !s.ok()) {
+        if (auto s = write_and_sync(temps.back(), f.content, !group, f.file); !s.ok()) {
             discard();
             return s;
         }
@@ -136,6 +138,26 @@ Status append_file_durable(const std::filesystem::path& file, std::string_view c
 Status write_file_atomic(const std::filesystem::path& file, std::string_view content) {
     std::vector<PendingFile> one{{file, std::string(content)}};
     return write_files_atomic(one);
+}
+
+Status rename_durable(const std::filesystem::path& from, const std::filesystem::path& to) {
+    if (::rename(from.c_str(), to.c_str()) != 0)
+        return {ErrorCode::io_error, to.string() + ": cannot take its place: " + errno_text()};
+    return sync_folder(to.parent_path());
+}
+
+Status check_can_write(const std::filesystem::path& file) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const std::string cannot = "cannot write '" + file.string() + "': ";
+    if (fs::is_directory(file, ec)) return {ErrorCode::io_error, cannot + "it is a folder; name a file"};
+    const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    if (!fs::is_directory(folder, ec))
+        return {ErrorCode::io_error, cannot + "the folder " + folder.string() +
+                                         (fs::exists(folder, ec) ? " is not a folder" : " does not exist; create it first")};
+    if (::access(folder.c_str(), W_OK | X_OK) != 0)
+        return {ErrorCode::io_error, cannot + "the folder " + folder.string() + " is not writable: " + errno_text()};
+    return {};
 }
 
 void remove_stale_temporaries(const std::filesystem::path& folder) {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "rollsense/csv.hpp"
@@ -524,6 +525,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
         // A trial whose file is missing or not what the manifest says (cut short
         // by a crash or a full disk) is recorded again, not kept.
         for (const auto& t : on_disk->trials()) {
+            w->resumed_order_.push_back(t.info.id);
             if (auto loaded = on_disk->load(t); loaded) {
                 w->trials_.push_back(t);
                 w->ids_.insert(t.info.id);
@@ -531,6 +533,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                 log_warning("dataset", loaded.error().message + ": trial '" + t.info.id + "' is recorded again");
             }
         }
+        if (w->trials_.size() == w->resumed_order_.size()) w->resumed_order_.clear();  // nothing out of place
     }
     w->durable_ = w->trials_.size();
     std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)},
@@ -665,7 +668,38 @@ Status DatasetWriter::flush() {
     hand_over();
     std::unique_lock lock(mutex_);
     idle_.wait(lock, [&] { return queue_.empty() && !busy_; });
+    if (auto s = restore_order(); !s.ok() && error_.ok()) error_ = s;
     return error_locked();
+}
+
+Status DatasetWriter::restore_order() {
+    if (resumed_order_.empty() || !error_.ok()) return {};
+    // The resumed manifest's trials in their places, then the others in the
+    // order they were recorded: the order of an uninterrupted run, which the
+    // analysis follows. Every trial listed is durable, so the manifest
+    // replaced at once lists the same complete trials, only reordered.
+    std::unordered_map<std::string, std::size_t> place;
+    for (std::size_t i = 0; i < resumed_order_.size(); ++i) place.emplace(resumed_order_[i], i);
+    const auto rank = [&](const TrialRecord& t) {
+        const auto it = place.find(t.info.id);
+        return it == place.end() ? resumed_order_.size() : it->second;
+    };
+    auto ordered = trials_;
+    std::stable_sort(ordered.begin(), ordered.end(),
+                     [&](const TrialRecord& a, const TrialRecord& b) { return rank(a) < rank(b); });
+    std::size_t placed = 0;  // resumed trials back in the manifest
+    for (const auto& t : ordered) placed += place.count(t.info.id);
+    const bool moved = !std::equal(ordered.begin(), ordered.end(), trials_.begin(),
+                                   [](const TrialRecord& a, const TrialRecord& b) { return a.info.id == b.info.id; });
+    if (moved) {
+        std::swap(trials_, ordered);
+        if (auto s = write_file_atomic(dir_ / "manifest.csv", manifest_text()); !s.ok()) {
+            std::swap(trials_, ordered);
+            return s;
+        }
+    }
+    if (placed == resumed_order_.size()) resumed_order_.clear();  // all in place: later trials only append
+    return {};
 }
 
 Status DatasetWriter::write_run_info(const std::vector<std::pair<std::string, std::string>>& entries) {

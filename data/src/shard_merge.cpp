@@ -1,5 +1,7 @@
 #include "rollsense/shard_merge.hpp"
 
+#include <unistd.h>
+
 #include <fstream>
 #include <map>
 #include <optional>
@@ -293,10 +295,56 @@ Status check_out_folder(const fs::path& out) {
     return {};
 }
 
+// The merged trials/, manifest.csv, dataset-info.csv, run-config.csv and
+// shards.csv, written into `dir`.
+Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards, const std::vector<Placed>& placed,
+                    const std::vector<ManifestRows>& manifests) {
+    std::error_code ec;
+    fs::create_directories(dir / "trials", ec);
+    if (ec) return {ErrorCode::io_error, (dir / "trials").string() + ": cannot create: " + ec.message()};
+    // The trial files first, each checked as a reader loads it; the manifest
+    // that lists them last.
+    std::string manifest;
+    csv::append_row(manifest, manifests.front().header);
+    std::vector<PendingFile> batch;
+    for (const auto& p : placed) {
+        if (auto data = p.shard->dataset.load(*p.record); !data) return data.error();
+        auto bytes = read_bytes(p.shard->dir / p.record->file);
+        if (!bytes) return bytes.error();
+        batch.push_back({dir / p.record->file, std::move(bytes).value()});
+        if (batch.size() >= kFilesPerCommit) {
+            if (auto s = write_files_atomic(batch); !s) return s;
+            batch.clear();
+        }
+        const auto k = static_cast<std::size_t>(p.shard - shards.data());
+        csv::append_row(manifest, manifests[k].by_id.at(p.record->info.id));
+    }
+    for (const char* name : {"dataset-info.csv", kRunConfigFile}) {
+        if (!fs::exists(shards.front().dir / name, ec)) continue;
+        auto bytes = read_bytes(shards.front().dir / name);
+        if (!bytes) return bytes.error();
+        batch.push_back({dir / name, std::move(bytes).value()});
+    }
+    batch.push_back({dir / kShardsFile, shards_csv(shards)});
+    if (auto s = write_files_atomic(batch); !s) return s;
+    return write_file_atomic(dir / "manifest.csv", manifest);
+}
+
+// `e` with every mention of the sibling folder `staged` turned into `out`.
+Error as_written_to(Error e, const fs::path& staged, const fs::path& out) {
+    const std::string from = staged.string(), to = out.string();
+    for (auto at = e.message.find(from); at != std::string::npos; at = e.message.find(from, at + to.size()))
+        e.message.replace(at, from.size(), to);
+    return e;
+}
+
 }  // namespace
 
-Result<MergeSummary> merge_shards(const fs::path& out, const std::vector<fs::path>& dirs) {
+Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<fs::path>& dirs,
+                                  const MergeFinish& finish) {
     if (dirs.empty()) return refused("no shard folders given");
+    // "OUT/" names OUT: its sibling is named after the last part that is not empty.
+    const fs::path out = out_given.has_filename() ? out_given : out_given.parent_path();
     if (auto s = check_out_folder(out); !s) return s.error();
     std::map<fs::path, fs::path> given;  // each folder once (it is locked while read)
     for (const auto& dir : dirs) {
@@ -328,39 +376,23 @@ Result<MergeSummary> merge_shards(const fs::path& out, const std::vector<fs::pat
         manifests.push_back(std::move(rows).value());
     }
 
+    // Written beside OUT and renamed to it at the end: nothing is left behind
+    // on failure but the missing parents of OUT this created, removed too.
+    const fs::path staged =
+        out.parent_path() / ("." + out.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    fs::path created = staged;  // the outermost folder this merge creates
     std::error_code ec;
-    fs::create_directories(out / "trials", ec);
-    if (ec) return Error{ErrorCode::io_error, (out / "trials").string() + ": cannot create: " + ec.message()};
-    auto lock = DirectoryLock::acquire(out);
-    if (!lock) return lock.error();
-
-    // The trial files first, each checked as a reader loads it; the manifest
-    // that lists them last, so a merge that stops halfway leaves no dataset.
-    std::string manifest;
-    csv::append_row(manifest, manifests.front().header);
-    std::vector<PendingFile> batch;
-    for (const auto& p : *placed) {
-        if (auto data = p.shard->dataset.load(*p.record); !data) return data.error();
-        auto bytes = read_bytes(p.shard->dir / p.record->file);
-        if (!bytes) return bytes.error();
-        batch.push_back({out / p.record->file, std::move(bytes).value()});
-        if (batch.size() >= kFilesPerCommit) {
-            if (auto s = write_files_atomic(batch); !s) return s.error();
-            batch.clear();
-        }
-        const auto k = static_cast<std::size_t>(p.shard - shards.data());
-        csv::append_row(manifest, manifests[k].by_id.at(p.record->info.id));
+    for (auto p = out.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
+    const MergeSummary summary{shards.size(), placed->size(), shards.front().value("command_line")};
+    fs::remove_all(staged, ec);  // a killed merge's, whose process id this one reuses
+    Status st = write_merged(staged, shards, *placed, manifests);
+    if (st && finish) st = finish(staged, summary);
+    if (st) st = rename_durable(staged, out);
+    if (!st) {
+        fs::remove_all(created, ec);
+        return as_written_to(st.error(), staged, out);
     }
-    for (const char* name : {"dataset-info.csv", kRunConfigFile}) {
-        if (!fs::exists(shards.front().dir / name, ec)) continue;
-        auto bytes = read_bytes(shards.front().dir / name);
-        if (!bytes) return bytes.error();
-        batch.push_back({out / name, std::move(bytes).value()});
-    }
-    batch.push_back({out / kShardsFile, shards_csv(shards)});
-    if (auto s = write_files_atomic(batch); !s) return s.error();
-    if (auto s = write_file_atomic(out / "manifest.csv", manifest); !s) return s.error();
-    return MergeSummary{shards.size(), placed->size(), shards.front().value("command_line")};
+    return summary;
 }
 
 }  // namespace rollsense

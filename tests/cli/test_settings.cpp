@@ -179,6 +179,7 @@ TEST_CASE("run-config.csv records what decides the trials; --resume refuses any 
     CHECK(other.status == 1);
     CHECK(other.output.find("cannot resume") != std::string::npos);
     CHECK(other.output.find("set.runs: recorded '3', this run '4'") != std::string::npos);
+    CHECK(other.output.find("results:") == std::string::npos);  // it wrote nothing to point to
     const auto missing = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,P2 --set speeds=10 --no-progress -q "
                                        "--seed 5 --resume --out " + shell_quoted(out));
     CHECK(missing.status == 1);
@@ -189,6 +190,44 @@ TEST_CASE("run-config.csv records what decides the trials; --resume refuses any 
     INFO(same.output);
     CHECK(same.status == 0);
     CHECK(same.output.find("0 trials saved, 6 already on disk") != std::string::npos);
+}
+
+TEST_CASE("--out holding files that are not a dataset is refused, with or without --resume, and nothing is touched") {
+    TempDir dir("rollsense-resume");
+    const auto mine = dir / "mine";
+    for (const char* name : {"report.html", "model.rsm", "evaluation.txt", "trials/C1-v10-r001.csv"})
+        write_file(mine / name, "mine\n");
+    for (const std::string resume : {"", " --resume"}) {
+        const auto r = run_rollsense("run " + kPaper + kSmall + resume + " --out " + shell_quoted(mine));
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output.find("--out " + mine.string() + " is not empty and holds no dataset") != std::string::npos);
+        CHECK(r.output.find("evaluation.txt, model.rsm, report.html, trials") != std::string::npos);
+        CHECK(r.output.find("choose a new or empty folder with --out") != std::string::npos);
+        CHECK(r.output.find("results:") == std::string::npos);
+    }
+    for (const char* name : {"report.html", "model.rsm", "evaluation.txt", "trials/C1-v10-r001.csv"})
+        CHECK(read_file(mine / name) == "mine\n");
+    CHECK(std::distance(fs::directory_iterator(mine), fs::directory_iterator()) == 4);
+
+    // A run's own files without its manifest and dataset-info.csv: not a dataset either.
+    const auto run = dir / "run";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(run)).status == 0);
+    fs::remove(run / "manifest.csv");
+    fs::remove(run / "dataset-info.csv");
+    const auto trial = read_file(run / "trials" / "C1-v10-r001.csv");
+    const auto other = run_rollsense("run " + kPaper + kSmall + " --seed 7 --out " + shell_quoted(run));
+    INFO(other.output);
+    CHECK(other.status == 2);
+    CHECK(read_file(run / "trials" / "C1-v10-r001.csv") == trial);
+
+    // A new folder, an empty one and --resume of the run's own dataset go on as before.
+    fs::create_directories(dir / "empty");
+    CHECK(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(dir / "empty")).status == 0);
+    const auto again = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(dir / "empty"));
+    INFO(again.output);
+    CHECK(again.status == 0);
+    CHECK(again.output.find("0 trials saved, 6 already on disk") != std::string::npos);
 }
 
 TEST_CASE("an interrupted run prints the exact command that resumes it, --set options quoted") {
@@ -264,6 +303,26 @@ TEST_CASE("a resumed run records again a trial whose file is truncated or that t
     }
     const auto ids = column(out / "manifest.csv", 0);
     CHECK(std::set<std::string>(ids.begin(), ids.end()).size() == 6);
+}
+
+TEST_CASE("a trial recorded again on resume takes its place again: the manifest is the uninterrupted run's") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(out)).status == 0);
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(dir / "whole")).status == 0);
+    for (const char* id : {"C1-v10-r002", "P2-v10-r001"}) {  // two in the middle, cut mid-row
+        const auto cut = out / "trials" / (std::string(id) + ".csv");
+        const auto text = read_file(cut);
+        write_file(cut, text.substr(0, text.size() / 2));
+    }
+    const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --commit-every 1 --out " + shell_quoted(out));
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("2 trials saved, 4 already on disk") != std::string::npos);
+    CHECK(same_files(out / "manifest.csv", dir / "whole" / "manifest.csv"));
+    // and a resume with nothing to record again leaves it as it is
+    CHECK(run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out)).status == 0);
+    CHECK(same_files(out / "manifest.csv", dir / "whole" / "manifest.csv"));
 }
 
 // ------------------------------------------------- live identification --

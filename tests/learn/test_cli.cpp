@@ -228,3 +228,98 @@ TEST_CASE("rollsense evaluate: bad input-step words, and train refuses them", "[
     CHECK(r.status == 2);
     CHECK_THAT(r.output, Catch::Contains("applies to 'rollsense evaluate' and 'rollsense report' only"));
 }
+
+namespace {
+std::string file_text(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+std::size_t count_of(const std::string& hay, const std::string& needle) {
+    std::size_t n = 0;
+    for (auto at = hay.find(needle); at != std::string::npos; at = hay.find(needle, at + needle.size())) ++n;
+    return n;
+}
+}  // namespace
+
+TEST_CASE("-o never overwrites a file of the dataset being read", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const auto ds = dir / "dataset";
+    fs::create_directory_symlink(ds, dir / "link");
+    const auto manifest = file_text(ds / "manifest.csv");
+    const auto info = file_text(ds / "dataset-info.csv");
+    const auto trial = file_text(ds / "trials" / "C1-r0.csv");
+    const std::string d = ds.string(), link = (dir / "link").string();
+    for (const std::string& args :
+         {"features " + d + " -o " + d + "/manifest.csv", "evaluate " + d + " --repeats 1 -o " + d + "/dataset-info.csv",
+          "train " + d + " -o " + d + "/trials/C1-r0.csv", "report " + d + " --repeats 1 -o " + d + "/manifest.csv",
+          "features " + link + " -o " + d + "/trials/../manifest.csv", "evaluate " + d + " -o " + link + "/run-info.csv",
+          "report " + d + " -o " + d + "/trials/page.html"}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains("of the dataset") && Catch::Contains("would destroy the dataset") &&
+                                 Catch::Contains("give -o a file outside the dataset"));
+        CHECK(count_of(r.output, "would destroy") == 1);
+        CHECK_THAT(r.output, !Catch::Contains("clean "));  // refused before any extraction
+    }
+    CHECK(file_text(ds / "manifest.csv") == manifest);
+    CHECK(file_text(ds / "dataset-info.csv") == info);
+    CHECK(file_text(ds / "trials" / "C1-r0.csv") == trial);
+    CHECK(!fs::exists(ds / "run-info.csv"));
+    // Its own derived files may be written beside it.
+    const auto r = rollsense_cli("features " + d + " -o " + d + "/features.csv");
+    INFO(r.output);
+    CHECK(r.status == 0);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("an -o that cannot be written is refused before any work, naming it", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string();
+    const std::string missing = (dir / "no-such-folder" / "e.txt").string();
+    for (const std::string& args : {"features " + d + " -o " + missing, "evaluate " + d + " --repeats 1 -o " + missing,
+                                    "train " + d + " -o " + missing, "report " + d + " --repeats 1 -o " + missing}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 5);
+        CHECK_THAT(r.output, Catch::Contains("cannot write '" + missing + "'") && Catch::Contains("does not exist"));
+        CHECK_THAT(r.output, !Catch::Contains(".tmp-") && !Catch::Contains("clean "));
+    }
+    for (const std::string& args : {"features " + d + " -o " + dir.string(), "train " + d + " -o " + dir.string(),
+                                    "evaluate " + d + " --repeats 1 -o " + dir.string()}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 5);
+        CHECK_THAT(r.output, Catch::Contains("it is a folder") && !Catch::Contains("clean "));
+    }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("an unreadable trial file is named once on the terminal, with file and line", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const auto ds = dir / "dataset";
+    // Line 50 of one trial gets a value that is not a number.
+    const auto file = ds / "trials" / "P1-r4.csv";
+    std::string text = file_text(file);
+    std::size_t at = 0;
+    for (int line = 1; line < 50; ++line) at = text.find('\n', at) + 1;
+    const auto comma = text.find(',', at);
+    text.replace(comma + 1, text.find(',', comma + 1) - comma - 1, "1.2.3");
+    std::ofstream(file, std::ios::binary) << text;
+    const std::string where = file.string() + ":50:";
+    for (const std::string& args : {"features " + ds.string() + " -o " + (dir / "f.csv").string(),
+                                    "evaluate " + ds.string() + " --repeats 1 --folds 3 --set learners=5",
+                                    "train " + ds.string() + " --set learners=5 -o " + (dir / "m.rsm").string()}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 0);
+        CHECK(count_of(r.output, where) == 1);
+        CHECK_THAT(r.output, Catch::Contains("trial 'P1-r4' left out") && Catch::Contains("'1.2.3'") &&
+                                 Catch::Contains("unreadable 1"));
+    }
+    fs::remove_all(dir);
+}

@@ -204,3 +204,35 @@ TEST_CASE("rollsense merge refuses what is not a finished shard, and an output f
         CHECK_FALSE(fs::exists(dir / "merged/manifest.csv"));
     }
 }
+
+TEST_CASE("a merge that fails on a damaged trial leaves nothing behind, and the retry merges", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    // A trial of shard 1 cut mid-row: its manifest still lists it.
+    const auto trial = *fs::directory_iterator(s1 / "trials");
+    const auto text = rt::read_file(trial.path());
+    rt::write_file(trial.path(), text.substr(0, text.size() / 2 + 3));
+    const auto out = dir / "merged";
+    auto r = merge(out, {s0, s1, s2});
+    INFO(r.output);
+    CHECK(r.status != 0);
+    CHECK(r.output.find(trial.path().string() + ":") != std::string::npos);
+    CHECK(r.output.find(".tmp-") == std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+    for (const auto& e : fs::directory_iterator(dir.path())) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+    // Into an empty folder given with a trailing '/': left empty.
+    fs::create_directories(out);
+    r = merge(out.string() + "/", {s0, s1, s2});
+    CHECK(r.status != 0);
+    CHECK(fs::is_directory(out));
+    CHECK(fs::is_empty(out));
+
+    rt::write_file(trial.path(), text);
+    r = merge(out.string() + "/", {s0, s1, s2});
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(rt::manifest_trials(out) == 4);
+    CHECK(fs::exists(out / "features.csv"));
+    CHECK(fs::exists(out / "run-info.csv"));
+    for (const auto& e : fs::directory_iterator(dir.path())) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+}

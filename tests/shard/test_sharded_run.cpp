@@ -83,6 +83,58 @@ TEST_CASE("a shard stopped halfway is refused by the merge, and resumed it equal
     CHECK(rt::same_trials(dir / "uninterrupted", dir / "shard") == 18);
 }
 
+TEST_CASE("a shard's folder is resumed as that shard only, and a whole run's without --shard", "[shard][resume]") {
+    rt::TempDir dir;
+    const std::string small = "--set runs=1 --set objects=C1,P1,S2 --set speeds=10 --set analyse=false ";
+    const auto shard = dir / "shard", whole = dir / "whole";
+    REQUIRE(rt::record(shard, small + "--shard 0/2").status == 0);
+    REQUIRE(rt::record(whole, small).status == 0);
+    const auto manifest = rt::read_file(shard / "manifest.csv");
+    for (const std::string& as : {"", "--shard 1/2 ", "--shard 0/3 "}) {
+        INFO(as);
+        auto r = rt::record(shard, small + as + "--resume");
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output.find("cannot resume " + shard.string()) != std::string::npos);
+        CHECK(r.output.find("it holds shard 0/2 of a run") != std::string::npos);
+        CHECK(r.output.find("resume it with --shard 0/2") != std::string::npos);
+        CHECK(r.output.find("rollsense merge") != std::string::npos);
+        if (!as.empty()) CHECK(r.output.find("as " + as.substr(0, as.size() - 1)) != std::string::npos);
+        CHECK(r.output.find("results:") == std::string::npos);
+    }
+    CHECK(rt::read_file(shard / "manifest.csv") == manifest);
+    auto same = rt::record(shard, small + "--shard 0/2 --resume");
+    INFO(same.output);
+    CHECK(same.status == 0);
+    auto as_shard = rt::record(whole, small + "--shard 0/2 --resume");
+    INFO(as_shard.output);
+    CHECK(as_shard.status == 2);
+    CHECK(as_shard.output.find("it holds a whole run") != std::string::npos);
+    CHECK(rt::record(whole, small + "--resume").status == 0);
+}
+
+TEST_CASE("the stock script logs the trials this process recorded, and those it found on disk", "[shard][script]") {
+    rt::TempDir dir;
+    const auto run = [&](const std::string& out, const std::string& options) {
+        auto r = rt::run_rollsense("run " + rt::paper_experiment() + " --seed 11 --no-progress --set runs=1 "
+                                   "--set objects=C1,P1,S2 --set speeds=10 --set analyse=false " + options +
+                                   " --out " + (dir / out).string());
+        INFO(r.output);
+        CHECK(r.status == 0);
+        return r.output;
+    };
+    CHECK(run("shard", "--shard 1/2").find("recorded 1 trials into " + (dir / "shard").string() + "\n") !=
+          std::string::npos);
+    CHECK(run("shard", "--shard 1/2 --resume").find("recorded 0 trials into " + (dir / "shard").string() +
+                                                    " (1 already on disk)") != std::string::npos);
+    CHECK(run("whole", "").find("recorded 3 trials into") != std::string::npos);
+    const auto cut = dir / "whole" / "trials" / "P1-v10-r001.csv";
+    const auto text = rt::read_file(cut);
+    rt::write_file(cut, text.substr(0, text.size() / 2));  // recorded again on resume
+    CHECK(run("whole", "--resume").find("recorded 1 trials into " + (dir / "whole").string() + " (2 already on disk)") !=
+          std::string::npos);
+}
+
 TEST_CASE("a bad shard K/N is refused before anything runs", "[shard]") {
     rt::TempDir dir;
     for (const char* bad : {"3/3", "1/0", "x", "-1/2"}) {

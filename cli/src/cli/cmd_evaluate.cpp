@@ -6,6 +6,8 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/output_paths.hpp"
+#include "cli/trial_warnings.hpp"
 #include "cli/paths.hpp"
 #include "rollsense/atomic_file.hpp"
 #include "analysis/learn/defaults.hpp"
@@ -129,6 +131,7 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     auto result = learn::run_pipeline(
         registry, request,
         [](const std::vector<features::FeatureRow>& rows) {
+            warn_unreadable_trials(rows);
             std::printf("%s\n", learn::summarize_rejections(rows).c_str());
             std::fflush(stdout);
             return Status{};
@@ -166,6 +169,7 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
         return exit_code_for(loaded.error().code, kExitConfig);
     }
     rows = std::move(loaded).value();
+    warn_unreadable_trials(rows);
     std::printf("%s\n", learn::summarize_rejections(rows).c_str());
     factory = prepared->front().factory;
     return kExitOk;
@@ -246,11 +250,15 @@ int run(const std::vector<std::string>& argv) {
     Args args(argv);
     const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--prefixes"});
     setup_logging(args);
+    const auto out = args.option("--output", "-o");
+    if (!out.empty())
+        if (int rc = check_output_files("evaluate", s.input, {out, learn::json_path_beside(out)}); rc != kExitOk)
+            return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
     if (int rc = run_learning_pipeline("evaluate", args, s, registry, result); rc != kExitOk) return rc;
     std::printf("\n%s", learn::format_evaluation(result.evaluation).c_str());
-    if (auto out = args.option("--output", "-o"); !out.empty()) {
+    if (!out.empty()) {
         if (auto st = learn::write_evaluation_files(result.evaluation, out); !st) {
             std::fprintf(stderr, "rollsense evaluate: %s\n", st.error().describe().c_str());
             return exit_code_for(st.code());

@@ -5,6 +5,8 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/output_paths.hpp"
+#include "cli/trial_warnings.hpp"
 #include "rollsense/features.hpp"
 #include "analysis/learn/inputs.hpp"
 
@@ -104,6 +106,7 @@ int run(const std::vector<std::string>& argv) {
     if (out.empty()) throw UsageError("-o FILE is required: where to write the features CSV");
     const auto settings = feature_settings_from_args(args);
     const auto threads = static_cast<unsigned>(number_option(args, "--threads", 0));
+    if (int rc = check_output_files("features", pos[0], {out}); rc != kExitOk) return rc;
 
     std::error_code ec;
     if (!std::filesystem::is_directory(pos[0], ec)) {
@@ -121,6 +124,7 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense features: %s\n", rows.error().describe().c_str());
         return exit_code_for(rows.error().code, kExitConfig);
     }
+    warn_unreadable_trials(*rows);
     if (auto s = features::write_features_csv(out, *rows); !s) {
         std::fprintf(stderr, "rollsense features: cannot write '%s': %s\n", out.c_str(), s.error().describe().c_str());
         return exit_code_for(s.code());

@@ -25,9 +25,10 @@ the run's order), dataset-info.csv (and run-config.csv when the shards have
 one) byte for byte, and features.csv with the paper's feature settings, as the
 stock script's analysis writes it. OUT also gets shards.csv (one row per
 shard: its folder, trials, date, wall time, command line) and run-info.csv
-(this merge). OUT must be new or empty.
+(this merge). OUT must be new or empty; the merge is written into a hidden
+sibling, .OUT.tmp-PID, renamed to OUT once complete.
 
-Refused, with nothing written, unless the SHARD folders are exactly the shards
+Refused, with nothing written (and so is a merge that fails), unless the SHARD folders are exactly the shards
 0/N ... N-1/N of one run: each finished (status ok), recorded with the same
 profile, seed, script and settings and the same plan of trials
 (shard-plan.csv), holding between them every trial of the run once. The error
@@ -73,22 +74,26 @@ int run(const std::vector<std::string>& argv) {
     const std::filesystem::path out = pos[0];
     const std::vector<std::filesystem::path> shards(pos.begin() + 1, pos.end());
 
-    auto merged = merge_shards(out, shards);
-    if (!merged) return fail(merged.error(), kExitConfig);
-    auto dataset = DatasetReader::open(out);
-    if (!dataset) return fail(dataset.error(), kExitFailure);
-    auto rows = features::extract_dataset(*dataset, features::FeatureSettings{}, threads);
-    if (!rows) return fail(rows.error(), kExitFailure);
-    if (auto s = features::write_features_csv(out / "features.csv", *rows); !s) return fail(s.error(), kExitFailure);
     std::string command_line = "rollsense merge";
     for (const auto& a : argv) command_line += " " + a;
-    const csv::KeyValues run_info{{"date_utc", report::utc_timestamp()},
-                             {"command_line", command_line},
-                             {"rollsense_version", ROLLSENSE_VERSION_STRING},
-                             {"status", "ok"},
-                             {"shards", std::to_string(merged->shards)},
-                             {"trials", std::to_string(merged->trials)}};
-    if (auto s = write_file_atomic(out / "run-info.csv", csv::format_key_values(run_info)); !s) return fail(s.error(), kExitIo);
+    // features.csv and run-info.csv join the merged folder before it takes OUT's
+    // name: a failure here leaves nothing behind either.
+    const auto finish = [&](const std::filesystem::path& merged, const MergeSummary& summary) -> Status {
+        auto dataset = DatasetReader::open(merged);
+        if (!dataset) return dataset.error();
+        auto rows = features::extract_dataset(*dataset, features::FeatureSettings{}, threads);
+        if (!rows) return rows.error();
+        if (auto s = features::write_features_csv(merged / "features.csv", *rows); !s) return s;
+        const csv::KeyValues run_info{{"date_utc", report::utc_timestamp()},
+                                      {"command_line", command_line},
+                                      {"rollsense_version", ROLLSENSE_VERSION_STRING},
+                                      {"status", "ok"},
+                                      {"shards", std::to_string(summary.shards)},
+                                      {"trials", std::to_string(summary.trials)}};
+        return write_file_atomic(merged / "run-info.csv", csv::format_key_values(run_info));
+    };
+    auto merged = merge_shards(out, shards, finish);
+    if (!merged) return fail(merged.error(), kExitConfig);
     std::printf("merged %zu shards: %zu trials into %s (with features.csv)\nanalyse it as the unsharded run: %s\n",
                 merged->shards, merged->trials, out.c_str(), analyse_command(merged->command_line, out.string()).c_str());
     return kExitOk;

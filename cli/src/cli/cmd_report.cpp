@@ -6,6 +6,7 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/output_paths.hpp"
 #include "cli/paths.hpp"
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
@@ -74,12 +75,16 @@ int run(const std::vector<std::string>& argv) {
                      s.input.c_str());
         return kExitConfig;
     }
-    runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
-    learn::PipelineResult result;
-    if (int rc = run_learning_pipeline("report", args, s, registry, result); rc != kExitOk) return rc;
     report::ReportInputs in;
     in.dataset_dir = s.input;
     in.output = args.option("--output", "-o");
+    const auto page = report::report_path(in);
+    const auto text = page.parent_path() / "evaluation.txt";
+    if (int rc = check_output_files("report", s.input, {page, text, learn::json_path_beside(text)}); rc != kExitOk)
+        return rc;
+    runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
+    learn::PipelineResult result;
+    if (int rc = run_learning_pipeline("report", args, s, registry, result); rc != kExitOk) return rc;
     in.rows = std::move(result.rows);
     in.evaluation = std::move(result.evaluation);
     in.settings = feature_settings_from_args(args);
@@ -90,7 +95,7 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense report: %s\n", written.error().describe().c_str());
         return exit_code_for(written.error().code);
     }
-    if (auto st = learn::write_evaluation_files(in.evaluation, written->parent_path() / "evaluation.txt"); !st) {
+    if (auto st = learn::write_evaluation_files(in.evaluation, text); !st) {
         std::fprintf(stderr, "rollsense report: %s\n", st.error().describe().c_str());
         return exit_code_for(st.code());
     }

@@ -30,12 +30,15 @@ hardware profile the same script drives the real hand on the monotonic clock.
 
 options:
   --profile NAME|FILE   robot profile (share/profiles/NAME.lua); default: sim
-  --out DIR             dataset folder for recorded trials and outputs;
-                        default: runs/<script>-<date>-<time>
+  --out DIR             dataset folder for recorded trials and outputs: new,
+                        empty, or with --resume the run's dataset (a folder
+                        holding other files is refused: the run would write
+                        over them); default: runs/<script>-<date>-<time>
   --resume              continue the dataset in --out: trials already on disk
                         are kept and skipped; the result equals an uninterrupted run.
                         Refused when script, profile, --set or --seed differ
-                        from the run that recorded it (run-config.csv)
+                        from the run that recorded it (run-config.csv), and
+                        for a shard's dataset without its --shard K/N
   --seed N              run seed (per-trial seeds derive from it); default: 1,
                         or, replaying a dataset, the seed it was recorded with
   --shard K/N           record only shard K of N (0 <= K < N): the trials whose
@@ -138,6 +141,7 @@ int run(const std::vector<std::string>& argv) {
         if (!parsed) throw UsageError(parsed.error().message);
         o.shard = *parsed;
     }
+    if (auto st = check_out_folder(o.out_dir, o.resume, o.shard); !st) throw UsageError(st.message());
     // The options that decide what is recorded: in run-config.csv and in the resume command.
     std::vector<std::pair<std::string, std::string>> deciding;
     if (!args.option("--profile").empty()) deciding.emplace_back("--profile", args.option("--profile"));
@@ -180,6 +184,7 @@ int run(const std::vector<std::string>& argv) {
 
     std::error_code ec;
     const bool out_existed = std::filesystem::exists(o.out_dir, ec);
+    const auto out_before = folder_state(o.out_dir);
     runtime::RunSummary summary;
     {
         runtime::Session session(o);
@@ -194,7 +199,9 @@ int run(const std::vector<std::string>& argv) {
     // A run that failed before its first trial leaves no empty folder behind.
     const bool removed = !summary.status.ok() && !out_existed && summary.trials_saved == 0 &&
                          summary.trials_skipped == 0 && remove_empty_dataset(o.out_dir);
-    if (!removed && (summary.trials_saved + summary.trials_skipped > 0 || std::filesystem::exists(o.out_dir, ec)))
+    // Not for a run refused before it wrote anything (another run's dataset, --out a file).
+    const bool wrote = summary.trials_saved + summary.trials_skipped > 0 || folder_state(o.out_dir) != out_before;
+    if (!removed && wrote && std::filesystem::exists(o.out_dir, ec))
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
     if (!summary.status.ok()) {
         log_error("rollsense", summary.status.error().describe());

@@ -5,6 +5,7 @@
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
+#include "cli/output_paths.hpp"
 #include "cli/paths.hpp"
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
@@ -43,6 +44,7 @@ int run(const std::vector<std::string>& argv) {
     setup_logging(args);
     const std::string out = args.option("--output", "-o");
     if (out.empty()) throw UsageError("-o MODEL is required: where to save the trained model");
+    if (int rc = check_output_files("train", s.input, {out}); rc != kExitOk) return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     std::vector<features::FeatureRow> rows;
     learn::ClassifierFactory factory;

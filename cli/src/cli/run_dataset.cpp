@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "rollsense/checksum.hpp"
+#include "rollsense/csv.hpp"
+#include "rollsense/dataset_files.hpp"
 
 namespace rollsense::cli {
 namespace fs = std::filesystem;
@@ -51,15 +53,70 @@ std::string resume_command(const std::string& script, const fs::path& out,
     return line;
 }
 
+namespace {
+// A shard's resume: the folder's shard (run-info.csv) against --shard.
+Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shard) {
+    std::error_code ec;
+    std::optional<std::string> recorded;  // "K/N"; empty: a whole run; none: not known
+    if (fs::exists(dir / "run-info.csv", ec)) {
+        auto info = csv::read_key_values(dir / "run-info.csv");
+        if (!info) return info.error();
+        recorded = "";
+        for (const auto& [key, value] : *info)
+            if (key == "shard") recorded = value;
+    }
+    if (fs::exists(dir / kShardPlanFile, ec) && (!recorded || recorded->empty()))
+        recorded = "K/N";  // a shard's plan without its record: which shard is not known
+    const std::string asked = shard ? shard->text() : std::string();
+    if (!recorded || *recorded == asked) return {};
+    const std::string merge = "; to analyse the whole run, join its shards with 'rollsense merge OUT SHARD...' "
+                              "and resume OUT (docs/cluster.md)";
+    if (recorded->empty())
+        return {ErrorCode::invalid_argument, "cannot resume " + dir.string() + " with --shard " + asked +
+                                                 ": it holds a whole run (its run-info.csv names no shard); "
+                                                 "resume it without --shard"};
+    const std::string holds = "cannot resume " + dir.string() + (asked.empty() ? "" : " as --shard " + asked) +
+                              ": it holds shard " + *recorded + " of a run (" +
+                              (dir / (*recorded == "K/N" ? kShardPlanFile : "run-info.csv")).string() + ")";
+    if (*recorded == "K/N") return {ErrorCode::invalid_argument, holds + "; resume it with its --shard K/N" + merge};
+    return {ErrorCode::invalid_argument, holds + "; resume it with --shard " + *recorded + merge};
+}
+}  // namespace
+
+Status check_out_folder(const fs::path& dir, bool resume, const std::optional<Shard>& shard) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return {};  // new, empty, or not a folder (the writer says)
+    if (fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec))
+        return resume ? check_resumed_shard(dir, shard) : Status{};
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    std::string listed;
+    for (std::size_t i = 0; i < names.size() && i < 5; ++i) listed += (i ? ", " : "") + names[i];
+    if (names.size() > 5) listed += ", ... (" + std::to_string(names.size()) + " in all)";
+    return {ErrorCode::invalid_argument,
+            "--out " + dir.string() + " is not empty and holds no dataset (no manifest.csv or dataset-info.csv; it has " +
+                listed + "): a run would write over its files" + (resume ? ", and --resume continues datasets only" : "") +
+                "; choose a new or empty folder with --out"};
+}
+
+std::map<std::string, fs::file_time_type> folder_state(const fs::path& dir) {
+    std::map<std::string, fs::file_time_type> state;
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) return state;
+    state[""] = fs::last_write_time(dir, ec);
+    if (fs::is_directory(dir, ec))
+        for (const auto& entry : fs::directory_iterator(dir, ec)) state[entry.path().filename().string()] = entry.last_write_time(ec);
+    return state;
+}
+
 bool remove_empty_dataset(const fs::path& dir) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return false;
     if (fs::exists(dir / "trials", ec) && !fs::is_empty(dir / "trials", ec)) return false;
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
         const auto name = entry.path().filename().string();
-        if (name != "trials" && name != "manifest.csv" && name != "dataset-info.csv" && name != "run-info.csv" &&
-            name != kRunConfigFile)
-            return false;
+        if (!is_dataset_file(name)) return false;
     }
     if (ec) return false;
     return fs::remove_all(dir, ec) > 0 && !ec;

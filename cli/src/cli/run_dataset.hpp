@@ -5,11 +5,15 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "rollsense/run_config.hpp"
+#include "rollsense/shard.hpp"
+#include "rollsense/status.hpp"
 
 namespace rollsense::cli {
 
@@ -32,8 +36,23 @@ std::string shell_quote(const std::string& text);
 std::string resume_command(const std::string& script, const std::filesystem::path& out,
                            const std::vector<std::pair<std::string, std::string>>& options);
 
+// --out checked before the run starts, so a refusal writes nothing. A new or
+// empty folder is fine, and so is one holding a dataset (manifest.csv or
+// dataset-info.csv: the dataset writer then refuses it without --resume, or
+// checks with --resume that it is this run's). Refused: a folder holding other
+// files, which the run would write over (--resume continues datasets only);
+// and a --resume whose --shard is not the folder's (run-info.csv's shard K/N,
+// shard-plan.csv): a shard is resumed as that shard, a whole run without one.
+// The error names the folder, what it holds and the way out.
+Status check_out_folder(const std::filesystem::path& dir, bool resume, const std::optional<Shard>& shard);
+
+// The names and modification times of what `dir` holds (of `dir` itself when it
+// is a file; empty when it does not exist). Taken before and after a failed
+// run, it tells whether the run wrote anything there worth pointing to.
+std::map<std::string, std::filesystem::file_time_type> folder_state(const std::filesystem::path& dir);
+
 // Removes `dir` when it holds nothing but an empty dataset (its own files,
-// no trial); true if removed. For a run that created the folder and failed
+// no trial: rollsense/dataset_files.hpp); true if removed. For a run that created the folder and failed
 // before its first trial: the failure leaves nothing behind.
 bool remove_empty_dataset(const std::filesystem::path& dir);
 

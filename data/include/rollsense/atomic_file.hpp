@@ -15,6 +15,12 @@ namespace rollsense {
 
 Status write_file_atomic(const std::filesystem::path& file, std::string_view content);
 
+// What can be told before writing `file` as above: it is not a folder, and its
+// folder exists and may be written. For commands that write their result at the
+// end of a long job, so that a wrong path fails at once, not after the job. The
+// error names `file` and its folder.
+Status check_can_write(const std::filesystem::path& file);
+
 // The same for several files at once (group commit): every temporary is written
 // and synced before any rename, and the folder is synced once. Each file is
 // still atomic on its own. Used by the recorder so that a fast simulated run
@@ -36,6 +42,11 @@ Status write_files_synced(const std::vector<PendingFile>& files);
 // only a crash during the append can (readers of appended files must handle a
 // last line without its line end).
 Status append_file_durable(const std::filesystem::path& file, std::string_view content);
+
+// Renames `from` to `to` (a file, or a folder onto a missing or empty folder)
+// and syncs the folder of `to`, so that the new name survives a power cut. The
+// error names `to`.
+Status rename_durable(const std::filesystem::path& from, const std::filesystem::path& to);
 
 // Remove temporaries left by an interrupted write (".<name>.tmp-*") in a folder.
 void remove_stale_temporaries(const std::filesystem::path& folder);

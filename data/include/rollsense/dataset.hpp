@@ -123,6 +123,8 @@ public:
     // Waits for every queued batch. After a failed write, the error names the
     // trials that were lost (those of the failed batch and of every batch
     // after it: none of them is in the manifest) and how many are durable.
+    // A resumed trial recorded again is then put back in its place: the
+    // manifest is rewritten (atomically) in the order of an uninterrupted run.
     Status flush();
     // Trials listed in the manifest on disk (resumed ones included): what a
     // run may count as saved.
@@ -155,6 +157,7 @@ private:
     void hand_over();           // pending trials → the writer thread
     void writer_loop();
     Status take_error();
+    Status restore_order();  // flush(), writer idle, mutex_ held
     Status error_locked() const;  // error_ with the lost trials named; mutex_ held
 
     DirectoryLock lock_;  // first member: released after the writer thread has ended
@@ -162,6 +165,7 @@ private:
     DatasetInfo info_;
     std::vector<TrialRecord> trials_;
     std::unordered_set<std::string> ids_;  // of trials_: has_trial() in constant time
+    std::vector<std::string> resumed_order_;  // the manifest's ids when resumed, if it dropped any: their places
     Batch pending_;
     std::size_t commit_every_ = 1;
     DurableObserver on_durable_;

@@ -12,10 +12,16 @@
 //
 // The merged folder also gets shards.csv (one row per shard: where it came
 // from, its trials, when and how it ran; docs/dataset-format.md); run-info.csv
-// is the caller's (the merge's provenance).
+// and features.csv are the caller's (`finish`).
+//
+// Everything is written into a hidden sibling folder (.OUT.tmp-PID) that is
+// renamed to OUT at the end, so a refusal or a failure (a damaged trial, a full
+// disk, an error of `finish`) leaves OUT as it was, and a retry is not refused.
+// Errors name the files under OUT, not under the sibling.
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,8 +35,13 @@ struct MergeSummary {
     std::string command_line;  // that recorded shard 0 (its run-info.csv)
 };
 
+// Called with the merged folder before it becomes `out` (it is still the
+// sibling): the caller's own files go there.
+using MergeFinish = std::function<Status(const std::filesystem::path& merged, const MergeSummary& summary)>;
+
 // `out` must not exist or be an empty folder. The shards are locked while
 // they are read (a shard still being recorded is refused).
-Result<MergeSummary> merge_shards(const std::filesystem::path& out, const std::vector<std::filesystem::path>& shards);
+Result<MergeSummary> merge_shards(const std::filesystem::path& out, const std::vector<std::filesystem::path>& shards,
+                                  const MergeFinish& finish = {});
 
 }  // namespace rollsense

@@ -14,6 +14,7 @@
 #include <exception>
 #include <new>
 
+#include "rollsense/dataset_files.hpp"
 #include "rollsense/last_resort.hpp"
 #include "rollsense/log.hpp"
 #include "rollsense/run_config.hpp"
@@ -311,11 +312,9 @@ Status Session::check_output_name(const std::string& name, const std::string& wh
                 what + ": output name '" + shown + "' must be a plain file name of at most " +
                     std::to_string(kMaxName) + " letters, digits, '.', '_' or '-' (no '/', no leading '.'); " +
                     "it goes into the output folder"};
-    for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials",
-                            kRunConfigFile, kShardPlanFile, kShardsFile})
-        if (name == own)
-            return {ErrorCode::invalid_argument,
-                    what + ": '" + name + "' belongs to the dataset and cannot be written by a script; choose another name"};
+    if (is_dataset_file(name) || name == "features.csv")  // features.csv: rs.analyse writes it
+        return {ErrorCode::invalid_argument,
+                what + ": '" + name + "' belongs to the dataset and cannot be written by a script; choose another name"};
     return {};
 }
 

@@ -123,8 +123,8 @@ public:
     Status write_output_text(const std::string& name, const std::string& text);
     // A file name a script may write into the output folder: a plain name
     // (letters, digits, '.', '_', '-'; no leading '.'; at most 128 bytes),
-    // not one of the dataset's own files (manifest.csv, dataset-info.csv,
-    // run-info.csv, features.csv, trials, shard-plan.csv, shards.csv). `what` names the caller.
+    // not one of the dataset's own files (rollsense/dataset_files.hpp) nor
+    // features.csv. `what` names the caller.
     static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 

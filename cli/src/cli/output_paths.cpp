@@ -1,0 +1,29 @@
+#include "cli/output_paths.hpp"
+
+#include <cstdio>
+
+#include "cli/command.hpp"
+#include "rollsense/atomic_file.hpp"
+#include "rollsense/dataset_files.hpp"
+
+namespace rollsense::cli {
+
+int check_output_files(const char* command, const std::filesystem::path& input,
+                       const std::vector<std::filesystem::path>& outputs) {
+    std::error_code ec;
+    const bool dataset = std::filesystem::is_directory(input, ec);
+    for (const auto& file : outputs) {
+        if (dataset)
+            if (auto st = check_not_dataset_file(file, input, "-o"); !st) {
+                std::fprintf(stderr, "rollsense %s: %s\n", command, st.message().c_str());
+                return kExitUsage;
+            }
+        if (auto st = check_can_write(file); !st) {
+            std::fprintf(stderr, "rollsense %s: %s\n", command, st.message().c_str());
+            return exit_code_for(st.code());
+        }
+    }
+    return kExitOk;
+}
+
+}  // namespace rollsense::cli

@@ -1,0 +1,27 @@
+// The files a dataset folder owns (docs/dataset-format.md): what a run
+// recorded and what identifies it. Nothing but the dataset's own writers may
+// replace them: rs.write_output refuses these names, and the -o of features,
+// evaluate, train and report refuses a path that is one of them, so that a
+// slip of the command line never destroys the data it reads.
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense {
+
+// True for a name at the top of a dataset folder that belongs to the dataset:
+// manifest.csv, dataset-info.csv, run-info.csv, run-config.csv,
+// shard-plan.csv, shards.csv and the folder trials.
+bool is_dataset_file(std::string_view name);
+
+// Refuses `target` (a file about to be written) when it is one of the files of
+// the dataset in `dataset_dir` or lies under its trials/ (after resolving '.',
+// '..' and symbolic links). The error names the target, the dataset and the way
+// out; `what` names where the path came from (e.g. "-o").
+Status check_not_dataset_file(const std::filesystem::path& target, const std::filesystem::path& dataset_dir,
+                              std::string_view what);
+
+}  // namespace rollsense

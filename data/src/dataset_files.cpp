@@ -1,0 +1,34 @@
+#include "rollsense/dataset_files.hpp"
+
+#include "rollsense/run_config.hpp"
+#include "rollsense/shard.hpp"
+
+namespace rollsense {
+namespace fs = std::filesystem;
+
+bool is_dataset_file(std::string_view name) {
+    for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "trials", kRunConfigFile,
+                            kShardPlanFile, kShardsFile})
+        if (name == own) return true;
+    return false;
+}
+
+Status check_not_dataset_file(const fs::path& target, const fs::path& dataset_dir, std::string_view what) {
+    std::error_code ec;
+    const fs::path dir = fs::weakly_canonical(dataset_dir, ec);
+    if (ec) return {};  // no such folder: nothing of it to overwrite
+    const fs::path file = fs::weakly_canonical(target, ec);
+    if (ec) return {};
+    // The first part of `file` below `dir`, if `file` is inside it at all.
+    auto rel = file.lexically_relative(dir);
+    if (rel.empty() || *rel.begin() == ".." || *rel.begin() == ".") return {};
+    const std::string first = rel.begin()->string();
+    if (!is_dataset_file(first)) return {};
+    return {ErrorCode::invalid_argument,
+            std::string(what) + " " + target.string() + " is " +
+                (first == "trials" ? "under the trials/ folder" : "the file " + first) + " of the dataset " +
+                dataset_dir.string() + " being read; writing it would destroy the dataset: give " + std::string(what) +
+                " a file outside the dataset, or one of another name"};
+}
+
+}  // namespace rollsense
