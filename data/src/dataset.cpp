@@ -538,7 +538,12 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
 }
 
 DatasetWriter::~DatasetWriter() {
-    if (auto s = flush(); !s.ok()) log_error("dataset", s.error().describe());
+    // Logged only when no caller was given the error: one who was reports it (once).
+    const bool told = [&] {
+        std::lock_guard lock(mutex_);
+        return error_told_;
+    }();
+    if (auto s = flush(); !s.ok() && !told) log_error("dataset", s.error().describe());
     {
         std::lock_guard lock(mutex_);
         stopping_ = true;
@@ -563,14 +568,14 @@ Status DatasetWriter::take_error() {
 
 Status DatasetWriter::error_locked() const {
     if (error_.ok()) return error_;
+    error_told_ = true;
     std::string ids;
     for (std::size_t i = 0; i < lost_.size() && i < 20; ++i) ids += (i ? ", " : "") + lost_[i];
     if (lost_.size() > 20) ids += ", ... (" + std::to_string(lost_.size() - 20) + " more)";
     std::string lost = lost_.empty() ? std::string()
                                      : "; " + std::to_string(lost_.size()) + " trial(s) not saved: " + ids;
     return Error{error_.error().code, error_.error().message + lost + "; " + std::to_string(durable_) +
-                                          " trial(s) are safely in " + (dir_ / "manifest.csv").string() +
-                                          " (continue with --resume once the cause is fixed)"};
+                                          " trial(s) are safely in " + (dir_ / "manifest.csv").string()};
 }
 
 std::size_t DatasetWriter::durable_trials() {

@@ -198,7 +198,8 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
     if (!summary.status.ok()) {
         log_error("rollsense", summary.status.error().describe());
-        if (summary.cancelled && summary.trials_saved + summary.trials_skipped > 0)
+        // However it stopped (Ctrl-C, a script error, a device), the saved trials stay: the way on.
+        if (summary.trials_saved + summary.trials_skipped > 0)
             std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     }
     return exit_code_for(summary.status.code());
