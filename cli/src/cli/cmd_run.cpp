@@ -102,6 +102,7 @@ std::optional<live::LiveOptions> live_options_of(const std::vector<std::string>&
     }
     if (auto bind = args.option("--live-bind"); !bind.empty()) {
         if (!wanted) throw UsageError("--live-bind needs --live (it says where the live view listens)");
+        if (auto s = live::HttpServer::check_address(bind); !s.ok()) throw UsageError("--live-bind: " + s.message());
         o.address = bind;
         if (bind != "127.0.0.1" && bind != "::1")
             log_warning("rollsense", "--live-bind " + bind + ": the live view can be watched from other machines "
