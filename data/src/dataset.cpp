@@ -505,19 +505,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                          dir.string() + " was recorded with another setup (profile '" + old.profile + "', seed " +
                              std::to_string(old.seed) + "); resume it with the same --profile and --seed, or "
                                                         "choose another folder with --out"};
-        if (auto recorded = read_run_config(dir); !recorded) {
-            return Error{recorded.error().code, "cannot resume: " + recorded.error().message};
-        } else if (!recorded->empty() && !info.run_config.empty()) {
-            auto diffs = run_config_differences(*recorded, info.run_config);
-            std::string text;
-            for (const auto& d : diffs) text += "\n  " + d;
-            if (!diffs.empty())
-                return Error{ErrorCode::invalid_argument,
-                             "cannot resume " + dir.string() + ": this run differs from the one that recorded it (" +
-                                 (dir / kRunConfigFile).string() + "):" + text +
-                                 "\nresume with the same script, --profile, --set options and --seed, or choose "
-                                 "another folder with --out"};
-        }
+        if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
         // A trial whose file is missing or not what the manifest says (cut short
         // by a crash or a full disk) is recorded again, not kept.
         for (const auto& t : on_disk->trials()) {

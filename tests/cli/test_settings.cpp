@@ -194,12 +194,13 @@ TEST_CASE("run-config.csv records what decides the trials; --resume refuses any 
 
     const auto other = run_rollsense("run " + kPaper + kSmall + " --set runs=4 --seed 5 --resume --out " + shell_quoted(out));
     INFO(other.output);
-    CHECK(other.status == 1);
+    CHECK(other.status == 2);  // review #19: a bad command line, refused before anything opens
     CHECK(other.output.find("cannot resume") != std::string::npos);
+    CHECK(other.output.find("results:") == std::string::npos);
     CHECK(other.output.find("set.runs: recorded '3', this run '4'") != std::string::npos);
     const auto missing = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,P2 --set speeds=10 --no-progress -q "
                                        "--seed 5 --resume --out " + shell_quoted(out));
-    CHECK(missing.status == 1);
+    CHECK(missing.status == 2);
     CHECK(missing.output.find("set.analyse: recorded 'false', this run (not given)") != std::string::npos);
     CHECK(column(out / "manifest.csv", 0).size() == 6);  // nothing was added
 

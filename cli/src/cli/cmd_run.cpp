@@ -14,6 +14,7 @@
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/shard.hpp"
 #include "runtime/session/session.hpp"
 
@@ -155,6 +156,9 @@ int run(const std::vector<std::string>& argv) {
         deciding.emplace_back("--plugin-path", p);
     }
     o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.seed, sets);
+    // A --resume whose options differ from the recording's is the command line's error (2), before anything opens.
+    if (o.resume && std::filesystem::exists(o.out_dir / kRunConfigFile))
+        if (auto s = check_resume_config(o.out_dir, o.run_config); !s.ok()) throw UsageError(s.message());
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.sandbox.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));
