@@ -27,9 +27,9 @@ const char* kHelp =
     "\n"
     "Talks Dynamixel Protocol 2.0 (X series) on a serial port or on the pty printed by rollsense-dxl-emu.\n"
     "  --device PATH    serial port, e.g. /dev/ttyUSB0 (U2D2) or /tmp/etroll-bus (emulator --link)\n"
-    "  --baud N         bus rate (default 57600, the factory setting)\n"
+    "  --baud N         bus rate, an X-series rate like --new-baud (default 57600, the factory setting)\n"
     "  --all-bauds      scan at every X-series rate (9600 ... 4.5M): finds servos at unknown rates\n"
-    "  --ids A-B        id range to scan (default 0-252)\n"
+    "  --ids A-B        id range to scan, A <= B (default 0-252)\n"
     "  --timeout-ms N   reply timeout per id while scanning (default 10)\n"
     "set-id and set-baud write EEPROM: they turn that servo's torque off first.\n"
     "Exit codes: 0 ok (scan: at least one servo found), 4 no answer / bus failure, 2 bad command line.";
