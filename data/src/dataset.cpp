@@ -509,19 +509,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                          dir.string() + " was recorded with another setup (profile '" + old.profile + "', seed " +
                              std::to_string(old.seed) + "); resume it with the same --profile and --seed, or "
                                                         "choose another folder with --out"};
-        if (auto recorded = read_run_config(dir); !recorded) {
-            return Error{recorded.error().code, "cannot resume: " + recorded.error().message};
-        } else if (!recorded->empty() && !info.run_config.empty()) {
-            auto diffs = run_config_differences(*recorded, info.run_config);
-            std::string text;
-            for (const auto& d : diffs) text += "\n  " + d;
-            if (!diffs.empty())
-                return Error{ErrorCode::invalid_argument,
-                             "cannot resume " + dir.string() + ": this run differs from the one that recorded it (" +
-                                 (dir / kRunConfigFile).string() + "):" + text +
-                                 "\nresume with the same script, --profile, --set options and --seed, or choose "
-                                 "another folder with --out"};
-        }
+        if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
         // A trial whose file is missing or not what the manifest says (cut short
         // by a crash or a full disk) is recorded again, not kept.
         for (const auto& t : on_disk->trials()) {
@@ -544,7 +532,12 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
 }
 
 DatasetWriter::~DatasetWriter() {
-    if (auto s = flush(); !s.ok()) log_error("dataset", s.error().describe());
+    // Logged only when no caller was given the error: one who was reports it (once).
+    const bool told = [&] {
+        std::lock_guard lock(mutex_);
+        return error_told_;
+    }();
+    if (auto s = flush(); !s.ok() && !told) log_error("dataset", s.error().describe());
     {
         std::lock_guard lock(mutex_);
         stopping_ = true;
@@ -569,14 +562,14 @@ Status DatasetWriter::take_error() {
 
 Status DatasetWriter::error_locked() const {
     if (error_.ok()) return error_;
+    error_told_ = true;
     std::string ids;
     for (std::size_t i = 0; i < lost_.size() && i < 20; ++i) ids += (i ? ", " : "") + lost_[i];
     if (lost_.size() > 20) ids += ", ... (" + std::to_string(lost_.size() - 20) + " more)";
     std::string lost = lost_.empty() ? std::string()
                                      : "; " + std::to_string(lost_.size()) + " trial(s) not saved: " + ids;
     return Error{error_.error().code, error_.error().message + lost + "; " + std::to_string(durable_) +
-                                          " trial(s) are safely in " + (dir_ / "manifest.csv").string() +
-                                          " (continue with --resume once the cause is fixed)"};
+                                          " trial(s) are safely in " + (dir_ / "manifest.csv").string()};
 }
 
 std::size_t DatasetWriter::durable_trials() {

@@ -30,4 +30,17 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
     return out;
 }
 
+Status check_resume_config(const fs::path& dir, const RunConfig& now) {
+    auto recorded = read_run_config(dir);
+    if (!recorded) return Error{recorded.error().code, "cannot resume: " + recorded.error().message};
+    std::string text;
+    if (!recorded->empty() && !now.empty())
+        for (const auto& d : run_config_differences(*recorded, now)) text += "\n  " + d;
+    if (text.empty()) return {};
+    return {ErrorCode::invalid_argument, "cannot resume " + dir.string() + ": this run differs from the one that recorded it (" +
+                                             (dir / kRunConfigFile).string() + "):" + text +
+                                             "\nresume with the same script, --profile, --set options and --seed, or "
+                                             "choose another folder with --out"};
+}
+
 }  // namespace rollsense

@@ -90,3 +90,24 @@ TEST_CASE("other failures keep their codes") {
     CHECK(run_rollsense("run " + shell_quoted(dir / "slow.lua") + " --profile mock --time-limit 1 --out " + shell_quoted(dir / "c"))
               .status == 130);
 }
+
+// Review finding 18: "'2' is not a number in 5-252" for a reversed range, "frob needs --id N"
+// for an unknown action, and any --baud accepted while --new-baud knew the X-series rates.
+TEST_CASE("dxl's bad arguments are usage errors (2) that say what is wrong") {
+    const auto reversed = run_rollsense("dxl scan --device /nonexistent-bus --ids 5-2");
+    INFO(reversed.output);
+    CHECK(reversed.status == 2);
+    CHECK(reversed.output.find("--ids 5-2: the range is reversed (FIRST-LAST, e.g. 2-5)") != std::string::npos);
+    const auto action = run_rollsense("dxl frob --device /nonexistent-bus");
+    INFO(action.output);
+    CHECK(action.status == 2);
+    CHECK(action.output.find("unknown action 'frob' (scan, info, reboot, set-id, set-baud)") != std::string::npos);
+    const std::string rates = " is not an X-series rate (9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000, 4500000)";
+    const auto baud = run_rollsense("dxl scan --device /nonexistent-bus --baud 12345");
+    INFO(baud.output);
+    CHECK(baud.status == 2);
+    CHECK(baud.output.find("--baud: 12345" + rates) != std::string::npos);
+    const auto new_baud = run_rollsense("dxl set-baud --device /nonexistent-bus --id 1 --new-baud 12345");
+    CHECK(new_baud.status == 2);
+    CHECK(new_baud.output.find("--new-baud: 12345" + rates) != std::string::npos);
+}

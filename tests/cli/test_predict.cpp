@@ -161,4 +161,20 @@ TEST_CASE("predict's errors name the model, the plugin and the way out") {
     CHECK(not_trial.output.find("trials/ folder") != std::string::npos);
 
     CHECK(run_rollsense("predict " + shell_quoted(run / "trained.rsm")).status == 2);
+
+    // Review finding 16: a folder or an empty file as MODEL was "does not name its classifier; give --classifier".
+    fs::create_directories(dir / "stock");
+    fs::copy_file(run / "trained.rsm", dir / "stock" / "model.rsm");
+    const auto folder = run_rollsense("predict " + shell_quoted(dir / "stock") + " " + shell_quoted(run));
+    INFO(folder.output);
+    CHECK(folder.status == 3);
+    CHECK(folder.output.find("stock is a folder, not a model file; did you mean " + (dir / "stock" / "model.rsm").string() +
+                             "?") != std::string::npos);
+    CHECK(folder.output.find("--classifier") == std::string::npos);
+    write_file(dir / "empty.rsm", "");
+    const auto empty = run_rollsense("predict " + shell_quoted(dir / "empty.rsm") + " " + shell_quoted(run));
+    INFO(empty.output);
+    CHECK(empty.status == 3);
+    CHECK(empty.output.find("empty.rsm: the model file is empty") != std::string::npos);
+    CHECK(empty.output.find("--classifier") == std::string::npos);
 }

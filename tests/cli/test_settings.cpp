@@ -134,6 +134,24 @@ TEST_CASE("a script that declares nothing keeps working, with the end-of-run war
     CHECK(r.output.find("--set typo was not used by the profile or the script (a typo?)") != std::string::npos);
 }
 
+// Review finding 10: the typo warning came before the real error of a run
+// that never reached its settings (a bad value, a module's refusal).
+TEST_CASE("a run that fails before reading its settings gives no typo warning for them") {
+    TempDir dir("rollsense-settings");
+    const std::string warning = "was not used by the profile or the script (a typo?)";
+    const auto bad_value = run_rollsense("run " + kPaper + " --profile mock --set runs=abc --out " + shell_quoted(dir / "a"));
+    INFO(bad_value.output);
+    CHECK(bad_value.status != 0);
+    CHECK(bad_value.output.find("runs") != std::string::npos);
+    CHECK(bad_value.output.find(warning) == std::string::npos);
+    write_file(dir / "plain.lua", "local rs = require 'rollsense'\nerror('stopped early')\nrs.setting('runs', 1)\n");
+    const auto early = run_rollsense("run " + shell_quoted(dir / "plain.lua") + " --profile mock --set runs=4 --out " +
+                                     shell_quoted(dir / "b"));
+    INFO(early.output);
+    CHECK(early.output.find("stopped early") != std::string::npos);
+    CHECK(early.output.find(warning) == std::string::npos);
+}
+
 TEST_CASE("a misspelled option of a Lua call is an error at the call, naming the valid options") {
     TempDir dir("rollsense-settings");
     struct Case {
@@ -176,13 +194,14 @@ TEST_CASE("run-config.csv records what decides the trials; --resume refuses any 
 
     const auto other = run_rollsense("run " + kPaper + kSmall + " --set runs=4 --seed 5 --resume --out " + shell_quoted(out));
     INFO(other.output);
-    CHECK(other.status == 1);
+    CHECK(other.status == 2);  // review #19: a bad command line, refused before anything opens
     CHECK(other.output.find("cannot resume") != std::string::npos);
+    CHECK(other.output.find("results:") == std::string::npos);
     CHECK(other.output.find("set.runs: recorded '3', this run '4'") != std::string::npos);
     CHECK(other.output.find("results:") == std::string::npos);  // it wrote nothing to point to
     const auto missing = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,P2 --set speeds=10 --no-progress -q "
                                        "--seed 5 --resume --out " + shell_quoted(out));
-    CHECK(missing.status == 1);
+    CHECK(missing.status == 2);
     CHECK(missing.output.find("set.analyse: recorded 'false', this run (not given)") != std::string::npos);
     CHECK(column(out / "manifest.csv", 0).size() == 6);  // nothing was added
 
@@ -249,6 +268,26 @@ TEST_CASE("an interrupted run prints the exact command that resumes it, --set op
     REQUIRE(whole.status == 0);
     CHECK(same_files(out / "manifest.csv", dir / "whole" / "manifest.csv"));
     CHECK(same_files(out / "run-config.csv", dir / "whole" / "run-config.csv"));
+}
+
+// Review findings 9 and 12: a device failure after some trials printed its
+// fault three times and no way on; now the fault once, then the resume command.
+TEST_CASE("a run a device stops after some trials prints its fault once and the command that resumes it") {
+    TempDir dir("rollsense-resume");
+    write_file(dir / "faulty.lua", "local p = include('etroll-virtual')\n"
+                                   "p.devices.hand.params.inject = { '1:silent:25' }\nreturn p\n");
+    const auto failed = run_rollsense("run " + kPaper + " --profile " + shell_quoted(dir / "faulty.lua") +
+                                      " --set runs=3 --set objects=C1 --set speeds=20 --set analyse=false --no-progress"
+                                      " --out " + shell_quoted(dir / "out"));
+    INFO(failed.output);
+    CHECK(failed.status == 4);
+    std::size_t faults = 0;
+    for (auto at = failed.output.find("did not answer"); at != std::string::npos;
+         at = failed.output.find("did not answer", at + 1))
+        ++faults;
+    CHECK(faults == 1);
+    CHECK(failed.output.find("continue with: rollsense run ") != std::string::npos);
+    CHECK(failed.output.find(" --resume --profile ") != std::string::npos);
 }
 
 TEST_CASE("a run that fails before any trial removes the folder it created, never one that existed") {

@@ -17,10 +17,12 @@
 
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
+#include "log_capture.hpp"
 #include "temp_dir.hpp"
 #include "tiny_dataset.hpp"
 
 using namespace rollsense;
+using rollsense::testing::LogCapture;
 using rollsense::testing::TempDir;
 using rollsense::testing::tiny_info;
 using rollsense::testing::tiny_record;
@@ -270,8 +272,33 @@ TEST_CASE("a failed manifest append keeps no part of its rows", "[data][manifest
     CHECK_THAT(s.message(), Catch::Contains("manifest.csv: write failed") && Catch::Contains("not saved: t1") &&
                                 Catch::Contains("1 trial(s) are safely in"));
     CHECK(testing::read_file(manifest) == before);
-    w->reset();
+    {
+        // Review finding 9: the caller told of the failure reports it; closing the writer does not log it again.
+        const LogCapture log;
+        w->reset();
+        CHECK(log.lines().empty());
+    }
     auto back = DatasetReader::open(dir.path() / "ds");
     REQUIRE(back.ok());
     CHECK(back->trials().size() == 1);
+}
+
+TEST_CASE("a write failure no caller was told of is logged once when the writer closes", "[data][manifest]") {
+    TempDir dir;
+    auto w = DatasetWriter::open(dir.path() / "ds", tiny_info(), DatasetOpenMode::create);
+    REQUIRE(w.ok());
+    (*w)->set_commit_every(1);
+    const auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit old{};
+    REQUIRE(::getrlimit(RLIMIT_FSIZE, &old) == 0);
+    rlimit small = old;
+    small.rlim_cur = testing::read_file(dir.path() / "ds" / "manifest.csv").size() + 10;
+    REQUIRE(::setrlimit(RLIMIT_FSIZE, &small) == 0);
+    const LogCapture log;
+    REQUIRE((*w)->add_trial(tiny_record("t0"), tiny_samples()).ok());
+    w->reset();
+    REQUIRE(::setrlimit(RLIMIT_FSIZE, &old) == 0);
+    std::signal(SIGXFSZ, old_handler);
+    REQUIRE(log.lines().size() == 1);
+    CHECK_THAT(log.lines()[0], Catch::Contains("write failed") && Catch::Contains("not saved: t0"));
 }

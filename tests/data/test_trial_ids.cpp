@@ -84,7 +84,9 @@ TEST_CASE("a failed batch write names every trial it lost and counts only durabl
         const auto s = (*w)->flush();
         REQUIRE_FALSE(s.ok());
         CHECK_THAT(s.message(), Catch::Contains("3 trial(s) not saved: t0, t1, t2") &&
-                                    Catch::Contains("0 trial(s) are safely in") && Catch::Contains("--resume"));
+                                    Catch::Contains("0 trial(s) are safely in"));
+        // The way on is the command's: `rollsense run` prints its resume command (one home for that hint).
+        CHECK_THAT(s.message(), !Catch::Contains("--resume"));
         CHECK((*w)->durable_trials() == 0);
         CHECK((*w)->lost_trials() == 3);
     }

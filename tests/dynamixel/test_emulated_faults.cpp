@@ -11,6 +11,7 @@
 #include <string>
 
 #include "runtime/session/session.hpp"
+#include "log_capture.hpp"
 #include "temp_dir.hpp"
 
 using namespace rollsense;
@@ -67,4 +68,21 @@ TEST_CASE("each injected servo fault ends the run with a typed error, complete t
         CHECK_THAT(info, Catch::Contains("status"));
         CHECK_THAT(info, Catch::Contains(servo));
     }
+}
+
+// Review finding 9: a silent servo was printed three times: when the device
+// entered its error state, again by the script's cleanup (whose park() the
+// device refused), and as the run's error. It is the run's error only now;
+// the cleanup's refusal names the fault's kind, not its text.
+TEST_CASE("a servo fault is reported once, as the run's error", "[fault]") {
+    const testing::TempDir tmp("rollsense-emulated-fault-once");
+    const testing::LogCapture log(LogLevel::info);
+    const auto summary = run_with_fault(tmp.path(), "1:silent:25");
+    INFO(log.all());
+    REQUIRE(summary.status.code() == ErrorCode::timeout);
+    CHECK_THAT(summary.status.message(), Catch::Contains("did not answer"));
+    CHECK(log.count("did not answer") == 0);
+    CHECK(log.count("cleanup stopped") == 1);
+    CHECK(log.count("needs the active state, it is error (since its timeout; recover() or reconfigure it)") == 1);
+    for (const auto& line : log.lines()) CHECK(line.rfind("error ", 0) != 0);  // nothing else at error level
 }

@@ -66,6 +66,28 @@ TEST_CASE("a file that is not a shared library is reported with the loader's rea
     CHECK_THAT(c.failure, Catch::Contains("librollsense_fake.so"));
 }
 
+// Review finding 5: a truncated library crashed every command with SIGBUS
+// (dlopen mapped pages past the file's end) before the check.
+TEST_CASE("a truncated plugin library is reported with its size and what its headers need", "[loader]") {
+    kt::TempDir dir;
+    const fs::path whole = fs::path(ROLLSENSE_PLUGIN_DIR) / "librollsense_example_bump.so";
+    const auto size = fs::file_size(whole);
+    for (const std::uintmax_t cut : {size / 2, std::uintmax_t{5000}, size - 1}) {
+        INFO(cut);
+        const fs::path damaged = dir / ("librollsense_cut" + std::to_string(cut) + ".so");
+        fs::copy_file(whole, damaged);
+        fs::resize_file(damaged, cut);
+        auto c = PluginRegistry::load_file(damaged);
+        CHECK_FALSE(c.library);
+        CHECK_THAT(c.failure, Catch::StartsWith("truncated: " + std::to_string(cut) + " bytes, its headers need ") &&
+                                  Catch::Contains("rebuild"));
+    }
+    PluginRegistry reg({dir.path()});
+    CHECK(reg.scan().size() == 3);  // listed, not crashed on
+    fs::copy_file(whole, dir / "librollsense_whole.so");
+    CHECK(PluginRegistry::load_file(dir / "librollsense_whole.so").library);  // an intact copy still loads
+}
+
 TEST_CASE("a missing plugin names every folder searched and every file found", "[loader]") {
     kt::TempDir dir;
     kt::write_file(dir / "libjunk.so", "junk");

@@ -66,6 +66,8 @@ TEST_CASE("the memory cap stops a script that allocates without bound", "[sandbo
     auto s = session.run();
     REQUIRE_FALSE(s.status.ok());
     CHECK_THAT(s.status.message(), Catch::Contains("not enough memory"));
+    // Review finding 14: the cap and the way out, not a bare "not enough memory".
+    CHECK_THAT(s.status.message(), Catch::Contains("its memory cap (32 MB") && Catch::Contains("--memory-limit-mb"));
 }
 
 TEST_CASE("a command outside the joint limits is refused and nothing moves", "[limits]") {

@@ -174,6 +174,16 @@ TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][c
     r = rollsense_cli("train /tmp -o /tmp/m.rbt --classifier bagged_trees,bagged_trees");
     CHECK(r.status == 2);
     CHECK_THAT(r.output, Catch::Contains("takes one classifier"));
+    // Review finding 19: a bad --set key or value is a bad command line (2), not a bad input file (3).
+    for (const char* set : {"nosuch=1", "learners=abc"}) {
+        INFO(set);
+        for (const char* command : {"evaluate /nonexistent.csv", "train /nonexistent.csv -o /tmp/m.rbt"}) {
+            r = rollsense_cli(std::string(command) + " --set " + set);
+            INFO(r.output);
+            CHECK(r.status == 2);
+            CHECK_THAT(r.output, Catch::Contains("classifier 'bagged_trees'"));
+        }
+    }
 }
 
 TEST_CASE("rollsense evaluate: a feature and a series classifier side by side, with prefixes", "[learn][cli][series]") {

@@ -393,6 +393,26 @@ TEST_CASE("rollsense view DATASET serves the dataset's page until its time is up
     REQUIRE(port != 0);
 }
 
+// Review finding 17: the busy port's way out named run's --live=PORT, and a bad
+// --bind was warned about as browsable from other machines before its refusal (exit 1).
+TEST_CASE("rollsense view names its own --port for a busy port, and refuses a bad --bind before warning", "[live][cli]") {
+    const rollsense::testing::TempDir tmp("rollsense-live-cli");
+    write_one_trial_dataset(tmp.path() / "ds");
+    EventHub hub;
+    auto taken = HttpServer::start("127.0.0.1", 0, live_site("a", "b"), &hub);
+    REQUIRE(taken.ok());
+    const auto busy = rollsense::testing::run_rollsense("view " + (tmp.path() / "ds").string() + " --port " +
+                                                        std::to_string((*taken)->port()) + " --for 1");
+    INFO(busy.output);
+    CHECK(busy.status == 5);
+    CHECK_THAT(busy.output, Catch::Contains("choose another with --port N") && !Catch::Contains("--live"));
+    const auto bad = rollsense::testing::run_rollsense("view " + (tmp.path() / "ds").string() + " --bind nohost --for 1");
+    INFO(bad.output);
+    CHECK(bad.status == 2);
+    CHECK_THAT(bad.output, Catch::Contains("--bind: 'nohost' is not an IPv4 or IPv6 address") &&
+                               !Catch::Contains("other machines"));
+}
+
 TEST_CASE("rollsense view refuses what is not a dataset, naming it", "[live][cli]") {
     const auto r = rollsense::testing::run_rollsense("view /nonexistent-dataset --port 0 --for 1");
     CHECK(r.status == 3);

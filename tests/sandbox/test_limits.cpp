@@ -44,6 +44,8 @@ TEST_CASE("any error value thrown in a wait_until condition is reported clearly"
         INFO(v << " -> " << r.text);
         REQUIRE(r.exited);
         CHECK_THAT(r.text, Catch::StartsWith("script error") && Catch::Contains("wait_until condition failed"));
+        // Review finding 15: where the script called rs.wait_until (line 2), not only the condition's line.
+        CHECK_THAT(r.text, Catch::Contains("(the condition of rs.wait_until at ") && Catch::EndsWith(".lua:2)"));
         CHECK(kt::fs::exists(dir / "out" / "run-info.csv"));
     }
     kt::TempDir dir;

@@ -28,9 +28,9 @@ const char* kHelp =
     "\n"
     "Talks Dynamixel Protocol 2.0 (X series) on a serial port or on the pty printed by rollsense-dxl-emu.\n"
     "  --device PATH    serial port, e.g. /dev/ttyUSB0 (U2D2) or /tmp/etroll-bus (emulator --link)\n"
-    "  --baud N         bus rate (default 57600, the factory setting)\n"
+    "  --baud N         bus rate, an X-series rate like --new-baud (default 57600, the factory setting)\n"
     "  --all-bauds      scan at every X-series rate (9600 ... 4.5M): finds servos at unknown rates\n"
-    "  --ids A-B        id range to scan (default 0-252)\n"
+    "  --ids A-B        id range to scan, A <= B (default 0-252)\n"
     "  --timeout-ms N   reply timeout per id while scanning (default 10)\n"
     "set-id and set-baud write EEPROM: they turn that servo's torque off first.\n"
     "Exit codes: 0 ok (scan: at least one servo found), 4 no answer / bus failure, 2 bad command line.";
@@ -50,6 +50,15 @@ int parse_int(const std::string& text, const char* option, long lo, long hi) {
         throw UsageError(std::string(option) + ": '" + text + "' is not a number in " + std::to_string(lo) + "-" +
                          std::to_string(hi));
     }
+}
+
+// A bus rate: one the X-series control table knows (baud_from_index), the list from there.
+std::uint32_t parse_rate(const std::string& text, const char* option) {
+    const auto rate = static_cast<std::uint32_t>(parse_int(text, option, 1, 4500000));
+    if (dxl::index_from_baud(rate)) return rate;
+    std::string rates;
+    for (std::uint8_t i = 0; auto r = dxl::baud_from_index(i); ++i) rates += (i ? ", " : "") + std::to_string(*r);
+    throw UsageError(std::string(option) + ": " + text + " is not an X-series rate (" + rates + ")");
 }
 
 Result<dxl::Bus> open_bus(const Common& c, std::chrono::microseconds timeout) {
@@ -76,7 +85,10 @@ int scan(const Common& c, const Args& args) {
             first = last = parse_int(ids, "--ids", 0, dxl::kMaxId);
         } else {
             first = parse_int(ids.substr(0, dash), "--ids", 0, dxl::kMaxId);
-            last = parse_int(ids.substr(dash + 1), "--ids", first, dxl::kMaxId);
+            last = parse_int(ids.substr(dash + 1), "--ids", 0, dxl::kMaxId);
+            if (last < first)
+                throw UsageError("--ids " + ids + ": the range is reversed (FIRST-LAST, e.g. " + std::to_string(last) +
+                                 "-" + std::to_string(first) + ")");
         }
     }
     const auto timeout_ms = args.option("--timeout-ms").empty() ? 10 : parse_int(args.option("--timeout-ms"), "--timeout-ms", 1, 1000);
@@ -168,12 +180,15 @@ int run_dxl(const std::vector<std::string>& raw) {
     Args args(raw);
     args.reject_unknown({"--device", "--baud", "--all-bauds", "--ids", "--timeout-ms", "--id", "--new-id", "--new-baud"});
     const auto pos = args.positionals({"--device", "--baud", "--ids", "--timeout-ms", "--id", "--new-id", "--new-baud"});
-    if (pos.size() != 1) throw UsageError("expected one action: scan, info, reboot, set-id or set-baud");
+    const std::string actions = "scan, info, reboot, set-id, set-baud";
+    if (pos.size() != 1) throw UsageError("expected one action (" + actions + ")");
+    const std::string& action = pos[0];
+    if ((", " + actions + ",").find(", " + action + ",") == std::string::npos)
+        throw UsageError("unknown action '" + action + "' (" + actions + ")");
     Common c;
     c.device = args.option("--device");
     if (c.device.empty()) throw UsageError("--device is required (e.g. /dev/ttyUSB0, or the emulator's pty)");
-    if (auto b = args.option("--baud"); !b.empty()) c.baud = static_cast<std::uint32_t>(parse_int(b, "--baud", 9600, 4500000));
-    const std::string& action = pos[0];
+    if (auto b = args.option("--baud"); !b.empty()) c.baud = parse_rate(b, "--baud");
     if (action == "scan") return scan(c, args);
     auto id_text = args.option("--id");
     if (id_text.empty()) throw UsageError(action + " needs --id N");
@@ -196,12 +211,10 @@ int run_dxl(const std::vector<std::string>& raw) {
     if (action == "set-baud") {
         const auto n = args.option("--new-baud");
         if (n.empty()) throw UsageError("set-baud needs --new-baud RATE");
-        const auto index = dxl::index_from_baud(static_cast<std::uint32_t>(parse_int(n, "--new-baud", 9600, 4500000)));
-        if (!index) throw UsageError("--new-baud: X-series rates are 9600, 57600, 115200, 1000000, 2000000, 3000000, 4000000, 4500000");
-        return write_eeprom(c, id, dxl::addr::baud_rate, *index,
+        return write_eeprom(c, id, dxl::addr::baud_rate, *dxl::index_from_baud(parse_rate(n, "--new-baud")),
                             "baud rate is now " + n + " (talk to it with --baud " + n + ")");
     }
-    throw UsageError("unknown action '" + action + "' (scan, info, reboot, set-id, set-baud)");
+    return kExitUsage;  // not reached: the action was checked above
 }
 
 const Registration reg{{"dxl", "scan and set up a Dynamixel servo bus (or the emulator's pty)", kHelp, &run_dxl}};

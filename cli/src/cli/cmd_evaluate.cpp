@@ -104,6 +104,12 @@ learn::InputOptions input_options_from_args(const Args& args) {
     return in;
 }
 
+// A classifier that cannot be set up: a bad parameter (--set, a list entry's
+// KEY=VALUE) is the command line's (2); a missing or broken plugin is configuration (3).
+int classifier_setup_exit(ErrorCode code) {
+    return code == ErrorCode::invalid_argument ? kExitUsage : exit_code_for(code, kExitConfig);
+}
+
 // The learning pipeline for evaluate and report, with the command's exit codes:
 // a wrong INPUT or plugin is a configuration error, a failed evaluation a failure.
 int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
@@ -139,6 +145,7 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
         &failed);
     if (!result) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, result.error().describe().c_str());
+        if (failed == learn::PipelineStage::classifiers) return classifier_setup_exit(result.error().code);
         return exit_code_for(result.error().code,
                              failed == learn::PipelineStage::evaluation ? kExitFailure : kExitConfig);
     }
@@ -161,7 +168,7 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
     auto prepared = learn::prepare_classifiers(registry, specs);
     if (!prepared) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, prepared.error().describe().c_str());
-        return exit_code_for(prepared.error().code, kExitConfig);
+        return classifier_setup_exit(prepared.error().code);
     }
     auto loaded = learn::load_feature_rows(s.input, feature_settings_from_args(args));
     if (!loaded) {

@@ -88,6 +88,16 @@ Result<ModelHeader> read_model_header(const fs::path& model) {
     if (!fs::exists(model, ec))
         return Error{ErrorCode::not_found, model.string() + ": no such model file (write one with 'rollsense train ... "
                                                             "-o MODEL' or a stock run's rs.analyse)"};
+    if (fs::is_directory(model, ec)) {
+        const bool stock = fs::exists(model / "model.rsm", ec);
+        return Error{ErrorCode::invalid_argument,
+                     model.string() + " is a folder, not a model file" +
+                         (stock ? "; did you mean " + (model / "model.rsm").string() + "?"
+                                : " (MODEL is the file 'rollsense train -o' or a stock run wrote, e.g. DIR/model.rsm)")};
+    }
+    if (fs::is_regular_file(model, ec) && fs::file_size(model, ec) == 0 && !ec)
+        return Error{ErrorCode::parse_error, model.string() + ": the model file is empty (an interrupted write?); "
+                                                              "train it again with 'rollsense train ... -o MODEL'"};
     std::ifstream in(model, std::ios::binary);
     if (!in) return Error{ErrorCode::io_error, model.string() + ": cannot be opened for reading (check permissions)"};
     ModelHeader h;

@@ -14,6 +14,7 @@
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/shard.hpp"
 #include "runtime/session/session.hpp"
 
@@ -105,6 +106,7 @@ std::optional<live::LiveOptions> live_options_of(const std::vector<std::string>&
     }
     if (auto bind = args.option("--live-bind"); !bind.empty()) {
         if (!wanted) throw UsageError("--live-bind needs --live (it says where the live view listens)");
+        if (auto s = live::HttpServer::check_address(bind); !s.ok()) throw UsageError("--live-bind: " + s.message());
         o.address = bind;
         if (bind != "127.0.0.1" && bind != "::1")
             log_warning("rollsense", "--live-bind " + bind + ": the live view can be watched from other machines "
@@ -158,6 +160,9 @@ int run(const std::vector<std::string>& argv) {
         deciding.emplace_back("--plugin-path", p);
     }
     o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.seed, sets);
+    // A --resume whose options differ from the recording's is the command line's error (2), before anything opens.
+    if (o.resume && std::filesystem::exists(o.out_dir / kRunConfigFile))
+        if (auto s = check_resume_config(o.out_dir, o.run_config); !s.ok()) throw UsageError(s.message());
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.sandbox.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));
@@ -205,7 +210,8 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
     if (!summary.status.ok()) {
         log_error("rollsense", summary.status.error().describe());
-        if (summary.cancelled && summary.trials_saved + summary.trials_skipped > 0)
+        // However it stopped (Ctrl-C, a script error, a device), the saved trials stay: the way on.
+        if (summary.trials_saved + summary.trials_skipped > 0)
             std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     }
     return exit_code_for(summary.status.code());

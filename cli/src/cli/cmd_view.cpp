@@ -43,6 +43,7 @@ int run(const std::vector<std::string>& argv) {
     const double seconds = args.number_option("--for", 0, 0, 1e9);
     std::string address = "127.0.0.1";
     if (auto bind = args.option("--bind"); !bind.empty()) {
+        if (auto s = live::HttpServer::check_address(bind); !s.ok()) throw UsageError("--bind: " + s.message());
         address = bind;
         if (bind != "127.0.0.1" && bind != "::1")
             log_warning("rollsense", "--bind " + bind + ": the dataset can be browsed from other machines");
@@ -57,7 +58,8 @@ int run(const std::vector<std::string>& argv) {
     sigaddset(&stop, SIGINT);
     sigaddset(&stop, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &stop, nullptr);  // before the server's threads start: they inherit it
-    auto server = live::HttpServer::start(address, port, live::dataset_site(shared), nullptr);
+    auto server = live::HttpServer::start(address, port, live::dataset_site(shared), nullptr,
+                                          "--port N, or --port 0 for any free one");
     if (!server) throw StatusError(Status{server.error()});
     std::fprintf(stderr, "viewing %s (%zu trials): %s  (Ctrl-C ends)\n", pos[0].c_str(), shared->trials().size(),
                  (*server)->url().c_str());

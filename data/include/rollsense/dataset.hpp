@@ -176,6 +176,7 @@ private:
     std::deque<Batch> queue_;
     bool busy_ = false, stopping_ = false;
     Status error_;
+    mutable bool error_told_ = false;  // error_locked() returned error_ to a caller
     std::vector<std::string> lost_;  // trials of batches that failed or were skipped after a failure
     std::size_t durable_ = 0;        // trials in the manifest on disk
 };

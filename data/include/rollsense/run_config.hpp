@@ -37,5 +37,9 @@ Result<RunConfig> read_run_config(const std::filesystem::path& dir);
 // The differences between the configuration a dataset was recorded with and
 // this run's, one "KEY: recorded X, this run Y" per key (empty: the same).
 std::vector<std::string> run_config_differences(const RunConfig& recorded, const RunConfig& now);
+// Whether a run configured as `now` may continue the dataset in `dir`: refused
+// (invalid_argument), naming every difference, when the dataset's run-config.csv
+// records another configuration; not compared when either side has none.
+Status check_resume_config(const std::filesystem::path& dir, const RunConfig& now);
 
 }  // namespace rollsense

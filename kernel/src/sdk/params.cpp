@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 namespace rollsense {
 
@@ -22,15 +23,7 @@ namespace {
 
 ParamSpec make_spec(std::string name, ParamType type, std::optional<ParamValue> def, std::string doc,
                     std::optional<double> min, std::optional<double> max, std::string unit) {
-    ParamSpec s;
-    s.name = std::move(name);
-    s.type = type;
-    s.default_value = std::move(def);
-    s.doc = std::move(doc);
-    s.min = min;
-    s.max = max;
-    s.unit = std::move(unit);
-    return s;
+    return {std::move(name), type, std::move(doc), std::move(def), min, max, std::move(unit), {}};
 }
 
 template <class T>
@@ -39,18 +32,10 @@ std::optional<ParamValue> wrap(const std::optional<T>& v) {
     return ParamValue{*v};
 }
 
-std::string value_type_name(const ParamValue& v) {
-    switch (v.index()) {
-        case 0: return "boolean";
-        case 1: return "integer";
-        case 2: return "number";
-        case 3: return "string";
-        case 4: return "list of integers";
-        case 5: return "list of numbers";
-        case 6: return "list of strings";
-    }
-    return "?";
-}
+// ParamValue's alternatives come in ParamType's order.
+static_assert(std::is_same_v<std::variant_alternative_t<std::size_t(ParamType::string_list), ParamValue>,
+                             std::vector<std::string>>);
+std::string value_type_name(const ParamValue& v) { return std::string(to_string(static_cast<ParamType>(v.index()))); }
 
 // Convert a raw value to the declared type where the conversion loses nothing
 // (an integer where a number is expected, an integer list for a number list,

@@ -40,8 +40,15 @@ bool send_all(int fd, std::string_view data) {
 
 }  // namespace
 
+Status HttpServer::check_address(const std::string& address) {
+    in6_addr any{};  // large enough for either family
+    if (::inet_pton(AF_INET, address.c_str(), &any) == 1 || ::inet_pton(AF_INET6, address.c_str(), &any) == 1) return {};
+    return {ErrorCode::invalid_argument, "'" + address + "' is not an IPv4 or IPv6 address (e.g. 127.0.0.1 or ::1)"};
+}
+
 Result<std::unique_ptr<HttpServer>> HttpServer::start(const std::string& address, std::uint16_t port, Site site,
-                                                      EventHub* hub) {
+                                                      EventHub* hub, std::string_view port_option) {
+    if (auto s = check_address(address); !s.ok()) return Error{s.code(), "live view: " + s.message()};
     sockaddr_storage ss{};
     socklen_t len = 0;
     int family = AF_INET;
@@ -54,9 +61,6 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const std::string& address
         a6->sin6_port = htons(port);
         len = sizeof(sockaddr_in6);
         family = AF_INET6;
-    } else {
-        return Error{ErrorCode::invalid_argument, "live view: '" + address +
-                                                      "' is not an IPv4 or IPv6 address (e.g. 127.0.0.1 or ::1)"};
     }
     const int fd = ::socket(family, SOCK_STREAM | SOCK_CLOEXEC, 0);
     if (fd < 0) return Error{ErrorCode::io_error, std::string("live view: socket: ") + std::strerror(errno)};
@@ -66,7 +70,7 @@ Result<std::unique_ptr<HttpServer>> HttpServer::start(const std::string& address
         const std::string why = std::strerror(errno);
         ::close(fd);
         return Error{ErrorCode::io_error, "live view: cannot listen on " + address + " port " + std::to_string(port) +
-                                              ": " + why + " (choose another with --live=PORT)"};
+                                              ": " + why + " (choose another with " + std::string(port_option) + ")"};
     }
     ::getsockname(fd, reinterpret_cast<sockaddr*>(&ss), &len);
     const std::uint16_t bound = ntohs(family == AF_INET ? reinterpret_cast<sockaddr_in*>(&ss)->sin_port

@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include "live/event_hub.hpp"
@@ -29,8 +30,11 @@ using Site = std::function<Reply(const Request&)>;
 class HttpServer {
 public:
     // Listen on address:port (port 0: any free one). The hub may be null (no /events).
+    // port_option: the caller's option for another port, named when this one is taken.
     static Result<std::unique_ptr<HttpServer>> start(const std::string& address, std::uint16_t port, Site site,
-                                                      EventHub* hub);
+                                                      EventHub* hub, std::string_view port_option = "--live=PORT");
+    // Whether `address` is a numeric IPv4 or IPv6 address start() can listen on (checked before warning about it).
+    static Status check_address(const std::string& address);
     ~HttpServer();  // stops accepting, ends every client and waits for their threads
 
     std::uint16_t port() const { return port_; }

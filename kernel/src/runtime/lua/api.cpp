@@ -174,7 +174,10 @@ bool l_wait_until(lua_State* L) {
     t.hold_predicate(ref);
     Wait w;
     w.kind = Wait::Kind::predicate;
-    w.predicate = lua_predicate(s.sandbox(), ref);
+    luaL_where(L, 1);  // "file:line: " of the call
+    const std::string where = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    w.predicate = lua_predicate(s.sandbox(), ref, where.substr(0, where.find_last_not_of(": ") + 1));
     w.until = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
     w.what = "a condition";
     t.request(std::move(w));

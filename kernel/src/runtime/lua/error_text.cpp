@@ -31,14 +31,11 @@ std::string error_text(lua_State* L, int index) {
     lua_pop(L, 1);
     lua_pushcfunction(L, &tostring_protected);
     lua_pushvalue(L, index);
-    if (lua_pcall(L, 1, 1, 0) == LUA_OK && lua_type(L, -1) == LUA_TSTRING) {
-        std::string text = lua_tostring(L, -1);
-        lua_pop(L, 1);
-        return text;
-    }
-    std::string why = error_text_raw(L, -1);
+    const bool ok = lua_pcall(L, 1, 1, 0) == LUA_OK && lua_type(L, -1) == LUA_TSTRING;
+    const std::string text = error_text_raw(L, -1);  // the text, or why __tostring failed
     lua_pop(L, 1);
-    return std::string("(error object is a ") + lua_typename(L, type) + " value whose __tostring failed: " + why + ")";
+    if (ok) return text;
+    return std::string("(error object is a ") + lua_typename(L, type) + " value whose __tostring failed: " + text + ")";
 }
 
 }  // namespace rollsense::runtime

@@ -88,8 +88,12 @@ TaskStep LuaTask::resume(WaitOutcome last) {
         return TaskStep::waiting(std::exchange(pending_, Wait{}));
     }
     if (status == LUA_OK) return TaskStep::done();
-    // The text task_message_handler made (a memory error comes as it is).
-    const std::string trace = error_text_raw(thread_, -1);
+    // The text task_message_handler made; a memory error comes bare (no handler
+    // runs for it, its place is unknown): which cap, and the way out.
+    const std::string trace = error_text_raw(thread_, -1) +
+                              (status == LUA_ERRMEM ? ": the script reached " + sandbox_.memory_cap() +
+                                                          "; raise it with --memory-limit-mb MB"
+                                                    : "");
     // The code a binding raised (a limit violation, a hardware fault) stays the
     // script's error code.
     ErrorCode code = session_of(main)->take_raised_code();
@@ -98,8 +102,8 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     return TaskStep::done(Status(code, trace));
 }
 
-std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref) {
-    return [&sandbox, ref]() -> Result<bool> {
+std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::string called_at) {
+    return [&sandbox, ref, called_at = std::move(called_at)]() -> Result<bool> {
         lua_State* main = sandbox.state();
         lua_rawgeti(main, LUA_REGISTRYINDEX, ref);
         sandbox.start_slice();
@@ -110,7 +114,7 @@ std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref) {
             std::string msg = error_text(main, -1);
             lua_pop(main, 1);
             return Status(sandbox.cancelled() ? ErrorCode::cancelled : ErrorCode::script_error,
-                          "wait_until condition failed: " + msg);
+                          "wait_until condition failed: " + msg + " (the condition of rs.wait_until at " + called_at + ")");
         }
         const bool met = lua_toboolean(main, -1);
         lua_pop(main, 1);

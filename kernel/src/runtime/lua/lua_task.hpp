@@ -47,7 +47,8 @@ private:
 };
 
 // A wait_until condition as a C++ predicate: calls the Lua function `ref` on
-// the sandbox's main state; a Lua error is the predicate's error.
-std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref);
+// the sandbox's main state; a Lua error is the predicate's error, naming
+// `called_at` ("file:line", where the script called rs.wait_until).
+std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::string called_at);
 
 }  // namespace rollsense::runtime

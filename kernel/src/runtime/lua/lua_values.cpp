@@ -1,5 +1,6 @@
 #include "runtime/lua/lua_values.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <vector>
 
@@ -130,14 +131,10 @@ std::string trim(std::string s) {
 ParamValue parse_cli_value(const std::string& text) {
     if (text.size() >= 2 && text.front() == '{' && text.back() == '}') {
         std::vector<ParamValue> items;
-        std::string inner = text.substr(1, text.size() - 2), cur;
-        for (char c : inner + ",") {
-            if (c == ',') {
-                if (!trim(cur).empty()) items.push_back(parse_scalar(trim(cur)));
-                cur.clear();
-            } else {
-                cur.push_back(c);
-            }
+        const std::string inner = text.substr(1, text.size() - 2);
+        for (std::size_t start = 0, comma = 0; start <= inner.size(); start = comma + 1) {
+            comma = std::min(inner.find(',', start), inner.size());
+            if (auto item = trim(inner.substr(start, comma - start)); !item.empty()) items.push_back(parse_scalar(item));
         }
         bool ints = true, nums = true;
         for (const auto& v : items) {

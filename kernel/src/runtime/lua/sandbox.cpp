@@ -89,8 +89,8 @@ void copy_library(lua_State* L, int env, const char* name, const char* const* ke
 }  // namespace
 
 Sandbox::Sandbox(SandboxLimits limits, std::vector<std::filesystem::path> module_path)
-    : limits_(limits), module_path_(std::move(module_path)) {
-    L_ = lua_newstate(&Sandbox::allocate, this);
+    : limits_(limits), module_path_(std::move(module_path)), heap_{limits.memory_bytes} {
+    L_ = lua_newstate(&LuaHeap::allocate, &heap_);
     if (!L_) throw StatusError(Status(ErrorCode::io_error, "cannot create a Lua state (out of memory)"));
     *static_cast<Sandbox**>(lua_getextraspace(L_)) = this;  // inherited by every coroutine
     luaL_openlibs(L_);
@@ -104,19 +104,18 @@ Sandbox::~Sandbox() {
 
 Sandbox& Sandbox::of(lua_State* L) { return **static_cast<Sandbox**>(lua_getextraspace(L)); }
 
-void* Sandbox::allocate(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
-    auto* self = static_cast<Sandbox*>(ud);
+void* LuaHeap::allocate(void* heap, void* ptr, std::size_t osize, std::size_t nsize) {
+    auto* self = static_cast<LuaHeap*>(heap);
     const std::size_t old = ptr ? osize : 0;
     if (nsize == 0) {
         std::free(ptr);
-        self->memory_used_ -= old;
+        self->used -= old;
         return nullptr;
     }
-    // Past the cap: fail the allocation; Lua raises "not enough memory" in the
-    // script. The cap does not apply while closing the state (ud untouched).
-    if (nsize > old && self->memory_used_ + (nsize - old) > self->limits_.memory_bytes) return nullptr;
+    // Past the cap: fail the allocation (freeing, as when the state closes, always works).
+    if (nsize > old && self->used + (nsize - old) > self->cap) return nullptr;
     void* p = std::realloc(ptr, nsize);
-    if (p) self->memory_used_ = self->memory_used_ - old + nsize;
+    if (p) self->used = self->used - old + nsize;
     return p;
 }
 
@@ -170,22 +169,18 @@ Status Sandbox::load_file(const std::filesystem::path& file) {
     std::error_code ec;
     if (!std::filesystem::exists(file, ec))
         return {ErrorCode::not_found, file.string() + ": no such script"};
-    // "t": text only; a precompiled chunk is refused.
-    if (luaL_loadfilex(L_, file.c_str(), "t") != LUA_OK) {
-        std::string msg = lua_tostring(L_, -1);
-        lua_pop(L_, 1);
-        return {ErrorCode::parse_error, msg};
-    }
-    lua_rawgeti(L_, LUA_REGISTRYINDEX, env_ref_);
-    lua_setupvalue(L_, -2, 1);
-    return {};
+    return bind_loaded(luaL_loadfilex(L_, file.c_str(), "t"));  // "t": text only; a precompiled chunk is refused
 }
 
 Status Sandbox::load_string(const std::string& code, const std::string& chunk_name) {
-    if (luaL_loadbufferx(L_, code.data(), code.size(), ("=" + chunk_name).c_str(), "t") != LUA_OK) {
-        std::string msg = lua_tostring(L_, -1);
+    return bind_loaded(luaL_loadbufferx(L_, code.data(), code.size(), ("=" + chunk_name).c_str(), "t"));
+}
+
+Status Sandbox::bind_loaded(int rc) {
+    if (rc != LUA_OK) {
+        Status s{ErrorCode::parse_error, lua_tostring(L_, -1)};
         lua_pop(L_, 1);
-        return {ErrorCode::parse_error, msg};
+        return s;
     }
     lua_rawgeti(L_, LUA_REGISTRYINDEX, env_ref_);
     lua_setupvalue(L_, -2, 1);
@@ -307,12 +302,16 @@ void Sandbox::start_slice() {
     in_lua_since_ms_.store(static_cast<std::int64_t>(slice_start_) + 1);  // never 0
 }
 
+std::string Sandbox::memory_cap() const {
+    return "its memory cap (" + std::to_string(limits_.memory_bytes >> 20) + " MB, " +
+           std::to_string(heap_.used >> 20) + " MB in use)";
+}
+
 Status Sandbox::charge(std::size_t bytes, const std::string& what) const {
-    if (memory_used_ + bytes <= limits_.memory_bytes) return {};
-    return {ErrorCode::limit_violation,
-            what + ": a copy of " + std::to_string(bytes) + " bytes would take the script past its memory cap (" +
-                std::to_string(limits_.memory_bytes >> 20) + " MB, " + std::to_string(memory_used_ >> 20) +
-                " MB in use); write less at a time, or raise --memory-limit-mb"};
+    if (heap_.used + bytes <= limits_.memory_bytes) return {};
+    return {ErrorCode::limit_violation, what + ": a copy of " + std::to_string(bytes) +
+                                            " bytes would take the script past " + memory_cap() +
+                                            "; write less at a time, or raise --memory-limit-mb"};
 }
 
 int Sandbox::lua_setmetatable(lua_State* L) {

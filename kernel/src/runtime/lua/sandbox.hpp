@@ -37,6 +37,14 @@ struct SandboxLimits {
     double cancel_grace_ms = 5000;          // after a cancel, the watchdog's patience (cancel_watchdog.hpp)
 };
 
+// A Lua heap with a cap, for the sandbox and for profiles: an allocation past
+// it fails, and Lua raises "not enough memory" in the script.
+struct LuaHeap {
+    std::size_t cap = 0;
+    std::size_t used = 0;
+    static void* allocate(void* heap, void* ptr, std::size_t osize, std::size_t nsize);
+};
+
 // The sandbox is the run's Cancellation while a script runs: its instruction
 // hook must see the flag at once, and sets it itself (slice limit, Ctrl-C).
 class Sandbox final : public Cancellation {
@@ -75,7 +83,8 @@ public:
     // refused when the Lua heap plus the copy would pass the cap.
     Status charge(std::size_t bytes, const std::string& what) const;
 
-    std::size_t memory_used() const { return memory_used_; }
+    std::size_t memory_used() const { return heap_.used; }
+    std::string memory_cap() const;  // "its memory cap (256 MB, 255 MB in use)"
     const SandboxLimits& limits() const { return limits_; }
 
     static Sandbox& of(lua_State* L);  // the sandbox owning a Lua thread
@@ -88,7 +97,8 @@ public:
     }
 
 private:
-    static void* allocate(void* ud, void* ptr, std::size_t osize, std::size_t nsize);
+    // The chunk luaL_load* pushed (rc its result) gets the sandbox's environment; a load error is popped, returned.
+    Status bind_loaded(int rc);
     static void hook(lua_State* L, lua_Debug* ar);
     static int lua_require(lua_State* L);
     static int lua_load_text(lua_State* L);
@@ -101,7 +111,7 @@ private:
     SandboxLimits limits_;
     std::vector<std::filesystem::path> module_path_;
     lua_State* L_ = nullptr;
-    std::size_t memory_used_ = 0;
+    LuaHeap heap_;
     int env_ref_ = LUA_NOREF;
     int api_ref_ = LUA_NOREF;
     int loaded_ref_ = LUA_NOREF;

@@ -20,17 +20,24 @@ std::string ComponentHandle::describe() const {
     return "device '" + instance_ + "' (plugin '" + plugin_name() + "')";
 }
 
+// Not logged as an error here: the failing Status goes back to the caller,
+// and the run prints it once, at the top, with the script's place.
 void ComponentHandle::enter_error(const Status& why) {
     state_ = LifecycleState::error;
     last_error_ = why;
-    log_error(instance_, why.message() + " [now in error state; recover() or reconfigure]");
+    log_debug(instance_, why.message() + " [now in error state; recover() or reconfigure]");
 }
 
+// In the error state the fault is named by its kind only: its text was
+// reported when it happened, and repeating it in every refusal prints it twice.
 Status ComponentHandle::require_active(const char* what) const {
     if (state_ == LifecycleState::active) return {};
     return {ErrorCode::state_error, describe() + ": " + what + " needs the active state, it is " +
                                         std::string(to_string(state_)) +
-                                        (state_ == LifecycleState::error ? " (" + last_error_.message() + ")" : "")};
+                                        (state_ == LifecycleState::error
+                                             ? " (since its " + std::string(to_string(last_error_.code())) +
+                                                   "; recover() or reconfigure it)"
+                                             : "")};
 }
 
 Status ComponentHandle::transition(const char* what, LifecycleState from, LifecycleState to,

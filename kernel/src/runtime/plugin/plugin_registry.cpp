@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+
+#include <elf.h>
 
 #include <boost/dll/runtime_symbol_info.hpp>
 
@@ -13,6 +16,28 @@ namespace {
 std::string article(PluginKind kind) {
     const std::string name(to_string(kind));
     return (kind == PluginKind::actuator ? "an " : "a ") + name;
+}
+
+// dlopen maps a library's segments straight from the file: in a truncated one
+// they reach past its end, and the first touch of them is a SIGBUS no error
+// return reports. So first: does the file hold every byte its ELF64 headers
+// point at? Empty if so, or if it is no ELF64 file (dlopen says why then).
+std::string truncation(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
+    const auto size = static_cast<std::uintmax_t>(in.tellg());
+    Elf64_Ehdr h{};
+    Elf64_Phdr p{};
+    if (!in.seekg(0).read(reinterpret_cast<char*>(&h), sizeof h) || std::memcmp(h.e_ident, ELFMAG, SELFMAG) != 0 ||
+        h.e_ident[EI_CLASS] != ELFCLASS64)
+        return {};
+    std::uintmax_t need = std::max(h.e_phoff + std::uintmax_t{h.e_phnum} * h.e_phentsize,
+                                   h.e_shoff + std::uintmax_t{h.e_shnum} * h.e_shentsize);
+    in.seekg(static_cast<std::streamoff>(h.e_phoff));
+    for (int i = 0; i < h.e_phnum && h.e_phentsize == sizeof p && in.read(reinterpret_cast<char*>(&p), sizeof p); ++i)
+        if (p.p_type == PT_LOAD) need = std::max<std::uintmax_t>(need, p.p_offset + p.p_filesz);
+    if (size >= need) return {};
+    return "truncated: " + std::to_string(size) + " bytes, its headers need " + std::to_string(need) +
+           " (a damaged or half-copied file: rebuild or reinstall it, or remove it from the search path)";
 }
 }  // namespace
 
@@ -49,6 +74,7 @@ std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::
 PluginCandidate PluginRegistry::load_file(const fs::path& file) {
     PluginCandidate c;
     c.path = file;
+    if (c.failure = truncation(file); !c.failure.empty()) return c;
     boost::dll::shared_library lib;
     try {
         // The throwing overload: the error_code one loses dlerror()'s text.

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <memory>
+#include <type_traits>
 
 #include "runtime/lua/lua_values.hpp"
 #include "runtime/lua/sandbox.hpp"
@@ -70,28 +70,13 @@ struct LuaCloser {
 // fails: "not enough memory") and a wall-time budget checked from an
 // instruction hook, for the whole evaluation of the profile and its includes.
 struct ProfileBudget {
-    std::size_t cap = 0;
-    std::size_t used = 0;
+    LuaHeap heap;
     double max_ms = 0;
     std::string file;  // the profile named on the command line (includes run inside it)
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 };
 
 ProfileBudget* budget_of(lua_State* L) { return *static_cast<ProfileBudget**>(lua_getextraspace(L)); }
-
-void* budget_alloc(void* ud, void* ptr, std::size_t osize, std::size_t nsize) {
-    auto* b = static_cast<ProfileBudget*>(ud);
-    const std::size_t old = ptr ? osize : 0;
-    if (nsize == 0) {
-        std::free(ptr);
-        b->used -= old;
-        return nullptr;
-    }
-    if (nsize > old && b->used + (nsize - old) > b->cap) return nullptr;
-    void* p = std::realloc(ptr, nsize);
-    if (p) b->used = b->used - old + nsize;
-    return p;
-}
 
 void budget_hook(lua_State* L, lua_Debug*) {
     auto* b = budget_of(L);
@@ -163,31 +148,23 @@ public:
         used_.insert(key);
         return lua_getfield(L_, index_, key.c_str());
     }
-    Result<std::optional<double>> number(const std::string& key) {
-        int t = push(key);
-        std::optional<double> out;
-        if (t == LUA_TNUMBER) out = lua_tonumber(L_, -1);
-        lua_pop(L_, 1);
-        if (t != LUA_TNUMBER && t != LUA_TNIL)
-            return Error{ErrorCode::invalid_argument, at(key) + " must be a number"};
-        return out;
-    }
+    Result<std::optional<double>> number(const std::string& key) { return field<double>(key, LUA_TNUMBER, "a number"); }
     Result<std::optional<std::string>> string(const std::string& key) {
-        int t = push(key);
-        std::optional<std::string> out;
-        if (t == LUA_TSTRING) out = lua_tostring(L_, -1);
-        lua_pop(L_, 1);
-        if (t != LUA_TSTRING && t != LUA_TNIL)
-            return Error{ErrorCode::invalid_argument, at(key) + " must be a string"};
-        return out;
+        return field<std::string>(key, LUA_TSTRING, "a string");
     }
-    Result<std::optional<bool>> boolean(const std::string& key) {
-        int t = push(key);
-        std::optional<bool> out;
-        if (t == LUA_TBOOLEAN) out = lua_toboolean(L_, -1) != 0;
+    Result<std::optional<bool>> boolean(const std::string& key) { return field<bool>(key, LUA_TBOOLEAN, "true or false"); }
+    // A field of Lua type `type` (empty when absent), else an error saying what it must be.
+    template <class T>
+    Result<std::optional<T>> field(const std::string& key, int type, const char* must_be) {
+        const int t = push(key);
+        std::optional<T> out;
+        if (t == type) {
+            if constexpr (std::is_same_v<T, double>) out = lua_tonumber(L_, -1);
+            else if constexpr (std::is_same_v<T, bool>) out = lua_toboolean(L_, -1) != 0;
+            else out = lua_tostring(L_, -1);
+        }
         lua_pop(L_, 1);
-        if (t != LUA_TBOOLEAN && t != LUA_TNIL)
-            return Error{ErrorCode::invalid_argument, at(key) + " must be true or false"};
+        if (t != type && t != LUA_TNIL) return Error{ErrorCode::invalid_argument, at(key) + " must be " + must_be};
         return out;
     }
     Result<std::vector<std::string>> string_list(const std::string& key) {
@@ -203,14 +180,9 @@ public:
     // Iterate over string keys of a sub-table: fn(name, reader-of-value-at-top).
     template <class F>
     Status each(const std::string& key, F&& fn) {
-        int t = push(key);
-        if (t == LUA_TNIL) {
+        if (const int t = push(key); t != LUA_TTABLE) {
             lua_pop(L_, 1);
-            return {};
-        }
-        if (t != LUA_TTABLE) {
-            lua_pop(L_, 1);
-            return {ErrorCode::invalid_argument, at(key) + " must be a table"};
+            return t == LUA_TNIL ? Status{} : Status{ErrorCode::invalid_argument, at(key) + " must be a table"};
         }
         int table = lua_gettop(L_);
         // Sorted keys: deterministic device order regardless of Lua's hashing.
@@ -297,7 +269,7 @@ Status read_gpio(lua_State* L, const std::string& where, bool is_trigger, std::o
     return {};
 }
 
-Status read_profile_table(lua_State* L, const Settings& settings, Profile& p) {
+Status read_profile_table(lua_State* L, Profile& p) {
     TableReader r(L, -1, p.path.filename().string());
     std::optional<std::string> s;
     std::optional<double> d;
@@ -385,7 +357,6 @@ Status read_profile_table(lua_State* L, const Settings& settings, Profile& p) {
         return {ErrorCode::invalid_argument, r.at("safety") + " must be a table"};
     }
     lua_pop(L, 1);
-    (void)settings;
     return r.reject_unknown();
 }
 
@@ -395,14 +366,9 @@ Status apply_dotted_settings(lua_State* L, const Settings& settings, const std::
         if (!is_profile_path(key)) continue;
         settings.mark_used(key);
         std::vector<std::string> parts;
-        std::string cur;
-        for (char c : key + ".") {
-            if (c == '.') {
-                parts.push_back(cur);
-                cur.clear();
-            } else {
-                cur.push_back(c);
-            }
+        for (std::size_t start = 0, dot = 0; start <= key.size(); start = dot + 1) {
+            dot = std::min(key.find('.', start), key.size());
+            parts.push_back(key.substr(start, dot - start));
         }
         int top = lua_gettop(L);
         lua_pushvalue(L, -1);
@@ -440,10 +406,10 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
                                                (known.empty() ? "" : " (profiles here: " + known + ")")};
     }
     ProfileBudget budget;
-    budget.cap = limits.memory_bytes;
+    budget.heap.cap = limits.memory_bytes;
     budget.max_ms = limits.max_slice_ms;
     budget.file = p.path.string();
-    std::unique_ptr<lua_State, LuaCloser> holder(lua_newstate(&budget_alloc, &budget));
+    std::unique_ptr<lua_State, LuaCloser> holder(lua_newstate(&LuaHeap::allocate, &budget.heap));
     if (!holder) return Error{ErrorCode::io_error, "cannot create a Lua state for profile " + p.path.string()};
     lua_State* L = holder.get();
     *static_cast<ProfileBudget**>(lua_getextraspace(L)) = &budget;
@@ -467,7 +433,7 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
         return Error{ErrorCode::parse_error, "profile " + text};
     }
     if (auto s = apply_dotted_settings(L, settings, p.path.string()); !s.ok()) return s.error();
-    if (auto s = read_profile_table(L, settings, p); !s.ok()) return s.error();
+    if (auto s = read_profile_table(L, p); !s.ok()) return s.error();
     return p;
 }
 

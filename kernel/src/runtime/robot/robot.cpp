@@ -302,14 +302,14 @@ void Robot::safe_state(double time) noexcept {
 void Robot::shutdown(double time) noexcept {
     const auto devices = lock_devices();
     safe_state(time);
-    for (auto& a : actuators_) {
-        if (a.handle->state() == LifecycleState::active) (void)a.handle->deactivate();
-        if (a.handle->state() == LifecycleState::inactive) (void)a.handle->cleanup();
-    }
-    for (auto& s : sensors_) {
-        if (s.handle->state() == LifecycleState::active) (void)s.handle->deactivate();
-        if (s.handle->state() == LifecycleState::inactive) (void)s.handle->cleanup();
-    }
+    // Nobody else sees these statuses: logged here (a device logs no fault itself).
+    const auto stop = [](ComponentHandle& h) {
+        Status s = h.state() == LifecycleState::active ? h.deactivate() : Status{};
+        if (s.ok() && h.state() == LifecycleState::inactive) s = h.cleanup();
+        if (!s.ok()) log_error("kernel", "shutdown: " + s.message());
+    };
+    for (auto& a : actuators_) stop(*a.handle);
+    for (auto& s : sensors_) stop(*s.handle);
 }
 
 void Robot::set_commands_locked(bool locked, std::string reason) {

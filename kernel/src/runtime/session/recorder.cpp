@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "rollsense/log.hpp"
 #include "rollsense/random.hpp"
 #include "rollsense/trial_id.hpp"
 #include "runtime/robot/robot.hpp"
@@ -91,7 +92,7 @@ Status Recorder::sample_tick(double now) {
 void Recorder::abort_recording() {
     if (!recording_) return;
     recording_ = false;
-    (void)robot_.stop_recording();
+    if (auto s = robot_.stop_recording(); !s.ok()) log_error("kernel", "stopping the recording: " + s.message());
 }
 
 Status Recorder::save_trial() {
@@ -108,7 +109,8 @@ Status Recorder::save_trial() {
 }
 
 Status Recorder::end_trial() {
-    if (recording_) (void)stop();
+    if (recording_)
+        if (auto s = stop(); !s.ok()) log_error("kernel", "ending the trial: " + s.message());  // nobody else sees it
     trial_open_ = false;
     return robot_.end_trial();
 }

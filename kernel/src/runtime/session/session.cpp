@@ -162,10 +162,13 @@ RunSummary Session::run() {
     if (robot_) robot_->shutdown(clock_ ? clock_->now() : 0.0);
     if (recorder_ && recorder_->has_dataset()) {
         if (auto f = recorder_->flush(); !f.ok() && s.ok()) s = f;
+        else if (!f.ok() && s.code() != ErrorCode::io_error) log_error("dataset", f.error().describe());  // not in s
         write_run_info(s, wall_start);
     }
+    // Only a script that ran to its end has read every setting it reads (a failed
+    // or interrupted one may not have reached them); declared ones were checked at once.
     for (const auto& key : options_.settings.unused())
-        if (prepared_ && !options_.settings.namespace_declared(key))  // declared ones were checked at once
+        if (s.ok() && !options_.settings.namespace_declared(key))
             log_warning("kernel", "--set " + key + " was not used by the profile or the script (a typo?)");
 
     summary.status = s;
@@ -274,7 +277,11 @@ void Session::run_cleanup() {
     Status cleanup = scheduler_->run(TaskRole::cleanup, now() + options_.cleanup_limit_s,
                                      "cleanup exceeded its time budget (" + std::to_string(options_.cleanup_limit_s) +
                                          " s)");
-    if (!cleanup.ok()) log_error("kernel", "cleanup: " + cleanup.message());
+    // After a failure the hand is safe already (above); a cleanup step a device
+    // refuses because that failure left it in the error state is no news.
+    if (!cleanup.ok())
+        log(main_failure.ok() || cleanup.code() != ErrorCode::state_error ? LogLevel::error : LogLevel::info, "kernel",
+            "cleanup stopped: " + cleanup.message());
     (void)scheduler_->take_failure();
     scheduler_->fail(main_failure.ok() ? cleanup : main_failure);
 }
