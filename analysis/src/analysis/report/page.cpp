@@ -174,12 +174,14 @@ Result<std::string> render_report(const ReportInputs& in) {
                           {"seed", std::to_string(di.seed)},
                           {"recording software version", di.software_version},
                           {"sample rate (Hz)", fixed(di.sample_rate_hz, 2)}};
+    // Inside a run, that run is the recording: a run-info.csv on disk is then
+    // an earlier, interrupted run's (this one resumed it) and is replaced at the end.
     std::string prov;
-    if (!run_info->empty())
-        prov = "<h3>Recording (run-info.csv)</h3>\n" + key_value_table(*run_info);
-    else if (!in.recording_run.empty())
+    if (!in.recording_run.empty())
         prov = "<h3>Recording (this run, still in progress: its run-info.csv is written when it ends)</h3>\n" +
                key_value_table(in.recording_run);
+    else if (!run_info->empty())
+        prov = "<h3>Recording (run-info.csv)</h3>\n" + key_value_table(*run_info);
     else
         prov = "<h3>Recording (run-info.csv)</h3>\n<p class=\"note\">No run-info.csv: the dataset was not recorded "
                "by rollsense run.</p>\n";
