@@ -74,6 +74,11 @@ TEST_CASE("a joint without kernel limits, or limits wider than the device, is re
                                            ""));
     REQUIRE_FALSE(missing.ok());
     CHECK_THAT(missing.error().message, Catch::Contains("joint 'pusher' of device 'hand' has no limits"));
+    // A misspelt entry is named beside the joint it was meant for.
+    auto typo = robot_from(dir, replace(kt::kTestProfile, "pusher = { min = -60", "pushr = { min = -60"));
+    REQUIRE_FALSE(typo.ok());
+    CHECK_THAT(typo.error().message,
+               Catch::Contains("joint 'pusher' of device 'hand' has no limits") && Catch::Contains("pushr"));
     auto wide = robot_from(dir, replace(kt::kTestProfile, "finger = { min = -50", "finger = { min = -120"));
     REQUIRE_FALSE(wide.ok());
     CHECK_THAT(wide.error().message, Catch::Contains("exceed what the device allows"));

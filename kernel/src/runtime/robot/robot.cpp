@@ -116,11 +116,14 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                                                   slot.handle->instance() + ")"};
             auto lim = std::find_if(profile.joints.begin(), profile.joints.end(),
                                     [&](const JointLimit& l) { return l.name == info.name; });
+            std::string listed;  // a misspelt entry shows beside the joint it meant
+            for (const auto& l : profile.joints) listed += (listed.empty() ? "" : ", ") + l.name;
             if (lim == profile.joints.end())
                 return Error{ErrorCode::invalid_argument,
                              file + ": joint '" + info.name + "' of device '" + slot.handle->instance() +
                                  "' has no limits; add joints." + info.name +
-                                 " = { min = ..., max = ... } (the kernel enforces them)"};
+                                 " = { min = ..., max = ... } (the kernel enforces them; the profile's joints: " +
+                                 (listed.empty() ? "none" : listed) + ")"};
             if (lim->min < info.min_position || lim->max > info.max_position)
                 return Error{ErrorCode::invalid_argument,
                              file + ": joints." + info.name + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
