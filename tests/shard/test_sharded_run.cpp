@@ -90,7 +90,7 @@ TEST_CASE("a shard's folder is resumed as that shard only, and a whole run's wit
     REQUIRE(rt::record(shard, small + "--shard 0/2").status == 0);
     REQUIRE(rt::record(whole, small).status == 0);
     const auto manifest = rt::read_file(shard / "manifest.csv");
-    for (const std::string& as : {"", "--shard 1/2 ", "--shard 0/3 "}) {
+    for (const std::string as : {"", "--shard 1/2 ", "--shard 0/3 "}) {
         INFO(as);
         auto r = rt::record(shard, small + as + "--resume");
         INFO(r.output);
