@@ -84,6 +84,14 @@ TEST_CASE("other failures keep their codes") {
     CHECK(run_rollsense("run").status == 2);
     CHECK(run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --bogus").status == 2);
     CHECK(run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile nosuch --out " + shell_quoted(dir / "a")).status == 3);
+    // A profile that parses but says something wrong is a bad input file too (review finding 19: it exited 1).
+    write_file(dir / "bad-limits.lua", "return { clock = 'virtual', sample_rate_hz = 31.1, control_rate_hz = 100,\n"
+                                       "  devices = { hand = include('mock-hand') }, joints = { winchh = { min = 0, max = 1 } } }\n");
+    const auto bad_profile = run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile " +
+                                           shell_quoted(dir / "bad-limits.lua") + " --out " + shell_quoted(dir / "d"));
+    INFO(bad_profile.output);
+    CHECK(bad_profile.status == 3);
+    CHECK(bad_profile.output.find("has no limits") != std::string::npos);
     write_file(dir / "fail.lua", "error('the script gives up')\n");
     CHECK(run_rollsense("run " + shell_quoted(dir / "fail.lua") + " --profile mock --out " + shell_quoted(dir / "b")).status == 1);
     write_file(dir / "slow.lua", "local rs = require 'rollsense'\nrs.wait(60000)\n");

@@ -85,15 +85,17 @@ Session& Session::of(lua_State* L) { return *session_of(L); }
 
 Status Session::prepare() {
     if (prepared_) return {};
+    // A profile whose content is wrong is a bad input file (exit 3), like one that does not parse.
+    auto bad_profile = [](const Status& s) { return s.code() == ErrorCode::invalid_argument ? Status{ErrorCode::parse_error, s.message()} : s; };
     auto profile = load_profile(options_.profile, options_.share_dir, options_.settings, options_.sandbox);
-    if (!profile) return profile.status();
+    if (!profile) return bad_profile(profile.status());
     profile_ = std::move(*profile);
 
     auto search = options_.plugin_path;
     search.insert(search.end(), profile_.plugin_path.begin(), profile_.plugin_path.end());
     registry_ = std::make_unique<PluginRegistry>(PluginRegistry::default_search_path(search));
     auto robot = Robot::create(profile_, *registry_, options_.share_dir);
-    if (!robot) return robot.status();
+    if (!robot) return bad_profile(robot.status());
     robot_ = std::move(*robot);
 
     clock_ = make_clock(profile_.virtual_clock);
