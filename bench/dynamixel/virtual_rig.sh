@@ -2,7 +2,7 @@
 # The stock experiment on etroll-virtual (1,350 trials: the whole Dynamixel
 # stack on emulated servos, virtual clock, with the stock analysis) recorded by
 # this build and by a reference build (the previous main), side by side in one
-# script; prints both wall times and their ratio, and checks that the datasets
+# script; prints both wall times and their ratio, and whether the datasets
 # (trials/, manifest.csv, dataset-info.csv, features.csv) are byte-identical.
 #   bench/dynamixel/virtual_rig.sh REFERENCE-BUILD-DIR [build-dir] [repeats] [seed]
 # e.g. bench/dynamixel/virtual_rig.sh /work/prev-main/build build 1
@@ -32,10 +32,14 @@ run() {  # BUILD OUT [extra args]: prints the wall time in s
 for i in $(seq 1 "$repeats"); do
   ref=$(run "$reference" "$out/ref$i" --set devices.hand.params.timeout_ms=1000)
   new=$(run "$build" "$out/new$i")
-  same_dataset "$out/ref$i" "$out/new$i" || { echo "run $i: the dataset differs from the reference" >&2; exit 1; }
+  # A reference from before a deliberate change of the recorded data (the
+  # simulation's calibration) records different data: then it times similar,
+  # not identical, work, and says so.
+  same="dataset byte-identical"
+  same_dataset "$out/ref$i" "$out/new$i" || same="datasets DIFFER (a reference from before a deliberate data change)"
   trials=$(($(wc -l <"$out/new$i/manifest.csv") - 1))
-  awk -v r="$ref" -v n="$new" -v t="$trials" -v i="$i" -v cores="$(nproc)" 'BEGIN {
-    printf "run %d: %d trials on etroll-virtual: reference %.1f s, this build %.1f s = %.2fx the reference'"'"'s time (%.1fx faster) on %d cores; dataset byte-identical\n",
-      i, t, r, n, n / r, r / n, cores }'
+  awk -v r="$ref" -v n="$new" -v t="$trials" -v i="$i" -v cores="$(nproc)" -v same="$same" 'BEGIN {
+    printf "run %d: %d trials on etroll-virtual: reference %.1f s, this build %.1f s = %.2fx the reference'"'"'s time (%.1fx faster) on %d cores; %s\n",
+      i, t, r, n, n / r, r / n, cores, same }'
   rm -rf "$out"/ref$i "$out"/new$i
 done
