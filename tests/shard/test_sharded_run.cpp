@@ -193,3 +193,29 @@ TEST_CASE("a script sees its shard, and records only the trials of its share", "
         CHECK(r.output.find("rs.analyse: this run is shard 1/2") != std::string::npos);
     }
 }
+
+// Independent re-review N1: run-info.csv, which names the shard, was written only
+// at the end, so a shard killed outright (a Slurm time limit, the OOM killer)
+// could be resumed as the whole run or as another shard, with exit 0.
+TEST_CASE("a shard killed outright is still resumed as that shard only", "[shard][resume]") {
+    rt::TempDir dir;
+    const auto shard = dir / "shard";
+    const std::string big = "--set runs=1000 --set analyse=false ";
+    // Killed as soon as its first trials are on disk, long before its end.
+    const auto killed = rt::run_command(
+        std::string(ROLLSENSE_BIN_DIR) + "/rollsense run " + rt::paper_experiment() + " --seed 11 -q --no-progress " +
+        big + "--shard 0/2 --out " + shard.string() + " & pid=$!; for i in $(seq 1 500); do [ -s " +
+        (shard / "manifest.csv").string() + " ] && [ -d " + (shard / "trials").string() +
+        " ] && break; sleep 0.02; done; kill -9 $pid; wait $pid; true");
+    INFO(killed.output);
+    const auto info = rt::read_file(shard / "run-info.csv");
+    CHECK(info.find("\nshard,0/2\n") != std::string::npos);
+    CHECK(info.find("has not ended") != std::string::npos);
+    for (const std::string as : {"", "--shard 1/2 "}) {
+        INFO(as);
+        auto r = rt::record(shard, big + as + "--resume --time-limit 1");
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output.find("it holds shard 0/2 of a run") != std::string::npos);
+    }
+}

@@ -68,7 +68,8 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
     if (fs::exists(dir / kShardPlanFile, ec) && (!recorded || recorded->empty()))
         recorded = "K/N";  // a shard's plan without its record: which shard is not known
     const std::string asked = shard ? shard->text() : std::string();
-    if (!recorded || *recorded == asked) return {};
+    // A shard's plan without the run-info.csv that names the shard: any --shard is taken at its word.
+    if (!recorded || *recorded == asked || (*recorded == "K/N" && !asked.empty())) return {};
     const std::string merge = "; to analyse the whole run, join its shards with 'rollsense merge OUT SHARD...' "
                               "and resume OUT (docs/cluster.md)";
     if (recorded->empty())
@@ -78,7 +79,9 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
     const std::string holds = "cannot resume " + dir.string() + (asked.empty() ? "" : " as --shard " + asked) +
                               ": it holds shard " + *recorded + " of a run (" +
                               (dir / (*recorded == "K/N" ? kShardPlanFile : "run-info.csv")).string() + ")";
-    if (*recorded == "K/N") return {ErrorCode::invalid_argument, holds + "; resume it with its --shard K/N" + merge};
+    if (*recorded == "K/N")
+        return {ErrorCode::invalid_argument, holds + ", whose run-info.csv (naming which shard) is missing; resume it with "
+                                                     "the --shard it was recorded with" + merge};
     return {ErrorCode::invalid_argument, holds + "; resume it with --shard " + *recorded + merge};
 }
 }  // namespace

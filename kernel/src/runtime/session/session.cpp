@@ -137,7 +137,10 @@ Status Session::open_dataset() {
     info.run_config = options_.run_config;
     std::size_t every = options_.commit_every;
     if (every == 0) every = profile_.virtual_clock ? 64 : 1;
-    return recorder_->open_dataset(options_.out_dir, info, options_.resume, every);
+    auto s = recorder_->open_dataset(options_.out_dir, info, options_.resume, every);
+    // A shard killed before its end must still read as that shard to --resume and merge.
+    if (s.ok() && options_.shard) write_run_info(Status(ErrorCode::cancelled, "has not ended (running, or killed)"), wall_start_);
+    return s;
 }
 
 RunSummary Session::run() {
@@ -216,8 +219,7 @@ void Session::last_resort(const std::string& why, double wall_start) {
 
 void Session::write_run_info(const Status& s, double wall_start) {
     std::vector<std::pair<std::string, std::string>> fields{
-        {"date_utc", utc_now()},
-        {"command_line", options_.command_line},
+        {"date_utc", utc_now()}, {"command_line", options_.command_line},
         {"rollsense_version", ROLLSENSE_VERSION},
         {"profile", profile_.path.string()},
         {"script", options_.script.string()},
