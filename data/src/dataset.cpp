@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "rollsense/csv.hpp"
+#include "rollsense/dataset_files.hpp"
 #include "rollsense/log.hpp"
 #include "rollsense/trial_id.hpp"
 
@@ -489,10 +490,8 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     if (!lock) return lock.error();
     w->lock_ = std::move(lock).value();
     const bool exists = fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec);
-    if (mode == DatasetOpenMode::create && exists)
-        return Error{ErrorCode::invalid_argument, dir.string() +
-                                                      " already holds a dataset; continue it with --resume, or "
-                                                      "choose another folder with --out"};
+    if (mode == DatasetOpenMode::create)
+        if (auto s = check_no_dataset_in(dir); !s.ok()) return s.error();
     fs::create_directories(dir / "trials", ec);
     if (ec) return Error{ErrorCode::io_error, (dir / "trials").string() + ": cannot create: " + ec.message()};
     remove_stale_temporaries(dir);

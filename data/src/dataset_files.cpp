@@ -13,6 +13,13 @@ bool is_dataset_file(std::string_view name) {
     return false;
 }
 
+Status check_no_dataset_in(const fs::path& dir) {
+    std::error_code ec;
+    if (!fs::exists(dir / "manifest.csv", ec) && !fs::exists(dir / "dataset-info.csv", ec)) return {};
+    return {ErrorCode::invalid_argument,
+            dir.string() + " already holds a dataset; continue it with --resume, or choose another folder with --out"};
+}
+
 Status check_not_dataset_file(const fs::path& target, const fs::path& dataset_dir, std::string_view what) {
     std::error_code ec;
     const fs::path dir = fs::weakly_canonical(dataset_dir, ec);

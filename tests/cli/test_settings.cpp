@@ -247,6 +247,16 @@ TEST_CASE("--out holding files that are not a dataset is refused, with or withou
     INFO(again.output);
     CHECK(again.status == 0);
     CHECK(again.output.find("0 trials saved, 6 already on disk") != std::string::npos);
+
+    // A dataset without --resume: a bad command line (2), said before anything starts
+    // (independent re-review N3: exit 1, after a "failed: 0 trials saved" line).
+    const auto manifest = read_file(dir / "empty" / "manifest.csv");
+    const auto fresh = run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(dir / "empty"));
+    INFO(fresh.output);
+    CHECK(fresh.status == 2);
+    CHECK(fresh.output.find("already holds a dataset; continue it with --resume") != std::string::npos);
+    CHECK(fresh.output.find("failed:") == std::string::npos);
+    CHECK(read_file(dir / "empty" / "manifest.csv") == manifest);
 }
 
 TEST_CASE("an interrupted run prints the exact command that resumes it, --set options quoted") {

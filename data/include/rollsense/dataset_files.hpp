@@ -17,6 +17,10 @@ namespace rollsense {
 // shard-plan.csv, shards.csv and the folder trials.
 bool is_dataset_file(std::string_view name);
 
+// Refuses to begin a new dataset in `dir` when it already holds one (its
+// manifest.csv or dataset-info.csv): the way on is --resume or another folder.
+Status check_no_dataset_in(const std::filesystem::path& dir);
+
 // Refuses `target` (a file about to be written) when it is one of the files of
 // the dataset in `dataset_dir` or lies under its trials/ (after resolving '.',
 // '..' and symbolic links). The error names the target, the dataset and the way
