@@ -1,6 +1,10 @@
 #include "rollsense/shard_merge.hpp"
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
 
 #include <fstream>
 #include <map>
@@ -330,6 +334,24 @@ Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards
     return write_file_atomic(dir / "manifest.csv", manifest);
 }
 
+// The staging folders of earlier merges into `out` whose process is gone
+// (Ctrl-C, kill -9, a node lost): removed, so that none stays for good. A
+// merge still running keeps its own.
+void remove_dead_stagings(const fs::path& out, const std::string& prefix) {
+    std::error_code ec;
+    const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+    for (const auto& e : fs::directory_iterator(parent, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const char* first = name.data() + prefix.size();
+        const char* last = name.data() + name.size();
+        pid_t pid = 0;
+        const auto [end, err] = std::from_chars(first, last, pid);
+        if (err == std::errc() && end == last && pid > 0 && ::kill(pid, 0) != 0 && errno == ESRCH)
+            fs::remove_all(e.path(), ec);
+    }
+}
+
 // `e` with every mention of the sibling folder `staged` turned into `out`.
 Error as_written_to(Error e, const fs::path& staged, const fs::path& out) {
     const std::string from = staged.string(), to = out.string();
@@ -378,12 +400,13 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
 
     // Written beside OUT and renamed to it at the end: nothing is left behind
     // on failure but the missing parents of OUT this created, removed too.
-    const fs::path staged =
-        out.parent_path() / ("." + out.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    const std::string staging_prefix = "." + out.filename().string() + ".tmp-";
+    const fs::path staged = out.parent_path() / (staging_prefix + std::to_string(::getpid()));
     fs::path created = staged;  // the outermost folder this merge creates
     std::error_code ec;
     for (auto p = out.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
     const MergeSummary summary{shards.size(), placed->size(), shards.front().value("command_line")};
+    remove_dead_stagings(out, staging_prefix);
     fs::remove_all(staged, ec);  // a killed merge's, whose process id this one reuses
     Status st = write_merged(staged, shards, *placed, manifests);
     if (st && finish) st = finish(staged, summary);

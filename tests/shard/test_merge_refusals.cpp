@@ -3,6 +3,9 @@
 // nothing.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <sstream>
 
@@ -235,4 +238,24 @@ TEST_CASE("a merge that fails on a damaged trial leaves nothing behind, and the 
     CHECK(fs::exists(out / "features.csv"));
     CHECK(fs::exists(out / "run-info.csv"));
     for (const auto& e : fs::directory_iterator(dir.path())) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+}
+
+// Independent re-review N2: a merge stopped by Ctrl-C or kill -9 left its staging
+// folder for good (only a later merge with the same process id cleared it).
+TEST_CASE("a merge clears the staging folders of killed merges into the same folder", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    const pid_t gone = ::fork();  // a process id that has surely ended
+    REQUIRE(gone >= 0);
+    if (gone == 0) ::_exit(0);
+    ::waitpid(gone, nullptr, 0);
+    const auto stale = dir / (".merged.tmp-" + std::to_string(gone));
+    const auto alive = dir / (".merged.tmp-" + std::to_string(::getpid()));  // still running: kept
+    rt::write_file(stale / "trials" / "C1-v10-r001.csv", "half copied\n");
+    rt::write_file(alive / "trials" / "C1-v10-r001.csv", "being copied\n");
+    auto r = merge(dir / "merged", {s0, s1, s2});
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_FALSE(fs::exists(stale));
+    CHECK(fs::exists(alive));
 }
