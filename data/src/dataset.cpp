@@ -362,6 +362,9 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
                              ": the last row has no line end: the recording was interrupted while listing a trial. "
                              "Continue the run with --resume (it drops that line and records the trial again)"};
     }
+    if (!fs::exists(dir / "manifest.csv", ec))
+        return Error{ErrorCode::not_found, dir.string() + " holds no dataset (no manifest.csv): give a folder that "
+                                                          "'rollsense run ... --out DIR' recorded (docs/dataset-format.md)"};
     auto manifest = read_manifest(dir / "manifest.csv");
     if (!manifest) return manifest.error();
     r.trials_ = std::move(*manifest);

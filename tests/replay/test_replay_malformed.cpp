@@ -42,7 +42,8 @@ TEST_CASE("malformed datasets: missing files", "[replay][malformed]") {
     }
     SECTION("no manifest") {
         std::filesystem::create_directories(dir / "ds/trials");
-        CHECK(replay_error(dir).find((dir / "ds/manifest.csv").string() + ": no such file") != std::string::npos);
+        CHECK(replay_error(dir).find((dir / "ds").string() + " holds no dataset (no manifest.csv): give a folder that "
+                                     "'rollsense run ... --out DIR' recorded") != std::string::npos);
     }
     SECTION("the manifest points at a missing trial file") {
         rt::write_file(dir / "ds/manifest.csv", std::string(kManifest) + "t2,trials/t2.csv,C1,10,2,3\n");
