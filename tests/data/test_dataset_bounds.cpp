@@ -74,3 +74,18 @@ TEST_CASE("a manifest naming a file outside its folder is refused", "[data][boun
                                           Catch::Contains("not a path inside the dataset folder"));
     }
 }
+
+// Found by fuzz_manifest: a hand-made dataset (no dataset-info.csv) whose first
+// trial's file column names the trials folder. Reading the folder threw from
+// inside the CSV reader's stream buffer, out of DatasetReader::open, and ended
+// the program.
+TEST_CASE("a manifest whose file names a folder is refused with an error, not a thrown exception", "[data][bounds]") {
+    TempDir dir;
+    write(dir / "ds" / "manifest.csv", manifest("trials", "207"));
+    std::filesystem::create_directories(dir / "ds" / "trials");
+    Result<DatasetReader> r = Error{ErrorCode::ok, ""};
+    REQUIRE_NOTHROW(r = DatasetReader::open(dir / "ds"));
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().message.find((dir / "ds" / "trials").string() + ": is a folder, not a CSV file") !=
+          std::string::npos);
+}

@@ -49,6 +49,7 @@ public:
 private:
     Reader() = default;
     Result<bool> read_record(std::vector<std::string>& fields);
+    Result<bool> parse_record(std::vector<std::string>& fields);
 
     std::filesystem::path path_;
     std::shared_ptr<std::ifstream> in_;
