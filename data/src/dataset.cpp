@@ -492,7 +492,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     auto lock = DirectoryLock::acquire(dir);
     if (!lock) return lock.error();
     w->lock_ = std::move(lock).value();
-    const bool exists = fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec);
+    const bool exists = holds_dataset(dir);
     if (mode == DatasetOpenMode::create)
         if (auto s = check_no_dataset_in(dir); !s.ok()) return s.error();
     fs::create_directories(dir / "trials", ec);

@@ -13,9 +13,13 @@ bool is_dataset_file(std::string_view name) {
     return false;
 }
 
-Status check_no_dataset_in(const fs::path& dir) {
+bool holds_dataset(const fs::path& dir) {
     std::error_code ec;
-    if (!fs::exists(dir / "manifest.csv", ec) && !fs::exists(dir / "dataset-info.csv", ec)) return {};
+    return fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec);
+}
+
+Status check_no_dataset_in(const fs::path& dir) {
+    if (!holds_dataset(dir)) return {};
     return {ErrorCode::invalid_argument,
             dir.string() + " already holds a dataset; continue it with --resume, or choose another folder with --out"};
 }

@@ -89,7 +89,7 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
 Status check_out_folder(const fs::path& dir, bool resume, const std::optional<Shard>& shard) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return {};  // new, empty, or not a folder (the writer says)
-    if (fs::exists(dir / "manifest.csv", ec) || fs::exists(dir / "dataset-info.csv", ec))
+    if (holds_dataset(dir))
         return resume ? check_resumed_shard(dir, shard) : check_no_dataset_in(dir);
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir, ec)) names.push_back(entry.path().filename().string());

@@ -17,8 +17,11 @@ namespace rollsense {
 // shard-plan.csv, shards.csv and the folder trials.
 bool is_dataset_file(std::string_view name);
 
-// Refuses to begin a new dataset in `dir` when it already holds one (its
-// manifest.csv or dataset-info.csv): the way on is --resume or another folder.
+// Whether `dir` holds a dataset: its manifest.csv or its dataset-info.csv.
+bool holds_dataset(const std::filesystem::path& dir);
+
+// Refuses to begin a new dataset in `dir` when it already holds one: the way
+// on is --resume or another folder.
 Status check_no_dataset_in(const std::filesystem::path& dir);
 
 // Refuses `target` (a file about to be written) when it is one of the files of
