@@ -24,6 +24,7 @@
 #include <thread>
 
 #include "etroll_bus.hpp"
+#include "fork_first.hpp"
 #include "rollsense/hal/dynamixel/bus.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
@@ -91,8 +92,6 @@ struct Outcome {
 };
 
 Outcome clamp_then(const char* name, lua_CFunction fault) {
-    auto emu = etroll_bus::start();
-
     const testing::TempDir tmp("rollsense-crash");
     std::ofstream(tmp.path() / "script.lua") << "local rs = require 'rollsense'\n"
                                                 "local etroll = require 'etroll'\n"
@@ -105,28 +104,28 @@ Outcome clamp_then(const char* name, lua_CFunction fault) {
     runtime::SessionOptions o;
     o.script = tmp.path() / "script.lua";
     o.profile = "etroll-emulated";
-    REQUIRE(o.settings.add("dxl_device=" + emu->device()).ok());
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = tmp.path() / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
     o.progress = false;
 
-    const pid_t pid = ::fork();
-    REQUIRE(pid >= 0);
-    if (pid == 0) {
+    // Forked before the emulator's serving thread exists (fork_first.hpp says why).
+    testing::ForkedFirst child([&](const std::string& device) {
         ::alarm(60);
+        if (!o.settings.add("dxl_device=" + device).ok()) return 4;
         runtime::Session session(o);
-        if (!session.prepare().ok()) ::_exit(3);
+        if (!session.prepare().ok()) return 3;
         lua_State* L = session.sandbox().state();
         lua_rawgeti(L, LUA_REGISTRYINDEX, session.sandbox().env_ref());
         lua_pushcfunction(L, fault);
         lua_setfield(L, -2, name);
         lua_pop(L, 1);
         const auto summary = session.run();
-        ::_exit(summary.status.ok() ? 0 : 1);
-    }
-    int status = 0;
-    REQUIRE(::waitpid(pid, &status, 0) == pid);
+        return summary.status.ok() ? 0 : 1;
+    });
+    auto emu = etroll_bus::start();
+    child.hand_over(emu->device());
+    const int status = child.wait();
     Outcome out;
     if (WIFEXITED(status)) out.exit_code = WEXITSTATUS(status);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the serving thread takes the last bytes

@@ -10,6 +10,7 @@
 
 #include "rollsense/testing/conformance.hpp"
 #include "dynamixel_actuator.hpp"
+#include "fork_first.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
 #include "rollsense/hal/dynamixel/virtual_link.hpp"
@@ -536,17 +537,17 @@ TEST_CASE("rest turns every Bus Watchdog off until control resumes: the next wri
 }
 
 TEST_CASE("a crash (SIGABRT) with the hand active sends torque-off to every servo from the signal handler") {
-    auto emu = start_emulator(false);
-    const pid_t pid = ::fork();
-    REQUIRE(pid >= 0);
-    if (pid == 0) {  // the crashing "rollsense": activate (torque on everywhere), then abort
+    // The crashing "rollsense": activate (torque on everywhere), then abort. Forked
+    // before the emulator's serving thread exists (fork_first.hpp says why).
+    rollsense::testing::ForkedFirst child([](const std::string& device) {
         std::signal(SIGABRT, SIG_DFL);  // not the test framework's report: a plain crash
         DynamixelActuator a;
-        if (!a.on_configure(validated(etroll_raw(emu->device())), {}).ok() || !a.on_activate().ok()) ::_exit(3);
+        if (!a.on_configure(validated(etroll_raw(device)), {}).ok() || !a.on_activate().ok()) return 3;
         std::abort();
-    }
-    int status = 0;
-    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    });
+    auto emu = start_emulator(false);
+    child.hand_over(emu->device());
+    const int status = child.wait();
     REQUIRE(WIFSIGNALED(status));
     CHECK(WTERMSIG(status) == SIGABRT);  // the signal still takes its course
     // The serving thread takes what the child wrote before it died.
