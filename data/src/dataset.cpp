@@ -229,6 +229,7 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
         if (!*more) break;
         auto r = parse_manifest_row(*reader, f, col);
         if (!r) return r.error();
+        r->manifest_line = reader->line();
         if (!ids.insert(r->info.id).second)
             return Error{ErrorCode::parse_error,
                          reader->where(col[0]) + ": trial id '" + r->info.id + "' appears twice"};
@@ -353,7 +354,8 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
     // A manifest rollsense wrote (beside its dataset-info.csv) whose last line
     // lacks its line end was cut by a crash while a batch was being listed: that
     // trial may be incomplete, so the dataset is refused until --resume drops it.
-    if (fs::exists(dir / "dataset-info.csv", ec) && fs::exists(dir / "manifest.csv", ec)) {
+    const bool recorded = fs::exists(dir / "dataset-info.csv", ec);
+    if (recorded && fs::exists(dir / "manifest.csv", ec)) {
         auto torn = find_torn_line(dir / "manifest.csv");
         if (!torn) return torn.error();
         if (*torn)
@@ -368,7 +370,18 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
     auto manifest = read_manifest(dir / "manifest.csv");
     if (!manifest) return manifest.error();
     r.trials_ = std::move(*manifest);
-    if (fs::exists(dir / "dataset-info.csv", ec)) {
+    // The readers' check, and resume's (it opens the dataset too): the way out works for both.
+    for (const auto& t : r.trials_)
+        if (!fs::exists(dir / t.file, ec)) {
+            const std::string line = std::to_string(t.manifest_line);
+            return Error{ErrorCode::not_found,
+                         (dir / "manifest.csv").string() + ":" + line + ": trial '" + t.info.id + "' is listed, but " +
+                             (dir / t.file).string() + " is missing. Put the file back, or delete line " + line +
+                             " of manifest.csv to use the dataset without that trial" +
+                             (recorded ? " ('rollsense run SCRIPT --out " + dir.string() + " --resume' then records "
+                                         "it again)" : "")};
+        }
+    if (recorded) {
         auto info = read_info(dir / "dataset-info.csv");
         if (!info) return info.error();
         r.info_ = std::move(*info);
@@ -385,10 +398,6 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
             (h.rfind("ch", 0) == 0 ? r.info_.channels : r.info_.joints).push_back(h);
         }
     }
-    for (const auto& t : r.trials_)
-        if (!fs::exists(dir / t.file, ec))
-            return Error{ErrorCode::not_found, (dir / "manifest.csv").string() + ": trial '" + t.info.id +
-                                                   "' points at missing file '" + t.file + "'"};
     return r;
 }
 

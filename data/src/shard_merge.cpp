@@ -291,6 +291,21 @@ std::string shards_csv(const std::vector<ShardDataset>& shards) {
     return out;
 }
 
+// OUT with its symbolic links followed: a link's folder takes the merge and the
+// link stays (the final rename could only replace the link itself, and a link
+// cannot be replaced by a folder). A link to nothing names the folder to create.
+Result<fs::path> followed(fs::path out) {
+    for (int links = 0; links < 40; ++links) {  // as many as the kernel follows in a path (ELOOP)
+        std::error_code ec;
+        if (!fs::is_symlink(out, ec)) return out;
+        const fs::path target = fs::read_symlink(out, ec);
+        if (ec) return Error{ErrorCode::io_error, out.string() + ": cannot read the link: " + ec.message()};
+        out = target.is_absolute() ? target : out.parent_path() / target;
+        if (!out.has_filename()) out = out.parent_path();  // a link to "dir/"
+    }
+    return refused(out.string() + ": too many levels of symbolic links: merge into a folder");
+}
+
 Status check_out_folder(const fs::path& out) {
     std::error_code ec;
     if (!fs::exists(out, ec)) return {};
@@ -366,7 +381,9 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
                                   const MergeFinish& finish) {
     if (dirs.empty()) return refused("no shard folders given");
     // "OUT/" names OUT: its sibling is named after the last part that is not empty.
-    const fs::path out = out_given.has_filename() ? out_given : out_given.parent_path();
+    const auto resolved = followed(out_given.has_filename() ? out_given : out_given.parent_path());
+    if (!resolved) return resolved.error();
+    const fs::path& out = *resolved;
     if (auto s = check_out_folder(out); !s) return s.error();
     std::map<fs::path, fs::path> given;  // each folder once (it is locked while read)
     for (const auto& dir : dirs) {
@@ -410,6 +427,12 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
     fs::remove_all(staged, ec);  // a killed merge's, whose process id this one reuses
     Status st = write_merged(staged, shards, *placed, manifests);
     if (st && finish) st = finish(staged, summary);
+    // An empty OUT that the merge replaces keeps its permissions (its owner only
+    // root could keep: the merged folder is the merging user's).
+    if (const auto kept = fs::status(out, ec).permissions(); st && fs::is_directory(out, ec)) {
+        fs::permissions(staged, kept, ec);
+        if (ec) st = {ErrorCode::io_error, out.string() + ": cannot keep its permissions: " + ec.message()};
+    }
     if (st) st = rename_durable(staged, out);
     if (!st) {
         fs::remove_all(created, ec);

@@ -116,7 +116,12 @@ TEST_CASE("bad trial files are reported with file, line and column", "[dataset]"
     CHECK_THAT(load_error(dir), Catch::Contains("fields, the header has 6"));
 
     std::filesystem::remove(file);
-    CHECK_THAT(load_error(dir), Catch::Contains("points at missing file 'trials/T.csv'"));
+    // The manifest's line and a way out (review s8 item 4: "points at missing file" named neither).
+    CHECK_THAT(load_error(dir), Catch::Contains((dir / "manifest.csv").string() + ":2: trial 'T' is listed, but " +
+                                                (dir / "trials/T.csv").string() + " is missing. Put the file back, " +
+                                                "or delete line 2 of manifest.csv to use the dataset without that " +
+                                                "trial ('rollsense run SCRIPT --out " + dir.path().string() +
+                                                " --resume' then records it again)"));
 }
 
 TEST_CASE("the same seed gives byte-identical trial files and manifest", "[dataset][determinism]") {

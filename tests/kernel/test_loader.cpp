@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "kernel_fixture.hpp"
+#include "log_capture.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
 
 using namespace rollsense;
@@ -119,4 +120,32 @@ TEST_CASE("a second plugin with the same name is reported as shadowed", "[loader
     for (const auto& c : reg.scan())
         if (c.path.filename() == "librollsense_copy.so") shadowed = c.failure.find("shadowed") != std::string::npos;
     CHECK(shadowed);
+}
+
+// Review (s8 item 2): a damaged copy earlier in the search path (e.g. a rebuild cut short in a
+// --plugin-path folder) was skipped in silence and the installed plugin of that name ran instead.
+TEST_CASE("a damaged file that would shadow a plugin is named once when its namesake is used", "[loader]") {
+    kt::TempDir dir;
+    const fs::path whole = fs::path(ROLLSENSE_PLUGIN_DIR) / "librollsense_example_bump.so";
+    const fs::path damaged = dir / whole.filename();
+    fs::copy_file(whole, damaged);
+    fs::resize_file(damaged, fs::file_size(whole) / 2);
+    kt::write_file(dir / "librollsense_other.so", "junk, but no namesake of a plugin that is used\n");
+    rollsense::testing::LogCapture log;
+    PluginRegistry reg({dir.path(), ROLLSENSE_PLUGIN_DIR});
+    REQUIRE(reg.scan().size() >= 3);
+    CHECK(log.lines().empty());  // listing (`rollsense plugins`) shows the failure itself
+    REQUIRE(reg.find("example_bump", PluginKind::sensor).ok());
+    REQUIRE(reg.create_sensor("example_bump", "second").ok());
+    INFO(log.all());
+    REQUIRE(log.lines().size() == 1);  // once, however often the plugin is asked for
+    const std::string line = log.lines().front();
+    CHECK_THAT(line, Catch::StartsWith("warning plugins: " + damaged.string() + " is not used: truncated: "));
+    CHECK_THAT(line, Catch::Contains("Plugin 'example_bump' comes from " + whole.string() + " instead"));
+    CHECK_THAT(line, Catch::Contains("rollsense plugins"));
+    // A damaged file later in the search path shadows nothing: no warning.
+    rollsense::testing::LogCapture later;
+    PluginRegistry reversed({ROLLSENSE_PLUGIN_DIR, dir.path()});
+    REQUIRE(reversed.find("example_bump", PluginKind::sensor).ok());
+    CHECK(later.lines().empty());
 }

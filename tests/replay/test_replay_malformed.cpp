@@ -49,7 +49,8 @@ TEST_CASE("malformed datasets: missing files", "[replay][malformed]") {
         rt::write_file(dir / "ds/manifest.csv", std::string(kManifest) + "t2,trials/t2.csv,C1,10,2,3\n");
         rt::write_file(dir / "ds/trials/t1.csv", "time,ch1,ch2,ch3\n0,1,2,3\n0.1,1,2,3\n0.2,1,2,3\n");
         CHECK(replay_error(dir).find((dir / "ds/manifest.csv").string() +
-                                     ": trial 't2' points at missing file 'trials/t2.csv'") != std::string::npos);
+                                     ":3: trial 't2' is listed, but " + (dir / "ds/trials/t2.csv").string() +
+                                     " is missing. Put the file back, or delete line 3 of manifest.csv") != std::string::npos);
     }
     SECTION("an empty dataset parameter") {
         auto params = rt::replay_params("");

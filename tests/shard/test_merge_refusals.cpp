@@ -259,3 +259,55 @@ TEST_CASE("a merge clears the staging folders of killed merges into the same fol
     CHECK_FALSE(fs::exists(stale));
     CHECK(fs::exists(alive));
 }
+
+// Review s8 item 3: an OUT that was a link to an empty folder passed the first check, did all the work
+// and failed at the final rename (exit 5); a merge into an empty folder left it with the default mode.
+TEST_CASE("a merge into a link fills the folder it names, and an empty folder keeps its permissions", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    const auto mode = [](const fs::path& p) { return fs::status(p).permissions() & fs::perms::mask; };
+    const auto group_only = fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::set_gid;
+    SECTION("a link to an empty folder") {
+        fs::create_directories(dir / "scratch/target");
+        fs::permissions(dir / "scratch/target", group_only);
+        fs::create_directory_symlink("scratch/target", dir / "merged");
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        CHECK(fs::is_symlink(dir / "merged"));
+        CHECK(rt::manifest_trials(dir / "scratch/target") == 4);
+        CHECK(mode(dir / "scratch/target") == group_only);
+        for (const auto& e : fs::directory_iterator(dir / "scratch")) CHECK(e.path().filename() == "target");
+    }
+    SECTION("a link to a folder still to be made, given with a trailing '/'") {
+        fs::create_directory_symlink(dir / "new", dir / "merged");
+        auto r = merge(dir.path().string() + "/merged/", {s0, s1, s2});
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        CHECK(fs::is_symlink(dir / "merged"));
+        CHECK(rt::manifest_trials(dir / "new") == 4);
+    }
+    SECTION("a link to a folder that is not empty is refused, naming that folder") {
+        rt::write_file(dir / "full/notes.txt", "mine");
+        fs::create_directory_symlink(dir / "full", dir / "merged");
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        CHECK(r.status == 3);
+        CHECK(r.output.find((dir / "full").string() + " already exists and is not empty") != std::string::npos);
+        CHECK(rt::read_file(dir / "full/notes.txt") == "mine");
+    }
+    SECTION("links in a loop are refused") {
+        fs::create_symlink(dir / "b", dir / "merged");
+        fs::create_symlink(dir / "merged", dir / "b");
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        CHECK(r.status == 3);
+        CHECK(r.output.find("too many levels of symbolic links") != std::string::npos);
+    }
+    SECTION("an empty folder keeps its mode") {
+        fs::create_directories(dir / "merged");
+        fs::permissions(dir / "merged", fs::perms::owner_all);
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        CHECK(mode(dir / "merged") == fs::perms::owner_all);
+    }
+}

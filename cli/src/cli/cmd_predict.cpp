@@ -332,6 +332,8 @@ int run(const std::vector<std::string>& argv) {
     if (pos.size() != 2) throw UsageError("expects MODEL and a TRIAL.csv or DATASET (see rollsense predict --help)");
     const fs::path model = pos[0];
     const auto settings = feature_settings_from_args(args);
+    std::vector<fs::path> extra;
+    for (const auto& p : args.options("--plugin-path")) extra.emplace_back(p);
     auto fail = [](const Error& e, int fallback) {
         std::fprintf(stderr, "rollsense predict: %s\n", e.describe().c_str());
         return exit_code_for(e.code, fallback);
@@ -346,8 +348,6 @@ int run(const std::vector<std::string>& argv) {
         if (!named) return fail(named.error(), kExitConfig);
         plugin = *named;
     }
-    std::vector<fs::path> extra;
-    for (const auto& p : args.options("--plugin-path")) extra.emplace_back(p);
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(extra));
     auto factory = learn::plugin_classifier_factory(registry, plugin);
     if (!factory) {

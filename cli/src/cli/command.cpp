@@ -1,6 +1,8 @@
 #include "cli/command.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "rollsense/csv.hpp"
@@ -19,6 +21,19 @@ bool split_equals(const std::string& arg, std::string_view name, std::string* va
         return true;
     }
     return false;
+}
+
+// Options whose every value names a folder that must exist, checked here, where
+// every command parses them: a mistyped folder would otherwise be searched,
+// found empty, and the run would go on with what the other folders hold.
+constexpr std::string_view kFolderOptions[] = {"--plugin-path"};
+
+void check_folder(std::string_view option, const std::string& value) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(value, ec)) return;
+    const bool exists = std::filesystem::exists(value, ec);
+    throw UsageError(std::string(option) + " " + value + ": " + (exists ? "not a folder" : "no such folder") +
+                     " (give an existing folder, or leave the option out)");
 }
 }  // namespace
 
@@ -74,6 +89,8 @@ std::vector<std::string> Args::options(std::string_view name) const {
             out.push_back(args_[++i]);
         }
     }
+    if (std::find(std::begin(kFolderOptions), std::end(kFolderOptions), name) != std::end(kFolderOptions))
+        for (const auto& folder : out) check_folder(name, folder);
     return out;
 }
 

@@ -64,7 +64,9 @@ public:
     // Value of "--name VALUE" or "--name=VALUE"; empty if absent. Throws
     // UsageError if the option is present without a value.
     std::string option(std::string_view name, std::string_view short_name = {}) const;
-    std::vector<std::string> options(std::string_view name) const;  // every occurrence
+    // Every occurrence. A folder option (--plugin-path) is checked here for every
+    // command: a value that is not an existing folder throws UsageError naming both.
+    std::vector<std::string> options(std::string_view name) const;
     bool flag(std::string_view name) const;
     // "--name N": a whole number in [min, max] (no sign, fraction or exponent),
     // or `fallback` when absent. Throws UsageError naming the option and range.

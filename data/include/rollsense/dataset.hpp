@@ -66,6 +66,7 @@ struct TrialRecord {
     std::string file;             // relative to the dataset folder, e.g. trials/C1-v10-r001.csv
     std::size_t samples = 0;
     std::size_t invalid_samples = 0;
+    std::size_t manifest_line = 0;  // the line of manifest.csv that lists it (0: not read from one)
 };
 
 class DatasetReader {

@@ -39,8 +39,9 @@ struct MergeSummary {
 // sibling): the caller's own files go there.
 using MergeFinish = std::function<Status(const std::filesystem::path& merged, const MergeSummary& summary)>;
 
-// `out` must not exist or be an empty folder. The shards are locked while
-// they are read (a shard still being recorded is refused).
+// `out` must not exist or be an empty folder (which keeps its permissions); a
+// symbolic link is followed (its folder takes the merge, the link stays). The
+// shards are locked while they are read (a shard still being recorded is refused).
 Result<MergeSummary> merge_shards(const std::filesystem::path& out, const std::vector<std::filesystem::path>& shards,
                                   const MergeFinish& finish = {});
 

@@ -46,7 +46,8 @@ Status ComponentHandle::transition(const char* what, LifecycleState from, Lifecy
         return {ErrorCode::state_error, describe() + ": cannot " + what + " from state " +
                                             std::string(to_string(state_)) + " (needs " +
                                             std::string(to_string(from)) + ")"};
-    auto s = call(what, [&] { return (component_->*hook)(); });
+    // c, not this->component_: gcc -O2 -fsanitize=address warned (falsely) -Wmaybe-uninitialized on the latter.
+    auto s = call(what, [&, c = component_] { return (c->*hook)(); });
     if (s.ok()) state_ = to;
     return s;
 }

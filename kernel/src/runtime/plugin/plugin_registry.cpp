@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include <elf.h>
 
@@ -46,23 +47,15 @@ PluginRegistry::PluginRegistry(std::vector<fs::path> search_path) : search_path_
 std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::path>& extra) {
     std::vector<fs::path> out = extra;
     if (const char* env = std::getenv("ROLLSENSE_PLUGIN_PATH")) {
-        std::string s(env);
-        std::size_t start = 0;
-        while (start <= s.size()) {
-            auto end = s.find(':', start);
-            if (end == std::string::npos) end = s.size();
-            if (end > start) out.emplace_back(s.substr(start, end - start));
-            start = end + 1;
-        }
+        std::istringstream folders(env);
+        for (std::string folder; std::getline(folders, folder, ':');)
+            if (!folder.empty()) out.emplace_back(folder);
     }
     // <prefix>/bin/rollsense → <prefix>/lib/rollsense/plugins (same layout in the build tree).
-    std::error_code ec;
-    auto exe = fs::path(boost::dll::program_location().string());
-    auto installed = exe.parent_path().parent_path() / ROLLSENSE_PLUGIN_INSTALL_SUBDIR;
-    out.push_back(installed);
-    auto build_layout = exe.parent_path().parent_path() / "lib" / "rollsense" / "plugins";
-    if (build_layout != installed) out.push_back(build_layout);
-    // Remove duplicates, keep order.
+    const auto prefix = fs::path(boost::dll::program_location().string()).parent_path().parent_path();
+    out.push_back(prefix / ROLLSENSE_PLUGIN_INSTALL_SUBDIR);
+    out.push_back(prefix / "lib" / "rollsense" / "plugins");
+    // Remove duplicates (the two above when the install layout is the build tree's), keep order.
     std::vector<fs::path> unique;
     for (auto& p : out) {
         auto norm = p.lexically_normal();
@@ -149,24 +142,29 @@ const std::vector<PluginCandidate>& PluginRegistry::scan() {
 }
 
 Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::string& name, PluginKind kind) {
-    for (const auto& c : scan()) {
+    scan();
+    for (auto& c : candidates_) {
         if (c.library && c.library->name() == name) {
             if (c.library->manifest().kind != kind)
                 return Error{ErrorCode::not_found, "plugin '" + name + "' at " + c.path.string() + " is " +
                                                        article(c.library->manifest().kind) + " plugin, not " +
                                                        article(kind)};
+            // A file of this one's name earlier in the search path was meant to be used, but failed to load.
+            // Said by the first find() (later ones, e.g. a classifier per worker thread, only read `warned`).
+            for (auto* d = candidates_.data(); d != &c; ++d)
+                if (!d->library && !d->warned && d->path.filename() == c.path.filename()) {
+                    d->warned = true;
+                    log_warning("plugins", d->path.string() + " is not used: " + d->failure + ". Plugin '" + name +
+                                               "' comes from " + c.path.string() + " instead (see `rollsense plugins`)");
+                }
             return c.library;
         }
     }
     std::string msg = "no " + std::string(to_string(kind)) + " plugin named '" + name + "'. Searched:";
     for (const auto& d : search_path_) msg += "\n  " + d.string() + (fs::is_directory(d) ? "" : " (no such folder)");
-    bool any = false;
-    for (const auto& c : candidates_) {
-        if (!any) msg += "\nFound:";
-        any = true;
+    msg += candidates_.empty() ? "\nNo plugin files were found." : "\nFound:";
+    for (const auto& c : candidates_)
         msg += "\n  " + c.path.string() + ": " + (c.library ? "plugin '" + c.library->name() + "'" : c.failure);
-    }
-    if (!any) msg += "\nNo plugin files were found.";
     msg += "\nAdd a folder with --plugin-path or the profile's plugin_path; `rollsense plugins` lists what loads.";
     return Error{ErrorCode::not_found, msg};
 }

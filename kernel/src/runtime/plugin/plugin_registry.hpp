@@ -41,6 +41,7 @@ struct PluginCandidate {
     std::filesystem::path path;
     std::shared_ptr<const LoadedLibrary> library;  // null when it failed to load
     std::string failure;                           // why it is not usable
+    bool warned = false;                           // find() said once that a namesake runs instead
 };
 
 class PluginRegistry {

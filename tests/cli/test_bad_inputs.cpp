@@ -1,0 +1,108 @@
+// Bad input named once, with its place and the way out (review s8): a
+// --plugin-path that is no folder, a damaged plugin file that would shadow an
+// installed one, a trial file the manifest lists but trials/ lacks.
+#include <catch2/catch.hpp>
+
+#include "cli_helpers.hpp"
+
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kDemo = std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua";
+
+// A copy of the built plugin `file` in `dir`, cut to half its size.
+fs::path damaged_copy(const fs::path& dir, const std::string& file) {
+    const fs::path whole = fs::path(ROLLSENSE_PLUGIN_DIR) / file;
+    fs::create_directories(dir);
+    fs::copy_file(whole, dir / file);
+    fs::resize_file(dir / file, fs::file_size(whole) / 2);
+    return dir / file;
+}
+}  // namespace
+
+// Item 1: the folder was searched, found empty, and the command went on with the installed plugins.
+TEST_CASE("a --plugin-path that is not a folder is a usage error (2) of every command, before anything runs") {
+    TempDir dir("rollsense-cli-plugin-path");
+    write_file(dir / "a-file", "x");
+    const std::string nowhere = (dir / "nowhere").string(), file = (dir / "a-file").string();
+    for (const std::string& command :
+         {"run " + kDemo + " --profile mock --out " + shell_quoted(dir / "out"), std::string("evaluate features.csv"),
+          std::string("train features.csv -o m.rsm"), "report " + dir.path().string(), std::string("predict m.rsm t.csv"),
+          std::string("plugins")}) {
+        INFO(command);
+        const auto missing = run_rollsense(command + " --plugin-path " + nowhere);
+        INFO(missing.output);
+        CHECK(missing.status == 2);
+        CHECK(count_of(missing.output, "--plugin-path " + nowhere + ": no such folder (give an existing folder, or "
+                                                                    "leave the option out)") == 1);
+        const auto not_folder = run_rollsense(command + " --plugin-path=" + file);
+        INFO(not_folder.output);
+        CHECK(not_folder.status == 2);
+        CHECK(count_of(not_folder.output, "--plugin-path " + file + ": not a folder") == 1);
+    }
+    CHECK_FALSE(fs::exists(dir / "out"));  // run stopped before its output folder
+    CHECK(run_rollsense("plugins --plugin-path " + dir.path().string()).status == 0);  // an existing folder is fine
+}
+
+// Item 2: `rollsense plugins` listed it as FAILED, but run and evaluate used the installed one in silence.
+TEST_CASE("a damaged plugin file that shadows an installed one is named once by run and evaluate") {
+    TempDir dir("rollsense-cli-damaged");
+    const auto actuator = damaged_copy(dir / "plugins", "librollsense_mock_actuator.so");
+    const auto run = run_rollsense("run " + kDemo + " --profile mock --no-progress --plugin-path " +
+                                   shell_quoted(dir / "plugins") + " --out " + shell_quoted(dir / "ds"));
+    INFO(run.output);
+    CHECK(run.status == 0);
+    CHECK(count_of(run.output, actuator.string() + " is not used: truncated: ") == 1);
+    CHECK(count_of(run.output, "Plugin 'mock_actuator' comes from ") == 1);
+
+    const auto classifier = damaged_copy(dir / "plugins", "librollsense_bagged_trees.so");
+    const auto features = run_rollsense("features " + shell_quoted(dir / "ds") + " -o " + shell_quoted(dir / "f.csv"));
+    REQUIRE(features.status == 0);
+    const auto evaluate = run_rollsense("evaluate " + shell_quoted(dir / "f.csv") + " --classifier bagged_trees " +
+                                        "--folds 2 --repeats 1 --plugin-path " + shell_quoted(dir / "plugins"));
+    INFO(evaluate.output);
+    CHECK(count_of(evaluate.output, classifier.string() + " is not used: truncated: ") == 1);
+    CHECK(count_of(evaluate.output, "Plugin 'bagged_trees' comes from ") == 1);
+    CHECK(count_of(evaluate.output, "mock_actuator") == 0);  // not used here: not mentioned
+}
+
+// Item 4: "points at missing file" named neither the manifest's line nor a way out.
+TEST_CASE("a trial file missing from trials/ is named with its manifest line and the way out by every reader") {
+    TempDir dir("rollsense-cli-missing-trial");
+    const fs::path ds = dir / "ds";
+    // Four trials of the stock script (it records only the trials not yet on disk, so it can resume).
+    const std::string record = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 " +
+                               "--set runs=2 --set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress " +
+                               "-q --out " + ds.string();
+    REQUIRE(run_rollsense(record).status == 0);
+    const std::string manifest = read_file(ds / "manifest.csv");
+    const auto second = manifest.find('\n', manifest.find('\n') + 1) + 1;  // line 3
+    const std::string id = manifest.substr(second, manifest.find(',', second) - second);
+    fs::remove(ds / "trials" / (id + ".csv"));
+    const std::string expected = (ds / "manifest.csv").string() + ":3: trial '" + id + "' is listed, but " +
+                                 (ds / "trials" / (id + ".csv")).string() +
+                                 " is missing. Put the file back, or delete line 3 of manifest.csv to use the "
+                                 "dataset without that trial ('rollsense run SCRIPT --out " + ds.string() +
+                                 " --resume' then records it again)";
+    for (const std::string& command : {"features " + ds.string() + " -o " + (dir / "f.csv").string(),
+                                       "evaluate " + ds.string() + " --folds 2", "report " + ds.string(),
+                                       "train " + ds.string() + " -o " + (dir / "m.rsm").string()}) {
+        INFO(command);
+        const auto r = run_rollsense(command);
+        INFO(r.output);
+        CHECK(r.status == 3);
+        CHECK(count_of(r.output, expected) == 1);
+    }
+    // The way out works: without its manifest row the dataset reads, and resume records the trial again.
+    std::string without = manifest;
+    const auto row = without.find("\n" + id + ",") + 1;
+    without.erase(row, without.find('\n', row) + 1 - row);
+    write_file(ds / "manifest.csv", without);
+    CHECK(run_rollsense("features " + ds.string() + " -o " + (dir / "f.csv").string()).status == 0);
+    const auto resumed = run_rollsense(record + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+    CHECK(fs::exists(ds / "trials" / (id + ".csv")));
+    CHECK(read_file(ds / "manifest.csv").find("\n" + id + ",") != std::string::npos);
+}
