@@ -91,8 +91,12 @@ TEST_CASE("unknown keys, unknown objects and out-of-range values are errors befo
         const auto out = dir / "out";
         const auto r = run_rollsense("run " + kPaper + " --set " + shell_quoted(c.set) + " --no-progress --out " + shell_quoted(out));
         INFO(r.output);
-        CHECK(r.status == 1);
+        // Independent review, run item 4: exit 1, as a script's error; a --set refused is a bad command line.
+        CHECK(r.status == 2);
         CHECK(r.output.find(c.says) != std::string::npos);
+        // where it was declared: the script's rs.settings, or the module's (etroll.lua)
+        CHECK((r.output.find("paper_experiment.lua:23: --set") != std::string::npos ||
+               r.output.find("etroll.lua:42: --set") != std::string::npos));
         CHECK(r.output.find("0 trials saved") != std::string::npos);
         CHECK(count_of(r.output, c.says) == 1);
         CHECK_FALSE(fs::exists(out));  // failed before any trial: no folder left behind
@@ -109,13 +113,20 @@ TEST_CASE("in a script that declares its settings, reading an undeclared one is 
     const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --set model=m.rsm --out " +
                                  shell_quoted(dir / "a"));
     INFO(r.output);
-    CHECK(r.status == 1);
+    CHECK(r.status == 1);  // the script's own error: it reads what it did not declare
     CHECK(r.output.find("speed 10 model m.rsm") != std::string::npos);
     CHECK(r.output.find("rs.setting: 'sped' is not declared (declared: model, speed)") != std::string::npos);
     const auto missing = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --out " + shell_quoted(dir / "b"));
     INFO(missing.output);
-    CHECK(missing.status == 1);
-    CHECK(missing.output.find("setting 'model' is required: pass --set model=VALUE (a saved model)") != std::string::npos);
+    CHECK(missing.status == 2);  // the command line lacks it
+    CHECK(missing.output.find("s.lua:2: setting 'model' is required: pass --set model=VALUE (a saved model)") !=
+          std::string::npos);
+    // also where a script that declares nothing reads a setting without a default
+    write_file(dir / "plain.lua", "local rs = require 'rollsense'\nlocal runs = rs.setting('runs')\n");
+    const auto plain = run_rollsense("run " + shell_quoted(dir / "plain.lua") + " --profile mock --out " + shell_quoted(dir / "p"));
+    INFO(plain.output);
+    CHECK(plain.status == 2);
+    CHECK(plain.output.find("plain.lua:2: setting 'runs' is required: pass --set runs=VALUE") != std::string::npos);
     // A bad declaration names the setting and what is accepted.
     write_file(dir / "bad.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 5, knd = 'integer' } }\n");
     const auto bad = run_rollsense("run " + shell_quoted(dir / "bad.lua") + " --profile mock --out " + shell_quoted(dir / "c"));

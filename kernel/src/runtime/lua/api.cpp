@@ -207,7 +207,7 @@ int l_setting(lua_State* L) {
         push_param(L, declared->second);
         return 1;
     }
-    if (lua_gettop(L) < 2) return luaL_error(L, "setting '%s' is required: pass --set %s=VALUE", key.c_str(), key.c_str());
+    if (lua_gettop(L) < 2) raise_status(L, {ErrorCode::bad_setting, "setting '" + key + "' is required: pass --set " + key + "=VALUE"});
     lua_settop(L, 2);
     return 1;
 }
