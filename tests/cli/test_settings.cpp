@@ -6,6 +6,7 @@
 // live-identification example rolling trials it was not trained on.
 #include <catch2/catch.hpp>
 
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -268,6 +269,78 @@ TEST_CASE("--out holding files that are not a dataset is refused, with or withou
     CHECK(fresh.output.find("already holds a dataset; continue it with --resume") != std::string::npos);
     CHECK(fresh.output.find("failed:") == std::string::npos);
     CHECK(read_file(dir / "empty" / "manifest.csv") == manifest);
+}
+
+namespace {
+// Every path under `dir` with its bytes and modification time ("/" for a
+// folder): equal snapshots are a folder left exactly as it was.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        out[fs::relative(e.path(), dir).string()] =
+            e.is_directory() ? "/" : read_file(e.path()) + "@" + std::to_string(e.last_write_time().time_since_epoch().count());
+    return out;
+}
+}  // namespace
+
+// Independent review, run item 1: a --resume refused for another experiment's
+// manifest.csv printed "results:" and left an empty trials/ behind.
+TEST_CASE("a --resume refused for another experiment's dataset leaves the folder exactly as it was") {
+    TempDir dir("rollsense-resume");
+    const auto other = dir / "other";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(other)).status == 0);
+    // Its manifest alone (its trials are not there), and its dataset-info.csv with a
+    // manifest listing nothing yet, without the run-config.csv that would refuse it at once.
+    const auto lone = dir / "lone";
+    fs::create_directories(lone);
+    fs::copy_file(other / "manifest.csv", lone / "manifest.csv");
+    const auto setup = dir / "setup";
+    fs::create_directories(setup);
+    fs::copy_file(other / "dataset-info.csv", setup / "dataset-info.csv");
+    write_file(setup / "manifest.csv", read_file(other / "manifest.csv").substr(0, read_file(other / "manifest.csv").find('\n') + 1));
+    struct Case {
+        fs::path folder;
+        const char* says;
+        int status;
+    };
+    for (const Case& c : {Case{lone, "cannot resume", 3}, Case{setup, "was recorded with another setup", 1}}) {
+        INFO(c.folder);
+        const auto before = snapshot(c.folder);
+        const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 7 --resume --out " + shell_quoted(c.folder));
+        INFO(r.output);
+        CHECK(r.status == c.status);
+        CHECK(count_of(r.output, c.says) == 1);
+        CHECK(r.output.find("results:") == std::string::npos);
+        CHECK(r.output.find("continue with:") == std::string::npos);
+        CHECK(snapshot(c.folder) == before);
+    }
+}
+
+// Independent review, run item 2: --resume replaced the interrupted run's
+// run-info.csv, so nothing said the run had been interrupted.
+TEST_CASE("--resume keeps each earlier run's run-info.csv as run-info.N.csv") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    const auto cut = run_rollsense("run " + kPaper + kSmall + " --seed 5 --time-limit 40 --out " + shell_quoted(out));
+    INFO(cut.output);
+    REQUIRE(cut.status == 130);
+    const auto interrupted = read_file(out / "run-info.csv");
+    CHECK(interrupted.find("--time-limit") != std::string::npos);
+    const auto resumed = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out));
+    INFO(resumed.output);
+    REQUIRE(resumed.status == 0);
+    CHECK(read_file(out / "run-info.1.csv") == interrupted);
+    const auto finished = read_file(out / "run-info.csv");
+    CHECK(finished.find("\nstatus,ok\n") != std::string::npos);
+    CHECK(finished.find(" --resume") != std::string::npos);
+    // and the next resume keeps the finished run's, after the first
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out)).status == 0);
+    CHECK(read_file(out / "run-info.1.csv") == interrupted);
+    CHECK(read_file(out / "run-info.2.csv") == finished);
+    CHECK_FALSE(fs::exists(out / "run-info.3.csv"));
+    // a run refused before it opens the dataset keeps them as they are
+    CHECK(run_rollsense("run " + kPaper + kSmall + " --seed 6 --resume --out " + shell_quoted(out)).status == 2);
+    CHECK_FALSE(fs::exists(out / "run-info.3.csv"));
 }
 
 TEST_CASE("an interrupted run prints the exact command that resumes it, --set options quoted") {
