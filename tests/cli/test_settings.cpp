@@ -318,7 +318,7 @@ TEST_CASE("a --resume refused for another experiment's dataset leaves the folder
 
 // Independent review, run item 2: --resume replaced the interrupted run's
 // run-info.csv, so nothing said the run had been interrupted.
-TEST_CASE("--resume keeps each earlier run's run-info.csv as run-info.N.csv") {
+TEST_CASE("a resumed run keeps each earlier run's run-info.csv as run-info.N.csv") {
     TempDir dir("rollsense-resume");
     const auto out = dir / "out";
     const auto cut = run_rollsense("run " + kPaper + kSmall + " --seed 5 --time-limit 40 --out " + shell_quoted(out));
