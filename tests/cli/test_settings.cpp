@@ -144,6 +144,24 @@ TEST_CASE("a script that declares nothing keeps working, with the end-of-run war
     CHECK(r.status == 0);
     CHECK(r.output.find("runs is 4") != std::string::npos);
     CHECK(r.output.find("--set typo was not used by the profile or the script (a typo?)") != std::string::npos);
+    // A value of another type than the default's: the command line's error where the script reads it (it was
+    // handed a string, and failed later, or not at all, as the script's error).
+    for (const char* set : {"runs=two", "runs=true"}) {
+        INFO(set);
+        const auto bad = run_rollsense("run " + shell_quoted(dir / "plain.lua") + " --profile mock --set " + set +
+                                       " --out " + shell_quoted(dir / "bad"));
+        INFO(bad.output);
+        CHECK(bad.status == 2);
+        CHECK(bad.output.find("plain.lua:2: --set runs: a ") != std::string::npos);
+        CHECK(bad.output.find("where rs.setting('runs', ...) reads a number (its default's type)") != std::string::npos);
+    }
+    write_file(dir / "flag.lua", "local rs = require 'rollsense'\nif rs.setting('analyse', true) then rs.log('analysing') end\n");
+    const auto flag = run_rollsense("run " + shell_quoted(dir / "flag.lua") + " --profile mock --set analyse=flase --out " +
+                                    shell_quoted(dir / "flag"));
+    INFO(flag.output);
+    CHECK(flag.status == 2);
+    CHECK(flag.output.find("analysing") == std::string::npos);
+    CHECK(flag.output.find("--set analyse: a string where rs.setting('analyse', ...) reads a boolean") != std::string::npos);
 }
 
 // Review finding 10: the typo warning came before the real error of a run
