@@ -280,6 +280,18 @@ Result<std::optional<TornLine>> find_torn_line(const fs::path& file) {
     return std::optional<TornLine>{torn};
 }
 
+// Resuming: the earlier run's run-info.csv becomes run-info.N.csv (N one past
+// the highest there, from 1), so every run of the dataset keeps its record.
+Status keep_earlier_run_info(const fs::path& dir) {
+    std::error_code ec;
+    if (!fs::exists(dir / "run-info.csv", ec)) return {};
+    std::size_t last = 0;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+        last = std::max(last, earlier_run_number(entry.path().filename().string()));
+    if (ec) return {ErrorCode::io_error, dir.string() + ": cannot list: " + ec.message()};
+    return rename_durable(dir / "run-info.csv", dir / earlier_run_info_name(last + 1));
+}
+
 // Resuming: cut a torn last line off the manifest (the trial it listed is
 // recorded again, as is any trial whose file the manifest does not list).
 Status drop_torn_line(const fs::path& manifest) {
@@ -504,23 +516,30 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     const bool exists = holds_dataset(dir);
     if (mode == DatasetOpenMode::create)
         if (auto s = check_no_dataset_in(dir); !s.ok()) return s.error();
-    fs::create_directories(dir / "trials", ec);
-    if (ec) return Error{ErrorCode::io_error, (dir / "trials").string() + ": cannot create: " + ec.message()};
-    remove_stale_temporaries(dir);
-    remove_stale_temporaries(dir / "trials");
+    // A resume checks the folder is this run's dataset before it changes
+    // anything there: a refused folder stays exactly as it was.
+    std::optional<DatasetReader> on_disk;
     if (mode == DatasetOpenMode::resume && exists) {
+        if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
         if (auto s = drop_torn_line(dir / "manifest.csv"); !s.ok())
             return Error{s.error().code, "cannot resume: " + s.error().message};
-        auto on_disk = DatasetReader::open(dir);
-        if (!on_disk) return Error{on_disk.error().code, "cannot resume: " + on_disk.error().message};
-        const auto& old = on_disk->info();
+        auto read = DatasetReader::open(dir);
+        if (!read) return Error{read.error().code, "cannot resume: " + read.error().message};
+        const auto& old = read->info();
         if (old.seed != info.seed || old.profile != info.profile || old.channels != info.channels ||
             old.joints != info.joints || old.sample_rate_hz != info.sample_rate_hz)
             return Error{ErrorCode::invalid_argument,
                          dir.string() + " was recorded with another setup (profile '" + old.profile + "', seed " +
                              std::to_string(old.seed) + "); resume it with the same --profile and --seed, or "
                                                         "choose another folder with --out"};
-        if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
+        on_disk = std::move(*read);
+        if (auto s = keep_earlier_run_info(dir); !s.ok()) return s.error();
+    }
+    fs::create_directories(dir / "trials", ec);
+    if (ec) return Error{ErrorCode::io_error, (dir / "trials").string() + ": cannot create: " + ec.message()};
+    remove_stale_temporaries(dir);
+    remove_stale_temporaries(dir / "trials");
+    if (on_disk) {
         // A trial whose file is missing or not what the manifest says (cut short
         // by a crash or a full disk) is recorded again, not kept.
         for (const auto& t : on_disk->trials()) {

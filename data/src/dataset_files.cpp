@@ -10,7 +10,22 @@ bool is_dataset_file(std::string_view name) {
     for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "trials", kRunConfigFile,
                             kShardPlanFile, kShardsFile})
         if (name == own) return true;
-    return false;
+    return earlier_run_number(name) > 0;
+}
+
+std::string earlier_run_info_name(std::size_t n) { return "run-info." + std::to_string(n) + ".csv"; }
+
+std::size_t earlier_run_number(std::string_view name) {
+    constexpr std::string_view head = "run-info.", tail = ".csv";
+    if (name.size() <= head.size() + tail.size() || !name.starts_with(head) || !name.ends_with(tail)) return 0;
+    const auto digits = name.substr(head.size(), name.size() - head.size() - tail.size());
+    if (digits.size() > 9 || digits[0] == '0') return 0;
+    std::size_t n = 0;
+    for (char c : digits) {
+        if (c < '0' || c > '9') return 0;
+        n = n * 10 + static_cast<std::size_t>(c - '0');
+    }
+    return n;
 }
 
 bool holds_dataset(const fs::path& dir) {

@@ -119,3 +119,28 @@ TEST_CASE("dxl's bad arguments are usage errors (2) that say what is wrong") {
     CHECK(new_baud.status == 2);
     CHECK(new_baud.output.find("--new-baud: 12345" + rates) != std::string::npos);
 }
+
+// Independent review, run item 5: the slice limit exited 130, as a Ctrl-C does;
+// a script that runs away is the script's failure (1), named at its line, and
+// so is a profile that does (3, a bad profile).
+TEST_CASE("a script that runs past --slice-limit-ms fails (1) at its file:line, naming the limit") {
+    TempDir dir("rollsense-cli-codes");
+    write_file(dir / "loop.lua", "local x = 0\nwhile true do\n  x = x + 1\nend\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "loop.lua") + " --profile mock --slice-limit-ms 200 --out " +
+                                 shell_quoted(dir / "a"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(r.output.find("loop.lua:3: the script ran ") != std::string::npos);
+    CHECK(r.output.find("past --slice-limit-ms 200") != std::string::npos);
+    CHECK(count_of(r.output, "without waiting") == 1);
+    CHECK(r.output.find("failed: 0 trials saved") != std::string::npos);
+    CHECK(r.output.find("cancelled") == std::string::npos);
+
+    write_file(dir / "loop-profile.lua", "local p = include('mock')\nlocal i = 0\nwhile true do i = i + 1 end\nreturn p\n");
+    const auto p = run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile " +
+                                 shell_quoted(dir / "loop-profile.lua") + " --slice-limit-ms 200 --out " + shell_quoted(dir / "b"));
+    INFO(p.output);
+    CHECK(p.status == 3);
+    CHECK(p.output.find("loop-profile.lua:3: the profile ran ") != std::string::npos);
+    CHECK(p.output.find("past --slice-limit-ms 200") != std::string::npos);
+}

@@ -7,6 +7,7 @@
 #include "cli_helpers.hpp"
 
 using namespace rollsense::testing;
+namespace fs = std::filesystem;
 
 TEST_CASE("`rollsense help CMD` prints what `rollsense CMD --help` prints") {
     for (const char* cmd : {"run", "features", "train", "predict", "evaluate", "report", "merge", "view", "dxl",
@@ -34,6 +35,39 @@ TEST_CASE("a failed script's error is printed once") {
     CHECK(count_of(r.output, "unmistakable failure text") == 1);
     // ...with where it happened
     CHECK(r.output.find("fail.lua:1:") != std::string::npos);
+}
+
+// Independent review, run item 3: the "failed: 0 trials saved" summary came
+// before the error it summed up. The error first, once, then the summary.
+TEST_CASE("a failed run prints its error before the summary line, once") {
+    TempDir dir("rollsense-cli-once");
+    write_file(dir / "late.lua", "local rs = require 'rollsense'\nrs.trial{ object = 'C1', speed = 10, repetition = 1 }\n"
+                                 "rs.record_start()\nrs.wait(200)\nrs.record_stop()\nrs.save_trial()\nrs.end_trial()\n"
+                                 "error('unmistakable late failure')\n");
+    write_file(dir / "early.lua", "error('unmistakable early failure')\n");
+    for (const char* name : {"late", "early"}) {
+        INFO(name);
+        const auto r = run_rollsense("run " + shell_quoted(dir / (std::string(name) + ".lua")) + " --profile mock --out " +
+                                     shell_quoted(dir / name));
+        INFO(r.output);
+        CHECK(r.status == 1);
+        const std::string error = std::string("unmistakable ") + name + " failure";
+        CHECK(count_of(r.output, error) == 1);
+        REQUIRE(r.output.find("failed: ") != std::string::npos);
+        CHECK(r.output.find(error) < r.output.find("failed: "));
+    }
+    // A dataset refused when the run opens it (a manifest without its trials): the error, then the summary.
+    fs::create_directories(dir / "foreign");
+    fs::copy_file(dir / "late" / "manifest.csv", dir / "foreign" / "manifest.csv");
+    const auto refused = run_rollsense("run " + shell_quoted(dir / "late.lua") + " --profile mock --resume --out " +
+                                       shell_quoted(dir / "foreign"));
+    INFO(refused.output);
+    CHECK(refused.status == 3);
+    CHECK(count_of(refused.output, "cannot resume") == 1);
+    REQUIRE(refused.output.find("failed: ") != std::string::npos);
+    const auto at = refused.output.find("cannot resume");
+    CHECK(at != std::string::npos);
+    CHECK(at < refused.output.find("failed: "));
 }
 
 TEST_CASE("a failure inside a C++ call from the script is printed once") {

@@ -6,6 +6,7 @@
 // live-identification example rolling trials it was not trained on.
 #include <catch2/catch.hpp>
 
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -91,8 +92,12 @@ TEST_CASE("unknown keys, unknown objects and out-of-range values are errors befo
         const auto out = dir / "out";
         const auto r = run_rollsense("run " + kPaper + " --set " + shell_quoted(c.set) + " --no-progress --out " + shell_quoted(out));
         INFO(r.output);
-        CHECK(r.status == 1);
+        // Independent review, run item 4: exit 1, as a script's error; a --set refused is a bad command line.
+        CHECK(r.status == 2);
         CHECK(r.output.find(c.says) != std::string::npos);
+        // where it was declared: the script's rs.settings, or the module's (etroll.lua)
+        CHECK((r.output.find("paper_experiment.lua:23: --set") != std::string::npos ||
+               r.output.find("etroll.lua:42: --set") != std::string::npos));
         CHECK(r.output.find("0 trials saved") != std::string::npos);
         CHECK(count_of(r.output, c.says) == 1);
         CHECK_FALSE(fs::exists(out));  // failed before any trial: no folder left behind
@@ -109,13 +114,20 @@ TEST_CASE("in a script that declares its settings, reading an undeclared one is 
     const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --set model=m.rsm --out " +
                                  shell_quoted(dir / "a"));
     INFO(r.output);
-    CHECK(r.status == 1);
+    CHECK(r.status == 1);  // the script's own error: it reads what it did not declare
     CHECK(r.output.find("speed 10 model m.rsm") != std::string::npos);
     CHECK(r.output.find("rs.setting: 'sped' is not declared (declared: model, speed)") != std::string::npos);
     const auto missing = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --out " + shell_quoted(dir / "b"));
     INFO(missing.output);
-    CHECK(missing.status == 1);
-    CHECK(missing.output.find("setting 'model' is required: pass --set model=VALUE (a saved model)") != std::string::npos);
+    CHECK(missing.status == 2);  // the command line lacks it
+    CHECK(missing.output.find("s.lua:2: setting 'model' is required: pass --set model=VALUE (a saved model)") !=
+          std::string::npos);
+    // also where a script that declares nothing reads a setting without a default
+    write_file(dir / "plain.lua", "local rs = require 'rollsense'\nlocal runs = rs.setting('runs')\n");
+    const auto plain = run_rollsense("run " + shell_quoted(dir / "plain.lua") + " --profile mock --out " + shell_quoted(dir / "p"));
+    INFO(plain.output);
+    CHECK(plain.status == 2);
+    CHECK(plain.output.find("plain.lua:2: setting 'runs' is required: pass --set runs=VALUE") != std::string::npos);
     // A bad declaration names the setting and what is accepted.
     write_file(dir / "bad.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 5, knd = 'integer' } }\n");
     const auto bad = run_rollsense("run " + shell_quoted(dir / "bad.lua") + " --profile mock --out " + shell_quoted(dir / "c"));
@@ -132,6 +144,24 @@ TEST_CASE("a script that declares nothing keeps working, with the end-of-run war
     CHECK(r.status == 0);
     CHECK(r.output.find("runs is 4") != std::string::npos);
     CHECK(r.output.find("--set typo was not used by the profile or the script (a typo?)") != std::string::npos);
+    // A value of another type than the default's: the command line's error where the script reads it (it was
+    // handed a string, and failed later, or not at all, as the script's error).
+    for (const char* set : {"runs=two", "runs=true"}) {
+        INFO(set);
+        const auto bad = run_rollsense("run " + shell_quoted(dir / "plain.lua") + " --profile mock --set " + set +
+                                       " --out " + shell_quoted(dir / "bad"));
+        INFO(bad.output);
+        CHECK(bad.status == 2);
+        CHECK(bad.output.find("plain.lua:2: --set runs: a ") != std::string::npos);
+        CHECK(bad.output.find("where rs.setting('runs', ...) reads a number (its default's type)") != std::string::npos);
+    }
+    write_file(dir / "flag.lua", "local rs = require 'rollsense'\nif rs.setting('analyse', true) then rs.log('analysing') end\n");
+    const auto flag = run_rollsense("run " + shell_quoted(dir / "flag.lua") + " --profile mock --set analyse=flase --out " +
+                                    shell_quoted(dir / "flag"));
+    INFO(flag.output);
+    CHECK(flag.status == 2);
+    CHECK(flag.output.find("analysing") == std::string::npos);
+    CHECK(flag.output.find("--set analyse: a string where rs.setting('analyse', ...) reads a boolean") != std::string::npos);
 }
 
 // Review finding 10: the typo warning came before the real error of a run
@@ -257,6 +287,78 @@ TEST_CASE("--out holding files that are not a dataset is refused, with or withou
     CHECK(fresh.output.find("already holds a dataset; continue it with --resume") != std::string::npos);
     CHECK(fresh.output.find("failed:") == std::string::npos);
     CHECK(read_file(dir / "empty" / "manifest.csv") == manifest);
+}
+
+namespace {
+// Every path under `dir` with its bytes and modification time ("/" for a
+// folder): equal snapshots are a folder left exactly as it was.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        out[fs::relative(e.path(), dir).string()] =
+            e.is_directory() ? "/" : read_file(e.path()) + "@" + std::to_string(e.last_write_time().time_since_epoch().count());
+    return out;
+}
+}  // namespace
+
+// Independent review, run item 1: a --resume refused for another experiment's
+// manifest.csv printed "results:" and left an empty trials/ behind.
+TEST_CASE("a --resume refused for another experiment's dataset leaves the folder exactly as it was") {
+    TempDir dir("rollsense-resume");
+    const auto other = dir / "other";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(other)).status == 0);
+    // Its manifest alone (its trials are not there), and its dataset-info.csv with a
+    // manifest listing nothing yet, without the run-config.csv that would refuse it at once.
+    const auto lone = dir / "lone";
+    fs::create_directories(lone);
+    fs::copy_file(other / "manifest.csv", lone / "manifest.csv");
+    const auto setup = dir / "setup";
+    fs::create_directories(setup);
+    fs::copy_file(other / "dataset-info.csv", setup / "dataset-info.csv");
+    write_file(setup / "manifest.csv", read_file(other / "manifest.csv").substr(0, read_file(other / "manifest.csv").find('\n') + 1));
+    struct Case {
+        fs::path folder;
+        const char* says;
+        int status;
+    };
+    for (const Case& c : {Case{lone, "cannot resume", 3}, Case{setup, "was recorded with another setup", 1}}) {
+        INFO(c.folder);
+        const auto before = snapshot(c.folder);
+        const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 7 --resume --out " + shell_quoted(c.folder));
+        INFO(r.output);
+        CHECK(r.status == c.status);
+        CHECK(count_of(r.output, c.says) == 1);
+        CHECK(r.output.find("results:") == std::string::npos);
+        CHECK(r.output.find("continue with:") == std::string::npos);
+        CHECK(snapshot(c.folder) == before);
+    }
+}
+
+// Independent review, run item 2: --resume replaced the interrupted run's
+// run-info.csv, so nothing said the run had been interrupted.
+TEST_CASE("a resumed run keeps each earlier run's run-info.csv as run-info.N.csv") {
+    TempDir dir("rollsense-resume");
+    const auto out = dir / "out";
+    const auto cut = run_rollsense("run " + kPaper + kSmall + " --seed 5 --time-limit 40 --out " + shell_quoted(out));
+    INFO(cut.output);
+    REQUIRE(cut.status == 130);
+    const auto interrupted = read_file(out / "run-info.csv");
+    CHECK(interrupted.find("--time-limit") != std::string::npos);
+    const auto resumed = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out));
+    INFO(resumed.output);
+    REQUIRE(resumed.status == 0);
+    CHECK(read_file(out / "run-info.1.csv") == interrupted);
+    const auto finished = read_file(out / "run-info.csv");
+    CHECK(finished.find("\nstatus,ok\n") != std::string::npos);
+    CHECK(finished.find(" --resume") != std::string::npos);
+    // and the next resume keeps the finished run's, after the first
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out)).status == 0);
+    CHECK(read_file(out / "run-info.1.csv") == interrupted);
+    CHECK(read_file(out / "run-info.2.csv") == finished);
+    CHECK_FALSE(fs::exists(out / "run-info.3.csv"));
+    // a run refused before it opens the dataset keeps them as they are
+    CHECK(run_rollsense("run " + kPaper + kSmall + " --seed 6 --resume --out " + shell_quoted(out)).status == 2);
+    CHECK_FALSE(fs::exists(out / "run-info.3.csv"));
 }
 
 TEST_CASE("an interrupted run prints the exact command that resumes it, --set options quoted") {

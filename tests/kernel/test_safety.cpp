@@ -40,7 +40,9 @@ TEST_CASE("sandbox escapes are refused", "[sandbox]") {
     }
 }
 
-TEST_CASE("a runaway loop inside pcall is still cancelled", "[sandbox]") {
+// Independent review: the slice limit ended the run as cancelled (exit 130,
+// as for Ctrl-C), without the script's line; it is the script's failure.
+TEST_CASE("a runaway loop inside pcall is still stopped, as the script's failure at its line", "[sandbox]") {
     kt::TempDir dir;
     auto o = kt::options_for(dir, R"(local rs = require 'rollsense'
 local caught = 0
@@ -53,8 +55,10 @@ end
     rollsense::runtime::Session session(o);
     auto s = session.run();
     REQUIRE_FALSE(s.status.ok());
-    CHECK(s.status.code() == ErrorCode::cancelled);
-    CHECK_THAT(s.status.message(), Catch::Contains("without waiting"));
+    CHECK(s.status.code() == ErrorCode::limit_violation);
+    CHECK_FALSE(s.cancelled);
+    CHECK_THAT(s.status.message(), Catch::Contains("without waiting") && Catch::Contains("past --slice-limit-ms 200"));
+    CHECK_THAT(s.status.message(), Catch::Contains("script.lua:4: the script ran"));  // in the pcall'd loop
 }
 
 TEST_CASE("the memory cap stops a script that allocates without bound", "[sandbox]") {

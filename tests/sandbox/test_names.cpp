@@ -11,7 +11,7 @@ using namespace rollsense;
 
 TEST_CASE("rs.write_output refuses the dataset's own files and unsafe names", "[sandbox][names]") {
     const std::string names[] = {"manifest.csv", "dataset-info.csv", "run-info.csv", "features.csv", "trials",
-                                 "run-config.csv", "shard-plan.csv", "shards.csv", "..",           "a/b",              "../x",         ".hidden",      std::string(300, 'a'),
+                                 "run-config.csv", "shard-plan.csv", "shards.csv", "run-info.1.csv", "run-info.12.csv", "..",           "a/b",              "../x",         ".hidden",      std::string(300, 'a'),
                                  "x\\\\y",         ""};
     for (const auto& name : names) {
         kt::TempDir dir;
@@ -21,8 +21,9 @@ TEST_CASE("rs.write_output refuses the dataset's own files and unsafe names", "[
         CHECK_THAT(r.text, Catch::StartsWith("invalid argument"));
     }
     kt::TempDir dir;
-    auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\nrs.write_output('notes.txt', 'x')\n");
-    CHECK(r.text == "ok");
+    auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\nrs.write_output('notes.txt', 'x')\n"
+                                                   "rs.write_output('run-info.0.csv', 'x')\nrs.write_output('run-info.x.csv', 'x')\n");
+    CHECK(r.text == "ok");  // not an earlier run's record: N counts from 1, digits only
 }
 
 TEST_CASE("rs.analyse refuses a model name that is one of the dataset's files, before any work", "[sandbox][names]") {

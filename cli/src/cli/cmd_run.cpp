@@ -39,7 +39,9 @@ options:
                         are kept and skipped; the result equals an uninterrupted run.
                         Refused when script, profile, --set or --seed differ
                         from the run that recorded it (run-config.csv), and
-                        for a shard's dataset without its --shard K/N
+                        for a shard's dataset without its --shard K/N (a
+                        refused folder is left as it was). The earlier run's
+                        run-info.csv is kept as run-info.N.csv
   --seed N              run seed (per-trial seeds derive from it); default: 1,
                         or, replaying a dataset, the seed it was recorded with
   --shard K/N           record only shard K of N (0 <= K < N): the trials whose
@@ -51,10 +53,12 @@ options:
                         any other key is a script setting: plain for the
                         script (runs=2), MODULE.KEY for a Lua module
                         (etroll.clamp_current=150); checked before the first
-                        trial when the script declares its settings
+                        trial when the script declares its settings; a
+                        --set the script refuses is a bad command line (exit 2)
   --plugin-path DIR     search plugins here first (repeatable)
   --time-limit S        cancel the run after S seconds of run time
-  --slice-limit-ms MS   cancel a script that runs MS ms without waiting (default 5000)
+  --slice-limit-ms MS   stop a script (or profile) that runs MS ms without
+                        waiting: its failure, at its file:line (default 5000)
   --memory-limit-mb MB  Lua heap cap (default 256)
   --commit-every N      trials per durable group commit (default 1 on hardware,
                         64 in simulation)
@@ -196,6 +200,8 @@ int run(const std::vector<std::string>& argv) {
         summary = session.run();
     }  // the dataset's folder lock is released here
     if (view) view->finished(summary);
+    // The error first, once; then the summary, where the results are and the way on.
+    if (!summary.status.ok()) log_error("rollsense", summary.status.error().describe());
     std::fprintf(stderr, "%s: %zu trials saved, %zu already on disk; %.1f s robot time in %.2f s wall\n",
                  summary.status.ok() ? "done" : (summary.cancelled ? "cancelled" : "failed"), summary.trials_saved,
                  summary.trials_skipped, summary.run_time_s, summary.wall_time_s);
@@ -208,12 +214,9 @@ int run(const std::vector<std::string>& argv) {
     const bool wrote = summary.trials_saved + summary.trials_skipped > 0 || folder_state(o.out_dir) != out_before;
     if (!removed && wrote && std::filesystem::exists(o.out_dir, ec))
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
-    if (!summary.status.ok()) {
-        log_error("rollsense", summary.status.error().describe());
-        // However it stopped (Ctrl-C, a script error, a device), the saved trials stay: the way on.
-        if (summary.trials_saved + summary.trials_skipped > 0)
-            std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
-    }
+    // However it stopped (Ctrl-C, a script error, a device), the saved trials stay: the way on.
+    if (!summary.status.ok() && summary.trials_saved + summary.trials_skipped > 0)
+        std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     return exit_code_for(summary.status.code());
 }
 

@@ -45,6 +45,7 @@ int exit_code_for(ErrorCode code, int fallback) {
     switch (code) {
         case ErrorCode::ok: return kExitOk;
         case ErrorCode::cancelled: return kExitCancelled;
+        case ErrorCode::bad_setting: return kExitUsage;
         case ErrorCode::io_error: return kExitIo;
         case ErrorCode::timeout:
         case ErrorCode::protocol_error:

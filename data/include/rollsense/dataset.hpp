@@ -8,7 +8,8 @@
 //   <dir>/trials/<id>.csv    time,<channels...>,<joints...>,valid  (time from the
 //                            recording's start; values with 9 significant digits)
 //   <dir>/run-info.csv       wall-clock provenance (date, command line, host);
-//                            kept apart so the rest is byte-identical per seed
+//                            kept apart so the rest is byte-identical per seed;
+//                            a resume keeps the earlier run's as run-info.N.csv
 //   <dir>/run-config.csv     what decided the trials (script, profile, --set,
 //                            seed, version; rollsense/run_config.hpp): --resume
 //                            refuses a run that differs
@@ -91,7 +92,8 @@ private:
 enum class DatasetOpenMode {
     create,  // the folder must not hold a dataset yet
     resume,  // continue a dataset with the same info and run configuration; trials
-             // listed in the manifest whose file is complete are kept, the others recorded again
+             // listed in the manifest whose file is complete are kept, the others recorded again.
+             // A folder refused is left untouched; an accepted one's run-info.csv becomes run-info.N.csv
 };
 
 // Writes trials durably, holding a lock on the folder (a second writer is

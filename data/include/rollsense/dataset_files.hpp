@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 #include "rollsense/status.hpp"
@@ -13,9 +14,15 @@
 namespace rollsense {
 
 // True for a name at the top of a dataset folder that belongs to the dataset:
-// manifest.csv, dataset-info.csv, run-info.csv, run-config.csv,
-// shard-plan.csv, shards.csv and the folder trials.
+// manifest.csv, dataset-info.csv, run-info.csv (and the earlier runs'
+// run-info.N.csv), run-config.csv, shard-plan.csv, shards.csv and the folder trials.
 bool is_dataset_file(std::string_view name);
+
+// A resumed dataset keeps the run-info.csv of each earlier run of it as
+// run-info.N.csv, N = 1 for the first run (docs/dataset-format.md).
+std::string earlier_run_info_name(std::size_t n);
+// N of a run-info.N.csv name (N >= 1, plain digits); 0 for any other name.
+std::size_t earlier_run_number(std::string_view name);
 
 // Whether `dir` holds a dataset: its manifest.csv or its dataset-info.csv.
 bool holds_dataset(const std::filesystem::path& dir);

@@ -28,6 +28,7 @@ enum class ErrorCode {
     parse_error,       // a file or script could not be parsed
     unsupported,       // the operation is not implemented by this component
     script_error,      // a roll script raised an error
+    bad_setting,       // a --set a script's settings refuse: the command line's error, not the script's
 };
 
 std::string_view to_string(ErrorCode code) noexcept;

@@ -22,6 +22,7 @@ std::string_view to_string(ErrorCode code) noexcept {
         case ErrorCode::parse_error: return "parse error";
         case ErrorCode::unsupported: return "unsupported";
         case ErrorCode::script_error: return "script error";
+        case ErrorCode::bad_setting: return "bad setting";
     }
     return "unknown error";
 }

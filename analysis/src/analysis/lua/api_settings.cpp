@@ -16,8 +16,15 @@ namespace {
 
 using script_settings::Declaration;
 
+// A bad declaration: the script's error.
 [[noreturn]] void refuse(lua_State* L, const std::string& message) {
     raise_status(L, Status{ErrorCode::invalid_argument, message});
+}
+
+// A --set the declarations refuse (or a required one not given): the command
+// line's error (exit 2), raised where the script or module declared it (file:line).
+[[noreturn]] void refuse_set(lua_State* L, const std::string& message) {
+    raise_status(L, Status{ErrorCode::bad_setting, message});
 }
 
 // The catalogue the run's objects come from: a device's 'catalogue'
@@ -61,13 +68,13 @@ int l_settings(lua_State* L) {
         const auto given = st.values().find(d.key);
         if (given == st.values().end()) {
             if (!d.fallback)
-                refuse(L, "setting '" + d.key + "' is required: pass --set " + d.key + "=VALUE" +
+                refuse_set(L, "setting '" + d.key + "' is required: pass --set " + d.key + "=VALUE" +
                               (d.spec.doc.empty() ? "" : " (" + d.spec.doc + ")"));
             st.declare(d.key, *d.fallback);
             continue;
         }
         auto value = script_settings::check_value(d, given->second, catalogue ? &*catalogue : nullptr);
-        if (!value) raise_status(L, value.status());
+        if (!value) refuse_set(L, value.error().message);
         st.declare(d.key, *value);
         st.set(d.key, *value);
     }
@@ -76,7 +83,7 @@ int l_settings(lua_State* L) {
     for (const auto& [key, value] : st.values()) {
         if (is_profile_path(key) || st.used(key) || st.declared().count(key)) continue;
         if (module && setting_namespace(key) != ns) continue;
-        refuse(L, "--set " + key + ": no such setting. Settings here: " + known_settings(st) +
+        refuse_set(L, "--set " + key + ": no such setting. Settings here: " + known_settings(st) +
                       "; a profile entry is overridden by its path, e.g. devices.NAME.params.KEY "
                       "(rollsense run SCRIPT --help lists them; docs/scripting.md, Settings)");
     }

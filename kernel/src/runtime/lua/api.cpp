@@ -184,10 +184,10 @@ bool l_wait_until(lua_State* L) {
     return true;
 }
 
-// rs.setting(key, default): a --set value (converted to the default's type
-// where it is a number or boolean), or the declared default (rs.settings), or
-// `default`. No default: required. In a namespace that declared its settings,
-// an undeclared key is an error.
+// rs.setting(key, default): a --set value (of the default's type where that is
+// a number or boolean: another is the command line's error), or the declared
+// default (rs.settings), or `default`. No default: required. In a namespace
+// that declared its settings, an undeclared key is an error.
 int l_setting(lua_State* L) {
     const Settings& st = Session::of(L).settings();
     const std::string key = luaL_checkstring(L, 1);
@@ -201,13 +201,17 @@ int l_setting(lua_State* L) {
     }
     if (const ParamValue* v = st.find(key)) {
         push_param(L, *v);
+        if (const int want = lua_type(L, 2); declared == st.declared().end() && lua_type(L, -1) != want &&
+                                             (want == LUA_TNUMBER || want == LUA_TBOOLEAN))
+            raise_status(L, {ErrorCode::bad_setting, "--set " + key + ": a " + luaL_typename(L, -1) + " where rs.setting('" +
+                                                         key + "', ...) reads a " + lua_typename(L, want) + " (its default's type)"});
         return 1;
     }
     if (declared != st.declared().end()) {
         push_param(L, declared->second);
         return 1;
     }
-    if (lua_gettop(L) < 2) return luaL_error(L, "setting '%s' is required: pass --set %s=VALUE", key.c_str(), key.c_str());
+    if (lua_gettop(L) < 2) raise_status(L, {ErrorCode::bad_setting, "setting '" + key + "' is required: pass --set " + key + "=VALUE"});
     lua_settop(L, 2);
     return 1;
 }

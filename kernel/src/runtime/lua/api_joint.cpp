@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "runtime/lua/api_internal.hpp"
+#include "runtime/lua/lua_values.hpp"
 
 namespace rollsense::runtime::lua_api {
 namespace {
@@ -149,38 +150,17 @@ int l_name(lua_State* L) {
 }
 
 int l_state(lua_State* L) {
-    const Joint& j = check_joint(L, 1);
-    lua_newtable(L);
-    lua_pushnumber(L, j.state.position);
-    lua_setfield(L, -2, "position");
-    lua_pushnumber(L, j.state.velocity);
-    lua_setfield(L, -2, "velocity");
-    lua_pushnumber(L, j.state.current);
-    lua_setfield(L, -2, "current");
-    lua_pushboolean(L, j.state.moving);
-    lua_setfield(L, -2, "moving");
-    lua_pushboolean(L, j.state.torque_enabled);
-    lua_setfield(L, -2, "torque");
-    lua_pushstring(L, std::string(to_string(j.state.mode)).c_str());
-    lua_setfield(L, -2, "mode");
-    lua_pushstring(L, j.state.fault.c_str());
-    lua_setfield(L, -2, "fault");
+    const JointState& st = check_joint(L, 1).state;
+    push_param_map(L, {{"position", st.position}, {"velocity", st.velocity}, {"current", st.current},
+                       {"moving", st.moving}, {"torque", st.torque_enabled},
+                       {"mode", std::string(to_string(st.mode))}, {"fault", st.fault}});
     return 1;
 }
 
 int l_limits(lua_State* L) {
     const Joint& j = check_joint(L, 1);
-    lua_newtable(L);
-    lua_pushnumber(L, j.limit.min);
-    lua_setfield(L, -2, "min");
-    lua_pushnumber(L, j.limit.max);
-    lua_setfield(L, -2, "max");
-    lua_pushnumber(L, j.limit.max_velocity);
-    lua_setfield(L, -2, "max_velocity");
-    lua_pushnumber(L, j.limit.max_current);
-    lua_setfield(L, -2, "max_current");
-    lua_pushstring(L, j.info.unit.c_str());
-    lua_setfield(L, -2, "unit");
+    push_param_map(L, {{"min", j.limit.min}, {"max", j.limit.max}, {"max_velocity", j.limit.max_velocity},
+                       {"max_current", j.limit.max_current}, {"unit", j.info.unit}});
     return 1;
 }
 

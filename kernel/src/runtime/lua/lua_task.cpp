@@ -97,7 +97,7 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     // The code a binding raised (a limit violation, a hardware fault) stays the
     // script's error code.
     ErrorCode code = session_of(main)->take_raised_code();
-    if (sandbox_.cancelled()) code = ErrorCode::cancelled;
+    if (sandbox_.cancelled()) code = sandbox_.cancel_code();
     if (code == ErrorCode::ok) code = ErrorCode::script_error;
     return TaskStep::done(Status(code, trace));
 }
@@ -113,7 +113,7 @@ std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::stri
             // Any error value: nil, a table, a userdata (hooks are on again here).
             std::string msg = error_text(main, -1);
             lua_pop(main, 1);
-            return Status(sandbox.cancelled() ? ErrorCode::cancelled : ErrorCode::script_error,
+            return Status(sandbox.cancelled() ? sandbox.cancel_code() : ErrorCode::script_error,
                           "wait_until condition failed: " + msg + " (the condition of rs.wait_until at " + called_at + ")");
         }
         const bool met = lua_toboolean(main, -1);

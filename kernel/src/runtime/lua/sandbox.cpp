@@ -274,11 +274,15 @@ void Sandbox::hook(lua_State* L, lua_Debug*) {
         return;
     }
     const double ran = wall_ms() - self.slice_start_;
-    if (ran > self.limits_.max_slice_ms) {
-        self.cancel("the script ran " + std::to_string(static_cast<long>(ran)) +
-                    " ms without waiting (an endless loop?); the limit is --slice-limit-ms");
+    if (ran > self.limits_.max_slice_ms) {  // the script's failure (cancel_code), not a cancel from outside
+        luaL_where(L, 0);  // in a hook, level 0 is the running function: the script's file:line
+        self.cancel(lua_tostring(L, -1) + std::string("the script ran ") + std::to_string(static_cast<long>(ran)) +
+                    " ms without waiting (an endless loop?), past --slice-limit-ms " +
+                    std::to_string(static_cast<long>(self.limits_.max_slice_ms)) +
+                    "; let long loops wait (rs.wait), or raise --slice-limit-ms");
+        self.cancel_code_ = ErrorCode::limit_violation;
         lua_sethook(L, &Sandbox::hook, LUA_MASKCOUNT, 1);
-        luaL_error(L, "cancelled: %s", self.cancel_reason_.c_str());
+        lua_pushstring(L, self.cancel_reason_.c_str()), lua_error(L);
     }
 }
 
@@ -294,6 +298,7 @@ void Sandbox::cancel(const std::string& reason) {
 void Sandbox::clear_cancel() {
     cancelled_.store(false);
     cancel_reason_.clear();
+    cancel_code_ = ErrorCode::cancelled;
     arm(L_);  // a wait_until condition may have left the main state's hook on every instruction
 }
 

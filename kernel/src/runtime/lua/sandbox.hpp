@@ -70,6 +70,8 @@ public:
     void clear_cancel() override;
     bool cancelled() const override { return cancelled_.load(); }
     const std::string& cancel_reason() const override { return cancel_reason_; }
+    // What a task ended by the cancel failed of: limit_violation past the slice limit, else cancelled.
+    ErrorCode cancel_code() const { return cancel_code_; }
     // Install the hook on a coroutine (new threads inherit it, this re-arms).
     void arm(lua_State* thread);
     // Called by the scheduler right before resuming Lua code, and right after
@@ -117,6 +119,7 @@ private:
     int loaded_ref_ = LUA_NOREF;
     std::atomic<bool> cancelled_{false};
     std::string cancel_reason_;
+    ErrorCode cancel_code_ = ErrorCode::cancelled;  // set and read on the Lua thread
     double slice_start_ = 0;
     std::atomic<std::int64_t> in_lua_since_ms_{0};
     const std::atomic<bool>* external_flag_ = nullptr;

@@ -72,7 +72,6 @@ struct LuaCloser {
 struct ProfileBudget {
     LuaHeap heap;
     double max_ms = 0;
-    std::string file;  // the profile named on the command line (includes run inside it)
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 };
 
@@ -81,9 +80,12 @@ ProfileBudget* budget_of(lua_State* L) { return *static_cast<ProfileBudget**>(lu
 void budget_hook(lua_State* L, lua_Debug*) {
     auto* b = budget_of(L);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b->start).count();
-    if (ms > b->max_ms)
-        luaL_error(L, "%s: the profile ran %d ms without finishing (an endless loop?); the limit is --slice-limit-ms",
-                   b->file.c_str(), static_cast<int>(ms));
+    if (ms > b->max_ms) {
+        luaL_where(L, 0);  // in a hook, level 0 is the running function: the profile's (or an include's) file:line
+        lua_pushfstring(L, "the profile ran %d ms without finishing (an endless loop?), past --slice-limit-ms %d",
+                        static_cast<int>(ms), static_cast<int>(b->max_ms));
+        lua_concat(L, 2), lua_error(L);
+    }
 }
 
 struct LoadState {
@@ -408,7 +410,6 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
     ProfileBudget budget;
     budget.heap.cap = limits.memory_bytes;
     budget.max_ms = limits.max_slice_ms;
-    budget.file = p.path.string();
     std::unique_ptr<lua_State, LuaCloser> holder(lua_newstate(&LuaHeap::allocate, &budget.heap));
     if (!holder) return Error{ErrorCode::io_error, "cannot create a Lua state for profile " + p.path.string()};
     lua_State* L = holder.get();
