@@ -357,7 +357,7 @@ std::string format_trial_csv(const DatasetInfo& info, const TrialData& data, Tri
 
 // ------------------------------------------------------------------ reader --
 
-Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
+Result<DatasetReader> DatasetReader::open(const fs::path& dir, MissingTrialFile missing) {
     DatasetReader r;
     r.dir_ = dir;
     std::error_code ec;
@@ -382,16 +382,15 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir) {
     auto manifest = read_manifest(dir / "manifest.csv");
     if (!manifest) return manifest.error();
     r.trials_ = std::move(*manifest);
-    // The readers' check, and resume's (it opens the dataset too): the way out works for both.
     for (const auto& t : r.trials_)
-        if (!fs::exists(dir / t.file, ec)) {
+        if (missing == MissingTrialFile::refuse && !fs::exists(dir / t.file, ec)) {
             const std::string line = std::to_string(t.manifest_line);
             return Error{ErrorCode::not_found,
                          (dir / "manifest.csv").string() + ":" + line + ": trial '" + t.info.id + "' is listed, but " +
-                             (dir / t.file).string() + " is missing. Put the file back, or delete line " + line +
-                             " of manifest.csv to use the dataset without that trial" +
-                             (recorded ? " ('rollsense run SCRIPT --out " + dir.string() + " --resume' then records "
-                                         "it again)" : "")};
+                             (dir / t.file).string() + " is missing. Put the file back, " +
+                             (recorded ? "record it again in its place with 'rollsense run SCRIPT --out " +
+                                             dir.string() + " --resume', " : std::string()) +
+                             "or delete line " + line + " of manifest.csv to use the dataset without that trial"};
         }
     if (recorded) {
         auto info = read_info(dir / "dataset-info.csv");
@@ -523,7 +522,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
         if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
         if (auto s = drop_torn_line(dir / "manifest.csv"); !s.ok())
             return Error{s.error().code, "cannot resume: " + s.error().message};
-        auto read = DatasetReader::open(dir);
+        auto read = DatasetReader::open(dir, DatasetReader::MissingTrialFile::keep_listed);
         if (!read) return Error{read.error().code, "cannot resume: " + read.error().message};
         const auto& old = read->info();
         if (old.seed != info.seed || old.profile != info.profile || old.channels != info.channels ||

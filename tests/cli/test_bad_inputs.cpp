@@ -79,12 +79,13 @@ TEST_CASE("a trial file missing from trials/ is named with its manifest line and
     const std::string manifest = read_file(ds / "manifest.csv");
     const auto second = manifest.find('\n', manifest.find('\n') + 1) + 1;  // line 3
     const std::string id = manifest.substr(second, manifest.find(',', second) - second);
+    const std::string trial_file = read_file(ds / "trials" / (id + ".csv"));
     fs::remove(ds / "trials" / (id + ".csv"));
     const std::string expected = (ds / "manifest.csv").string() + ":3: trial '" + id + "' is listed, but " +
                                  (ds / "trials" / (id + ".csv")).string() +
-                                 " is missing. Put the file back, or delete line 3 of manifest.csv to use the "
-                                 "dataset without that trial ('rollsense run SCRIPT --out " + ds.string() +
-                                 " --resume' then records it again)";
+                                 " is missing. Put the file back, record it again in its place with 'rollsense "
+                                 "run SCRIPT --out " + ds.string() + " --resume', or delete line 3 of manifest.csv "
+                                 "to use the dataset without that trial";
     for (const std::string& command : {"features " + ds.string() + " -o " + (dir / "f.csv").string(),
                                        "evaluate " + ds.string() + " --folds 2", "report " + ds.string(),
                                        "train " + ds.string() + " -o " + (dir / "m.rsm").string()}) {
@@ -94,7 +95,16 @@ TEST_CASE("a trial file missing from trials/ is named with its manifest line and
         CHECK(r.status == 3);
         CHECK(count_of(r.output, expected) == 1);
     }
-    // The way out works: without its manifest row the dataset reads, and resume records the trial again.
+    // Each way out works. Resume records the trial again, the same bytes in the same
+    // place of the manifest (it refused the dataset before: "cannot resume").
+    const auto in_place = run_rollsense(record + " --resume");
+    INFO(in_place.output);
+    CHECK(in_place.status == 0);
+    CHECK(count_of(in_place.output, "trial '" + id + "' is recorded again") == 1);
+    CHECK(read_file(ds / "trials" / (id + ".csv")) == trial_file);
+    CHECK(read_file(ds / "manifest.csv") == manifest);
+    // Without its manifest row the dataset reads, and resume records the trial again.
+    fs::remove(ds / "trials" / (id + ".csv"));
     std::string without = manifest;
     const auto row = without.find("\n" + id + ",") + 1;
     without.erase(row, without.find('\n', row) + 1 - row);

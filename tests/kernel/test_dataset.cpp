@@ -119,9 +119,9 @@ TEST_CASE("bad trial files are reported with file, line and column", "[dataset]"
     // The manifest's line and a way out (review s8 item 4: "points at missing file" named neither).
     CHECK_THAT(load_error(dir), Catch::Contains((dir / "manifest.csv").string() + ":2: trial 'T' is listed, but " +
                                                 (dir / "trials/T.csv").string() + " is missing. Put the file back, " +
-                                                "or delete line 2 of manifest.csv to use the dataset without that " +
-                                                "trial ('rollsense run SCRIPT --out " + dir.path().string() +
-                                                " --resume' then records it again)"));
+                                                "record it again in its place with 'rollsense run SCRIPT --out " +
+                                                dir.path().string() + " --resume', or delete line 2 of " +
+                                                "manifest.csv to use the dataset without that trial"));
 }
 
 TEST_CASE("the same seed gives byte-identical trial files and manifest", "[dataset][determinism]") {

@@ -72,9 +72,15 @@ struct TrialRecord {
 
 class DatasetReader {
 public:
+    // What open() does with a manifest row whose trial file is missing: a reader
+    // refuses the dataset (naming the row and the way out); a resume keeps the
+    // row, whose load() then fails, so that the trial is recorded again in its place.
+    enum class MissingTrialFile { refuse, keep_listed };
+
     // Reads dataset-info.csv (optional for hand-made datasets: the columns are
     // then inferred from the first trial file) and manifest.csv.
-    static Result<DatasetReader> open(const std::filesystem::path& dir);
+    static Result<DatasetReader> open(const std::filesystem::path& dir,
+                                      MissingTrialFile missing = MissingTrialFile::refuse);
 
     const std::filesystem::path& dir() const { return dir_; }
     const DatasetInfo& info() const { return info_; }
