@@ -57,6 +57,23 @@ TEST_CASE("a wrong type is an error naming the key", "[profile]") {
     CHECK_THAT(p.error().message, Catch::Contains("p.lua.control_rate_hz must be a number"));
 }
 
+// A plugin_path entry that is no folder was searched, found empty, and the run went on with the other folders.
+TEST_CASE("a plugin_path that is not a folder is an error naming the entry and the folder", "[profile]") {
+    kt::TempDir dir;
+    kt::write_file(dir / "profiles/plugins/readme.txt", "plugins go here\n");
+    auto good = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",", "clock = \"virtual\", plugin_path = { \"plugins\" },"));
+    INFO((good ? "" : good.error().message));
+    REQUIRE(good.ok());
+    CHECK(good->plugin_path == std::vector<std::filesystem::path>{dir / "profiles/plugins"});
+    for (const char* entry : {"plugns", "plugins/readme.txt"}) {
+        auto bad = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",",
+                                          std::string("clock = \"virtual\", plugin_path = { \"") + entry + "\" },"));
+        REQUIRE_FALSE(bad.ok());
+        CHECK_THAT(bad.error().message, Catch::Contains("p.lua.plugin_path: " + (dir / "profiles" / entry).string() +
+                                                        " is not a folder"));
+    }
+}
+
 TEST_CASE("a plugin parameter with a typo or the wrong type names the device and key", "[profile]") {
     kt::TempDir dir;
     auto typo = robot_from(dir, replace(kt::kTestProfile, "joint = \"finger\"", "joint = \"finger\", widht = 3"));

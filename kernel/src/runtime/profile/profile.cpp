@@ -289,9 +289,10 @@ Status read_profile_table(lua_State* L, Profile& p) {
         return {ErrorCode::invalid_argument, r.where() + ": sample_rate_hz and control_rate_hz must be > 0"};
     std::vector<std::string> list;
     TRY(take(r.string_list("plugin_path"), list));
-    for (const auto& entry : list) {
-        fs::path pp(entry);
-        p.plugin_path.push_back(pp.is_absolute() ? pp : p.path.parent_path() / pp);
+    for (const auto& entry : list) {  // a mistyped folder would be searched, found empty, and the run go on
+        p.plugin_path.push_back(fs::path(entry).is_absolute() ? fs::path(entry) : p.path.parent_path() / entry);
+        if (std::error_code ec; !fs::is_directory(p.plugin_path.back(), ec))
+            return {ErrorCode::invalid_argument, r.at("plugin_path") + ": " + p.plugin_path.back().string() + " is not a folder"};
     }
     TRY(take(r.string_list("record_joints"), p.record_joints));
     TRY(take(r.string_list("identification_channels"), p.identification_channels));
