@@ -518,19 +518,25 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     // A resume checks the folder is this run's dataset before it changes
     // anything there: a refused folder stays exactly as it was.
     std::optional<DatasetReader> on_disk;
+    auto same_setup = [&](const DatasetInfo& old) -> Status {
+        if (old.seed == info.seed && old.profile == info.profile && old.channels == info.channels &&
+            old.joints == info.joints && old.sample_rate_hz == info.sample_rate_hz)
+            return {};
+        return {ErrorCode::invalid_argument, dir.string() + " was recorded with another setup (profile '" + old.profile +
+                                                 "', seed " + std::to_string(old.seed) + "); resume it with the same "
+                                                 "--profile and --seed, or choose another folder with --out"};
+    };
     if (mode == DatasetOpenMode::resume && exists) {
         if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
+        // Before the torn line is cut: another experiment's manifest is not touched.
+        if (fs::exists(dir / "dataset-info.csv", ec))
+            if (auto old = read_info(dir / "dataset-info.csv"); old)
+                if (auto s = same_setup(*old); !s.ok()) return s.error();
         if (auto s = drop_torn_line(dir / "manifest.csv"); !s.ok())
             return Error{s.error().code, "cannot resume: " + s.error().message};
         auto read = DatasetReader::open(dir, DatasetReader::MissingTrialFile::keep_listed);
         if (!read) return Error{read.error().code, "cannot resume: " + read.error().message};
-        const auto& old = read->info();
-        if (old.seed != info.seed || old.profile != info.profile || old.channels != info.channels ||
-            old.joints != info.joints || old.sample_rate_hz != info.sample_rate_hz)
-            return Error{ErrorCode::invalid_argument,
-                         dir.string() + " was recorded with another setup (profile '" + old.profile + "', seed " +
-                             std::to_string(old.seed) + "); resume it with the same --profile and --seed, or "
-                                                        "choose another folder with --out"};
+        if (auto s = same_setup(read->info()); !s.ok()) return s.error();  // a hand-made dataset's, inferred
         on_disk = std::move(*read);
         if (auto s = keep_earlier_run_info(dir); !s.ok()) return s.error();
     }

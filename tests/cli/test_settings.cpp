@@ -316,12 +316,19 @@ TEST_CASE("a --resume refused for another experiment's dataset leaves the folder
     fs::create_directories(setup);
     fs::copy_file(other / "dataset-info.csv", setup / "dataset-info.csv");
     write_file(setup / "manifest.csv", read_file(other / "manifest.csv").substr(0, read_file(other / "manifest.csv").find('\n') + 1));
+    // The same with a torn last row, which a resume of its own dataset cuts off (it cut it before the check).
+    const auto torn = dir / "torn";
+    fs::create_directories(torn);
+    fs::copy_file(other / "dataset-info.csv", torn / "dataset-info.csv");
+    const std::string rows = read_file(other / "manifest.csv");
+    write_file(torn / "manifest.csv", rows.substr(0, rows.find('\n', rows.find('\n') + 1) - 3));
     struct Case {
         fs::path folder;
         const char* says;
         int status;
     };
-    for (const Case& c : {Case{lone, "cannot resume", 3}, Case{setup, "was recorded with another setup", 1}}) {
+    for (const Case& c : {Case{lone, "cannot resume", 3}, Case{setup, "was recorded with another setup", 1},
+                          Case{torn, "was recorded with another setup", 1}}) {
         INFO(c.folder);
         const auto before = snapshot(c.folder);
         const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 7 --resume --out " + shell_quoted(c.folder));
