@@ -529,14 +529,16 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     if (mode == DatasetOpenMode::resume && exists) {
         if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();
         // Before the torn line is cut: another experiment's manifest is not touched.
-        if (fs::exists(dir / "dataset-info.csv", ec))
-            if (auto old = read_info(dir / "dataset-info.csv"); old)
+        const bool recorded = fs::exists(dir / "dataset-info.csv", ec);
+        if (recorded)
+            if (auto old = read_info(dir / "dataset-info.csv"); old)  // unreadable: the reader below says why
                 if (auto s = same_setup(*old); !s.ok()) return s.error();
         if (auto s = drop_torn_line(dir / "manifest.csv"); !s.ok())
             return Error{s.error().code, "cannot resume: " + s.error().message};
         auto read = DatasetReader::open(dir, DatasetReader::MissingTrialFile::keep_listed);
         if (!read) return Error{read.error().code, "cannot resume: " + read.error().message};
-        if (auto s = same_setup(read->info()); !s.ok()) return s.error();  // a hand-made dataset's, inferred
+        if (!recorded)  // a hand-made dataset's setup, inferred from its first trial file
+            if (auto s = same_setup(read->info()); !s.ok()) return s.error();
         on_disk = std::move(*read);
         if (auto s = keep_earlier_run_info(dir); !s.ok()) return s.error();
     }
