@@ -522,7 +522,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
         if (old.seed == info.seed && old.profile == info.profile && old.channels == info.channels &&
             old.joints == info.joints && old.sample_rate_hz == info.sample_rate_hz)
             return {};
-        return {ErrorCode::invalid_argument, dir.string() + " was recorded with another setup (profile '" + old.profile +
+        return {ErrorCode::bad_setting, dir.string() + " was recorded with another setup (profile '" + old.profile +
                                                  "', seed " + std::to_string(old.seed) + "); resume it with the same "
                                                  "--profile and --seed, or choose another folder with --out"};
     };

@@ -327,8 +327,8 @@ TEST_CASE("a --resume refused for another experiment's dataset leaves the folder
         const char* says;
         int status;
     };
-    for (const Case& c : {Case{lone, "cannot resume", 3}, Case{setup, "was recorded with another setup", 1},
-                          Case{torn, "was recorded with another setup", 1}}) {
+    for (const Case& c : {Case{lone, "cannot resume", 3}, Case{setup, "was recorded with another setup", 2},
+                          Case{torn, "was recorded with another setup", 2}}) {
         INFO(c.folder);
         const auto before = snapshot(c.folder);
         const auto r = run_rollsense("run " + kPaper + kSmall + " --seed 7 --resume --out " + shell_quoted(c.folder));

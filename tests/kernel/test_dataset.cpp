@@ -84,6 +84,7 @@ TEST_CASE("creating over an existing dataset is refused; resuming with another s
     auto resumed = DatasetWriter::open(dir.path(), other, DatasetOpenMode::resume);
     REQUIRE_FALSE(resumed.ok());
     CHECK_THAT(resumed.error().message, Catch::Contains("seed 7"));
+    CHECK(resumed.error().code == ErrorCode::bad_setting);  // a bad --seed: exit 2, as run-config.csv's check gives
 }
 
 TEST_CASE("bad trial files are reported with file, line and column", "[dataset]") {

@@ -28,7 +28,7 @@ enum class ErrorCode {
     parse_error,       // a file or script could not be parsed
     unsupported,       // the operation is not implemented by this component
     script_error,      // a roll script raised an error
-    bad_setting,       // a --set a script's settings refuse: the command line's error, not the script's
+    bad_setting,       // a --set, --seed or --profile the script or a resumed dataset refuses: exit 2
 };
 
 std::string_view to_string(ErrorCode code) noexcept;
