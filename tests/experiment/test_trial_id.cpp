@@ -36,3 +36,46 @@ print("trial ids agree")
     CHECK(run.status == 0);
     CHECK(run.output.find("trial ids agree") != std::string::npos);
 }
+
+// Independent review, item 4: rs.trial took repetition = -1 and wrote a manifest
+// that features, evaluate and --resume then refused ("'-1' is not a whole number");
+// 1e12 overflowed into "r-2147483648" and 2.7 was cut to "r002".
+TEST_CASE("rs.trial and rs.trial_id refuse a key the manifest could not hold, at the script's line",
+          "[experiment][trial_id]") {
+    TempDir dir("rollsense-trial-key");
+    struct Case {
+        const char* key;
+        const char* says;
+    };
+    for (const Case& c : {Case{"repetition = -1", "repetition -1: give a whole number in [0, 2147483647]"},
+                          Case{"repetition = 1e12", "repetition 1000000000000.0: give a whole number"},
+                          Case{"repetition = 2.7", "repetition 2.7: give a whole number"},
+                          Case{"repetition = 0/0", "repetition -nan: give a whole number"},
+                          Case{"repetition = 'x'", "repetition x: give a whole number"},
+                          Case{"speed = 0/0", "speed -nan: give a number or a label"},
+                          Case{"speed = 1/0", "speed inf: give a number or a label"},
+                          Case{"speed = {}", "speed table: 0x"},
+                          Case{"speed = true", "speed true: give a number or a label"}}) {
+        for (const char* call : {"rs.trial", "rs.trial_id"}) {
+            INFO(call << "{" << c.key << "}");
+            write_file(dir / "key.lua", std::string("local rs = require \"rollsense\"\n") + call +
+                                            "{ object = \"C2\", speed = 10, repetition = 1, " + c.key + " }\n");
+            const auto run = run_rollsense("run " + (dir / "key.lua").string() + " --out " + (dir / "out").string());
+            INFO(run.output);
+            CHECK(run.status == 1);
+            CHECK(run.output.find(std::string("key.lua:2: ") + call + ": ") != std::string::npos);
+            CHECK(run.output.find(c.says) != std::string::npos);
+            CHECK_FALSE(std::filesystem::exists(dir / "out" / "manifest.csv"));
+            std::filesystem::remove_all(dir / "out");
+        }
+    }
+    // A label for a speed is the script's choice: it names the trial and the manifest's speed column.
+    write_file(dir / "label.lua", "local rs = require \"rollsense\"\n"
+                                  "local id = rs.trial_id{ object = \"C2\", speed = \"fast\", repetition = 0 }\n"
+                                  "assert(id == \"C2-vfast-r000\", id)\n"
+                                  "print(\"label ok\")\n");
+    const auto run = run_rollsense("run " + (dir / "label.lua").string() + " --out " + (dir / "out").string());
+    INFO(run.output);
+    CHECK(run.status == 0);
+    CHECK(run.output.find("label ok") != std::string::npos);
+}

@@ -55,9 +55,7 @@ std::vector<Registrar>& extras() {
 }  // namespace
 
 ExtraRegistration::ExtraRegistration(Registrar registrar) { extras().push_back(registrar); }
-void register_extras(lua_State* L) {
-    for (auto r : extras()) r(L);
-}
+void register_extras(lua_State* L) { for (auto r : extras()) r(L); }
 
 LuaTask& waiting_task(lua_State* L, const char* function) {
     Session& s = Session::of(L);

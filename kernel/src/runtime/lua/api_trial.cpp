@@ -1,6 +1,7 @@
 // Trials and recording from Lua: rs.trial{...}, rs.trial_id{...}, rs.record_start/stop,
 // rs.save_trial, rs.end_trial, rs.has_trial (for --resume and --shard), rs.shard(), rs.recorded().
 #include <algorithm>
+#include <cmath>
 
 #include "rollsense/trial_id.hpp"
 #include "runtime/lua/api_internal.hpp"
@@ -8,26 +9,33 @@
 namespace rollsense::runtime::lua_api {
 namespace {
 
-void check(lua_State* L, const Status& s) {
-    if (!s.ok()) raise_status(L, s);
-}
+void check(lua_State* L, const Status& s) { if (!s.ok()) raise_status(L, s); }
 
-// object, speed (as Lua spells it: 10 → "10", "12.5" → "12.5") and
-// repetition of the table at index 1.
-void read_trial_key(lua_State* L, TrialInfo& info) {
+// object, speed (a label, or a number as Lua spells it: 10 → "10") and repetition of
+// the table at index 1; refused at the script's line where the manifest could not hold them.
+void read_trial_key(lua_State* L, TrialInfo& info, const char* call) {
     luaL_checktype(L, 1, LUA_TTABLE);
     info.object = opt_field_string(L, 1, "object", "");
     lua_getfield(L, 1, "speed");
-    if (!lua_isnil(L, -1)) info.speed = luaL_tolstring(L, -1, nullptr), lua_pop(L, 1);
+    const int type = lua_type(L, -1);
+    if (type == LUA_TNUMBER ? !std::isfinite(lua_tonumber(L, -1)) : type != LUA_TSTRING && type != LUA_TNIL)
+        luaL_error(L, "%s: speed %s: give a number or a label (a string)", call, luaL_tolstring(L, -1, nullptr));
+    if (type != LUA_TNIL) info.speed = luaL_tolstring(L, -1, nullptr), lua_pop(L, 1);
     lua_pop(L, 1);
-    info.repetition = static_cast<int>(opt_field_number(L, 1, "repetition", 0));
+    lua_getfield(L, 1, "repetition");
+    const double rep = lua_isnil(L, -1) ? 0 : lua_isnumber(L, -1) ? lua_tonumber(L, -1) : -1;
+    if (!(rep >= 0 && rep <= INT32_MAX && rep == std::floor(rep)))
+        luaL_error(L, "%s: repetition %s: give a whole number in [0, 2147483647]", call,
+                   luaL_tolstring(L, -1, nullptr));
+    info.repetition = static_cast<int>(rep);
+    lua_pop(L, 1);
 }
 
 // rs.trial_id{object=, speed=, repetition=} → the id rs.trial{} gives such a trial
 int l_trial_id(lua_State* L) {
     TrialInfo info;
     check_options(L, 1, "rs.trial_id", {"object", "speed", "repetition"});
-    read_trial_key(L, info);
+    read_trial_key(L, info, "rs.trial_id");
     if (info.object.empty()) return luaL_error(L, "rs.trial_id: give an object (and speed, repetition)");
     lua_pushstring(L, trial_id(info.object, info.speed, info.repetition).c_str());
     return 1;
@@ -37,7 +45,7 @@ int l_trial_id(lua_State* L) {
 int l_trial(lua_State* L) {
     TrialInfo info;
     check_options(L, 1, "rs.trial", {"object", "speed", "repetition", "id", "extra"});
-    read_trial_key(L, info);
+    read_trial_key(L, info, "rs.trial");
     info.id = opt_field_string(L, 1, "id", "");
     if (info.id.empty()) {
         if (info.object.empty()) return luaL_error(L, "rs.trial: give an id, or an object (and speed, repetition)");
@@ -90,8 +98,10 @@ int l_shard(lua_State* L) {
     return 2;
 }
 
-int l_record_start(lua_State* L) {
-    check(L, Session::of(L).record_start());
+// rs.record_start(), rs.save_trial(), rs.end_trial(): a step of the session's trial.
+template <Status (Session::*step)()>
+int l_trial_step(lua_State* L) {
+    check(L, (Session::of(L).*step)());
     return 0;
 }
 
@@ -100,16 +110,6 @@ int l_record_stop(lua_State* L) {
     check(L, s.record_stop());
     lua_pushinteger(L, static_cast<lua_Integer>(s.recorded().samples()));
     return 1;
-}
-
-int l_save_trial(lua_State* L) {
-    check(L, Session::of(L).save_trial());
-    return 0;
-}
-
-int l_end_trial(lua_State* L) {
-    check(L, Session::of(L).end_trial());
-    return 0;
 }
 
 void push_column(lua_State* L, const std::vector<double>& v) {
@@ -144,11 +144,11 @@ int l_recorded(lua_State* L) {
 }  // namespace
 
 void register_trials(lua_State* L) {
-    static const luaL_Reg fns[] = {{"trial", l_trial},           {"trial_id", l_trial_id},     {"has_trial", l_has_trial},
-                                   {"shard", l_shard},
-                                   {"record_start", l_record_start}, {"record_stop", l_record_stop},
-                                   {"save_trial", l_save_trial}, {"end_trial", l_end_trial},
-                                   {"recorded", l_recorded},     {nullptr, nullptr}};
+    static const luaL_Reg fns[] = {
+        {"trial", l_trial}, {"trial_id", l_trial_id}, {"has_trial", l_has_trial}, {"shard", l_shard},
+        {"record_start", l_trial_step<&Session::record_start>}, {"record_stop", l_record_stop},
+        {"save_trial", l_trial_step<&Session::save_trial>}, {"end_trial", l_trial_step<&Session::end_trial>},
+        {"recorded", l_recorded}, {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
 }
 

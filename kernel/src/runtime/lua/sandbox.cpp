@@ -98,9 +98,7 @@ Sandbox::Sandbox(SandboxLimits limits, std::vector<std::filesystem::path> module
     arm(L_);
 }
 
-Sandbox::~Sandbox() {
-    if (L_) lua_close(L_);
-}
+Sandbox::~Sandbox() { if (L_) lua_close(L_); }
 
 Sandbox& Sandbox::of(lua_State* L) { return **static_cast<Sandbox**>(lua_getextraspace(L)); }
 
