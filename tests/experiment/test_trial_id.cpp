@@ -79,3 +79,22 @@ TEST_CASE("rs.trial and rs.trial_id refuse a key the manifest could not hold, at
     CHECK(run.status == 0);
     CHECK(run.output.find("label ok") != std::string::npos);
 }
+
+// Independent review, item 10: a trial refused for an unknown object left the
+// sensor in the error state, so the next rs.trial failed ("needs the active
+// state, it is error") and recover() left it unconfigured, with no way back.
+TEST_CASE("a trial refused for an unknown object leaves the sensor ready for the next trial", "[experiment][trial_id]") {
+    TempDir dir("rollsense-trial-refused");
+    write_file(dir / "refused.lua", R"(local rs = require "rollsense"
+local ok, err = pcall(rs.trial, { object = "ZZ", speed = 10, repetition = 1 })
+assert(not ok and err:find("not in the catalogue", 1, true), tostring(err))
+assert(rs.device("tactile"):state() == "active", rs.device("tactile"):state())
+rs.trial{ object = "P2", speed = 10, repetition = 1 }
+rs.end_trial()
+print("next trial began")
+)");
+    const auto run = run_rollsense("run " + (dir / "refused.lua").string() + " --out " + (dir / "out").string());
+    INFO(run.output);
+    CHECK(run.status == 0);
+    CHECK(run.output.find("next trial began") != std::string::npos);
+}

@@ -56,6 +56,26 @@ TEST_CASE("any error value thrown in a wait_until condition is reported clearly"
     CHECK_THAT(r.text, Catch::Contains("custom text"));
 }
 
+// Independent review, item 9: a condition that waits, with rs.wait_until called
+// through pcall: pcall gave "cancelled: " with no reason, and the run's error named
+// the call's place as "at )".
+TEST_CASE("a failed wait_until condition called through pcall says why and where", "[sandbox][errors]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+local ok, e = pcall(rs.wait_until, function() rs.wait(1) return true end, 100)
+rs.write_output("pcall.txt", tostring(e))
+rs.wait(10)
+)");
+    INFO(r.text);
+    REQUIRE(r.exited);
+    CHECK_THAT(r.text, Catch::StartsWith("script error") && Catch::Contains("rs.wait cannot wait here") &&
+                           Catch::EndsWith(".lua:2)"));
+    const std::string caught = kt::read_file(dir / "out" / "pcall.txt");
+    INFO(caught);
+    CHECK_THAT(caught, Catch::Contains("cancelled: task 'main': wait_until condition failed: ") &&
+                           Catch::Contains("rs.wait cannot wait here"));
+}
+
 TEST_CASE("a non-string error ending a task is described", "[sandbox][errors]") {
     kt::TempDir dir;
     auto r = sandbox_test::run_script_limited(dir, "error(setmetatable({}, {__tostring = function() return 'mine' end}))\n");

@@ -68,6 +68,12 @@ LuaTask& waiting_task(lua_State* L, const char* function) {
 
 namespace {
 LuaTask* resumed_task(lua_State* L) { return dynamic_cast<LuaTask*>(Session::of(L).scheduler().current()); }
+
+// Why a wait ended cancelled: the cancel's reason, or the failure that ends the run (a wait_until condition's error).
+int raise_cancelled(lua_State* L, Session& s) {
+    const Sandbox& box = s.sandbox();
+    return luaL_error(L, "cancelled: %s", (box.cancelled() ? box.cancel_reason() : s.scheduler().failure().message()).c_str());
+}
 }  // namespace
 
 int finish_wait(lua_State* L, int, lua_KContext) {
@@ -75,7 +81,7 @@ int finish_wait(lua_State* L, int, lua_KContext) {
     LuaTask* t = resumed_task(L);
     if (!t) return 0;
     if (t->outcome() == WaitOutcome::cancelled)
-        return luaL_error(L, "cancelled: %s", s.sandbox().cancel_reason().c_str());
+        return raise_cancelled(L, s);
     if (t->outcome() == WaitOutcome::timed_out) {
         s.set_raised_code(ErrorCode::timeout);
         return luaL_error(L, "timed out waiting for %s", t->waiting_for().c_str());
@@ -155,7 +161,7 @@ int after_wait_until(lua_State* L, int, lua_KContext) {
     LuaTask* t = resumed_task(L);
     t->release_predicate();
     if (t->outcome() == WaitOutcome::cancelled)
-        return luaL_error(L, "cancelled: %s", s.sandbox().cancel_reason().c_str());
+        return raise_cancelled(L, s);
     lua_pushboolean(L, t->outcome() == WaitOutcome::ready);
     return 1;
 }
@@ -172,7 +178,9 @@ bool l_wait_until(lua_State* L) {
     t.hold_predicate(ref);
     Wait w;
     w.kind = Wait::Kind::predicate;
-    luaL_where(L, 1);  // "file:line: " of the call
+    int level = 1;  // the script's line that called it, through pcall and other C functions
+    for (lua_Debug ar; lua_getstack(L, level, &ar) && lua_getinfo(L, "l", &ar) && ar.currentline < 0;) ++level;
+    luaL_where(L, level);
     const std::string where = lua_tostring(L, -1);
     lua_pop(L, 1);
     w.predicate = lua_predicate(s.sandbox(), ref, where.substr(0, where.find_last_not_of(": ") + 1));

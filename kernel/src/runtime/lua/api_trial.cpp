@@ -11,8 +11,7 @@ namespace {
 
 void check(lua_State* L, const Status& s) { if (!s.ok()) raise_status(L, s); }
 
-// object, speed (a label, or a number as Lua spells it: 10 → "10") and repetition of
-// the table at index 1; refused at the script's line where the manifest could not hold them.
+// object, speed (a label, or a number as Lua spells it: 10 → "10") and repetition at index 1, as a manifest holds them.
 void read_trial_key(lua_State* L, TrialInfo& info, const char* call) {
     luaL_checktype(L, 1, LUA_TTABLE);
     info.object = opt_field_string(L, 1, "object", "");

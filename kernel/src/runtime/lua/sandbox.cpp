@@ -58,11 +58,7 @@ constexpr const char* kOsWhitelist[] = {"clock", "date", "difftime", "time", "ge
 
 void copy_library(lua_State* L, int env, const char* name, const char* const* keep, std::size_t n_keep,
                   const char* drop = nullptr) {
-    lua_getglobal(L, name);
-    if (!lua_istable(L, -1)) {
-        lua_pop(L, 1);
-        return;
-    }
+    if (lua_getglobal(L, name) != LUA_TTABLE) return lua_pop(L, 1);  // a library this Lua lacks
     int lib = lua_gettop(L);
     lua_newtable(L);
     if (keep) {
@@ -317,6 +313,19 @@ Status Sandbox::charge(std::size_t bytes, const std::string& what) const {
                                             "; write less at a time, or raise --memory-limit-mb"};
 }
 
+namespace {
+int results_k(lua_State* L, int, lua_KContext) { return lua_gettop(L); }
+
+// Calls the function a wrapper wraps (its upvalue 1) with the wrapper's arguments.
+int call_wrapped(lua_State* L) {
+    const int n = lua_gettop(L);
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_insert(L, 1);
+    lua_call(L, n, 1);
+    return 1;
+}
+}  // namespace
+
 int Sandbox::lua_setmetatable(lua_State* L) {
     if (lua_istable(L, 2)) {
         lua_pushliteral(L, "__gc");
@@ -325,16 +334,9 @@ int Sandbox::lua_setmetatable(lua_State* L) {
                                  "finalizers where no cancel can stop them; use rs.on_cleanup or a <close> variable");
         lua_pop(L, 1);
     }
-    const int n = lua_gettop(L);
-    lua_pushvalue(L, lua_upvalueindex(1));
-    lua_insert(L, 1);
-    lua_call(L, n, 1);
-    return 1;
+    return call_wrapped(L);
 }
 
-namespace {
-int results_k(lua_State* L, int, lua_KContext) { return lua_gettop(L); }
-}  // namespace
 
 // The script's handler runs only while the run is not cancelled: a handler
 // called for the hook's cancel error would run with hooks off.
@@ -343,11 +345,7 @@ int Sandbox::lua_guarded_handler(lua_State* L) {
         lua_settop(L, 1);
         return 1;
     }
-    const int n = lua_gettop(L);
-    lua_pushvalue(L, lua_upvalueindex(1));
-    lua_insert(L, 1);
-    lua_call(L, n, 1);
-    return 1;
+    return call_wrapped(L);
 }
 
 int Sandbox::lua_xpcall(lua_State* L) {
