@@ -63,7 +63,7 @@ TEST_CASE("Ctrl-C during rs.analyse's optimisation ends the run as interrupted")
                                   "optimiser 1:");
     INFO(r.output);
     CHECK(r.status == 130);
-    CHECK(r.output.find("interrupted (Ctrl-C)") != std::string::npos);
+    CHECK(r.output.find("interrupted by Ctrl-C or a SIGTERM/SIGHUP") != std::string::npos);
     CHECK(r.output.find("did not stop within") == std::string::npos);  // not the watchdog's last resort
     CHECK(fs::exists(dir / "run" / "run-info.csv"));  // the run ended the ordinary way
 }
@@ -77,5 +77,5 @@ TEST_CASE("Ctrl-C during rollsense evaluate ends it as interrupted") {
     const auto r = interrupt_when({"evaluate", (dir / "run").string(), "--optimize", "--evaluations", "200"}, "optimiser 1:");
     INFO(r.output);
     CHECK(r.status == 130);
-    CHECK(r.output.find("interrupted (Ctrl-C)") != std::string::npos);
+    CHECK(r.output.find("interrupted by Ctrl-C or a SIGTERM/SIGHUP") != std::string::npos);
 }

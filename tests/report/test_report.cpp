@@ -349,12 +349,12 @@ TEST_CASE("a report made inside the recording run shows that run's provenance, n
                               Catch::Contains("rollsense run paper.lua --seed 11"));
     }
     SECTION("a resumed run: the run-info.csv on disk is the interrupted run's, not this one's") {
-        std::ofstream(in.dataset_dir / "run-info.csv") << "key,value\nstatus,cancelled: interrupted (Ctrl-C)\n";
+        std::ofstream(in.dataset_dir / "run-info.csv") << "key,value\nstatus,cancelled: interrupted by Ctrl-C or a SIGTERM/SIGHUP\n";
         in.recording_run = {{"command_line", "rollsense run paper.lua --seed 11 --resume"}, {"seed", "11"}};
         auto html = render_report(in);
         REQUIRE(html.ok());
         CHECK_THAT(*html, Catch::Contains("still in progress") && Catch::Contains("--resume") &&
-                              !Catch::Contains("interrupted (Ctrl-C)"));
+                              !Catch::Contains("interrupted by Ctrl-C"));
     }
     SECTION("a dataset made by hand still says it has none") {
         auto html = render_report(in);

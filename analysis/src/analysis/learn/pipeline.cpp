@@ -295,7 +295,7 @@ namespace {
 ClassifierFactory stoppable(ClassifierFactory factory, const std::atomic<bool>* stop) {
     if (!stop) return factory;
     return [factory = std::move(factory), stop](const ParamSet& params) -> Result<ClassifierPtr> {
-        if (stop->load()) return Error{ErrorCode::cancelled, "interrupted (Ctrl-C): the evaluation stopped"};
+        if (stop->load()) return Error{ErrorCode::cancelled, "interrupted by Ctrl-C or a SIGTERM/SIGHUP: the evaluation stopped"};
         return factory(params);
     };
 }

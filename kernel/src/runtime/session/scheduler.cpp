@@ -148,7 +148,7 @@ Status Scheduler::run(TaskRole phase, double deadline, const std::string& over_d
     const bool cleanup = phase == TaskRole::cleanup;
     for (;;) {
         if (safety_.interrupt_flag().load() && !cancellation_.cancelled())
-            cancel(cleanup ? "interrupted again during cleanup" : "interrupted (Ctrl-C)");
+            cancel(cleanup ? "interrupted again during cleanup" : "interrupted by Ctrl-C or a SIGTERM/SIGHUP");
         if (cancellation_.cancelled()) cancel_waits();
         // Ended tasks leave their slots: a script that spawns short tasks for
         // hours does not grow this list.

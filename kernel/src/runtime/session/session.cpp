@@ -109,7 +109,7 @@ Status Session::prepare() {
     modules.push_back(options_.share_dir / "lua");
     sandbox_ = std::make_unique<Sandbox>(options_.sandbox, modules);
     lua_atpanic(sandbox_->state(), &on_lua_panic);
-    sandbox_->watch_flag(&safety_.interrupt_flag(), "interrupted (Ctrl-C)");
+    sandbox_->watch_flag(&safety_.interrupt_flag(), "interrupted by Ctrl-C or a SIGTERM/SIGHUP");
     scheduler_ = std::make_unique<Scheduler>(*clock_, *robot_, *recorder_, safety_, *sandbox_,
                                              clock_->quantize(1.0 / profile_.control_rate_hz), loop_timing_.get());
     open_rollsense_api(*this);
