@@ -20,10 +20,15 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
     std::map<std::string, std::pair<const std::string*, const std::string*>> both;
     for (const auto& [k, v] : recorded) both[k].first = &v;
     for (const auto& [k, v] : now) both[k].second = &v;
+    auto same = [&](const std::string& key) {
+        const auto it = both.find(key);
+        return it != both.end() && it->second.first && it->second.second && *it->second.first == *it->second.second;
+    };
     std::vector<std::string> out;
     for (const auto& [k, values] : both) {
+        // A profile file is compared by its content: "./hand.lua" and "/lab/hand.lua" are one profile.
+        if (same(k) || (k == "profile" && same("profile_fnv1a"))) continue;
         const auto& [was, is] = values;
-        if (was && is && *was == *is) continue;
         out.push_back(k + ": recorded " + (was ? "'" + *was + "'" : "(not given)") + ", this run " +
                       (is ? "'" + *is + "'" : "(not given)"));
     }

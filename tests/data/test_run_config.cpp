@@ -53,6 +53,14 @@ TEST_CASE("run-config.csv round-trips, and its differences name each key with bo
     CHECK(run_config_differences(config, other) ==
           std::vector<std::string>{"seed: recorded '5', this run '6'", "set.objects: recorded 'C1, C2', this run (not given)",
                                    "set.runs: recorded (not given), this run '2'"});
+    // Independent review, hw item 11: the same profile file named by another path
+    // ("./hand.lua", then "/lab/hand.lua") refused the resume; another file does not.
+    const RunConfig here{{"profile", "./hand.lua"}, {"profile_fnv1a", "1f"}}, there{{"profile", "/lab/hand.lua"}, {"profile_fnv1a", "1f"}};
+    CHECK(run_config_differences(here, there).empty());
+    const RunConfig changed{{"profile", "/lab/hand.lua"}, {"profile_fnv1a", "2e"}};
+    CHECK(run_config_differences(here, changed) ==
+          std::vector<std::string>{"profile: recorded './hand.lua', this run '/lab/hand.lua'",
+                                   "profile_fnv1a: recorded '1f', this run '2e'"});
     auto none = read_run_config(dir / "nowhere");
     REQUIRE(none.ok());
     CHECK(none->empty());
