@@ -100,6 +100,7 @@ TEST_CASE("unknown keys, unknown objects and out-of-range values are errors befo
                r.output.find("etroll.lua:42: --set") != std::string::npos));
         CHECK(r.output.find("0 trials saved") != std::string::npos);
         CHECK(count_of(r.output, c.says) == 1);
+        CHECK(r.output.find("stack traceback") == std::string::npos);  // review hw item 13: the command line's error
         CHECK_FALSE(fs::exists(out));  // failed before any trial: no folder left behind
     }
 }

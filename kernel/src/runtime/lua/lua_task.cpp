@@ -99,7 +99,8 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     ErrorCode code = session_of(main)->take_raised_code();
     if (sandbox_.cancelled()) code = sandbox_.cancel_code();
     if (code == ErrorCode::ok) code = ErrorCode::script_error;
-    return TaskStep::done(Status(code, trace));
+    // A refused --set is the command line's error: its text names the setting's declaration, no traceback.
+    return TaskStep::done(Status(code, code == ErrorCode::bad_setting ? trace.substr(0, trace.find("\nstack traceback:")) : trace));
 }
 
 std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::string called_at) {

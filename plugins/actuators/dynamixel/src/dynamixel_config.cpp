@@ -22,7 +22,7 @@ ParamSchema dynamixel_schema() {
     ParamSchema schema{
         param_string("device", std::string("/dev/ttyUSB0"),
                      "serial port of the bus (a pty path for rollsense-dxl-emu), or 'emulator': servos emulated "
-                     "in-process behind a pty, moving on the run clock"),
+                     "in-process on an in-memory line, moving on the run clock"),
         param_number("emulated_object", etroll::kDefaultEmulatedObjectWidth,
                      "device 'emulator' only: width of an object clamped between sensing_finger and "
                      "pushing_finger (0: none); the palm fits it using finger_offset_sum and array_distance",
