@@ -24,15 +24,21 @@ Result<std::unique_ptr<Robot>> robot_with(const kt::TempDir& dir, const std::str
     PluginRegistry reg({ROLLSENSE_PLUGIN_DIR, ROLLSENSE_TEST_PLUGIN_DIR});
     return Robot::create(*p, reg, ROLLSENSE_SHARE_DIR);
 }
+// One sample of an activated robot, which is then shut down.
+TrialData first_sample(Robot& robot) {
+    REQUIRE(robot.activate(0.0).ok());
+    TrialData data;
+    REQUIRE(robot.sample(0.0, data).ok());
+    robot.shutdown(0.0);
+    return data;
+}
 }  // namespace
 
 TEST_CASE("a NaN in a frame the plugin reports valid makes the sample invalid", "[robot][review]") {
     kt::TempDir dir;
     auto robot = robot_with(dir, "tactile = { plugin = \"test_faulty_sensor\", params = { nan_channel = 1 } },");
     REQUIRE(robot.ok());
-    REQUIRE((*robot)->activate(0.0).ok());
-    TrialData data;
-    REQUIRE((*robot)->sample(0.0, data).ok());
+    const TrialData data = first_sample(**robot);
     REQUIRE(data.valid.size() == 1);
     CHECK(data.valid[0] == 0);  // was 1: "every channel read fine" with a NaN in channel b
     CHECK(std::isnan(data.channels[1][0]));
@@ -41,12 +47,7 @@ TEST_CASE("a NaN in a frame the plugin reports valid makes the sample invalid", 
     kt::TempDir clean_dir;
     auto clean = robot_with(clean_dir, "tactile = { plugin = \"test_faulty_sensor\" },");
     REQUIRE(clean.ok());
-    REQUIRE((*clean)->activate(0.0).ok());
-    TrialData good;
-    REQUIRE((*clean)->sample(0.0, good).ok());
-    CHECK(good.valid == std::vector<std::uint8_t>{1});
-    (*robot)->shutdown(0.0);
-    (*clean)->shutdown(0.0);
+    CHECK(first_sample(**clean).valid == std::vector<std::uint8_t>{1});
 }
 
 TEST_CASE("channel names that give one column twice are refused at configure time, naming device and plugin",
