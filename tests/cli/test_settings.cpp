@@ -105,6 +105,39 @@ TEST_CASE("unknown keys, unknown objects and out-of-range values are errors befo
     }
 }
 
+// Independent review item 3: NaN passed the range check of a declared setting
+// (`nan < 1` is false), and infinity a range with one end.
+TEST_CASE("nan and inf are refused where a setting declares a range, as a bad command line") {
+    TempDir dir("rollsense-settings");
+    write_file(dir / "s.lua", "local rs = require 'rollsense'\n"
+                              "rs.settings{ speed = { default = 10, min = 1, help = 'roll speed' },\n"
+                              "             speeds = { default = '10', kind = 'numbers', min = 1 } }\n"
+                              "rs.log('speed', rs.setting('speed'))\n");
+    struct Case {
+        const char* set;
+        const char* says;
+    };
+    for (const Case c : {Case{"speed=nan", "s.lua:2: --set: key 'speed': nan is not a finite number in the allowed range [1, inf]"},
+                         Case{"speed=inf", "key 'speed': inf is not a finite number in the allowed range [1, inf]"},
+                         Case{"speed=-inf", "key 'speed': -inf is not a finite number in the allowed range [1, inf]"},
+                         Case{"speeds=10,inf", "'inf' is not a number >= 1"},
+                         Case{"speeds=nan", "'nan' is not a number >= 1"}}) {
+        INFO(c.set);
+        const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --set " + c.set +
+                                     " --out " + shell_quoted(dir / "out"));
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output.find(c.says) != std::string::npos);
+        CHECK(r.output.find("speed 10") == std::string::npos);  // refused before the script went on
+    }
+    // A declaration's own bound must be a number too: NaN would switch the check off.
+    write_file(dir / "bad.lua", "local rs = require 'rollsense'\nrs.settings{ speed = { default = 10, min = 0/0 } }\n");
+    const auto bad = run_rollsense("run " + shell_quoted(dir / "bad.lua") + " --profile mock --out " + shell_quoted(dir / "b"));
+    INFO(bad.output);
+    CHECK(bad.status == 1);
+    CHECK(bad.output.find("bad.lua:2: rs.settings: speed: min and max must be finite numbers") != std::string::npos);
+}
+
 TEST_CASE("in a script that declares its settings, reading an undeclared one is an error; required ones must be given") {
     TempDir dir("rollsense-settings");
     write_file(dir / "s.lua", "local rs = require 'rollsense'\n"

@@ -162,6 +162,34 @@ TEST_CASE("profile velocity in deg/s becomes Dynamixel units (the paper's speed 
     CHECK(on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::profile_velocity, 4); }) == 1);
 }
 
+// Independent review item 1: Profile Velocity 0 is "no limit" to the servo, and
+// 0, a negative or a NaN velocity were written as 0. The kernel refuses the
+// last two; this is the defence behind it.
+TEST_CASE("a profile velocity of 0, negative or NaN is never written as 0 (the servo's 'no limit')") {
+    auto emu = start_emulator(false);
+    const auto written = [&](double velocity, std::vector<double> max_velocity) {
+        auto raw = etroll_raw(emu->device());
+        raw["max_velocity"] = std::move(max_velocity);
+        DynamixelActuator a;
+        REQUIRE(a.on_configure(validated(raw), {}).ok());
+        REQUIRE(a.on_activate().ok());
+        std::vector<JointState> s(4);
+        REQUIRE(a.read(0, s).ok());
+        auto cmd = hold_all(a, s);
+        cmd[0].profile_velocity = velocity;
+        REQUIRE(a.write(0, cmd).ok());
+        REQUIRE(a.read(0, s).ok());
+        REQUIRE(a.on_deactivate().ok());
+        return on_bus(*emu, [](BusEmulator& b) { return b.servo(1)->item(addr::profile_velocity, 4); });
+    };
+    for (double v : {0.0, -5.0, std::nan("")}) {
+        INFO(v);
+        CHECK(written(v, {}) == find_model("XM430-W350")->default_velocity_limit);  // no max_velocity: the model's
+        CHECK(written(v, {13.74, 60, 40, 120}) == 10);  // the joint's max_velocity: 13.74 deg/s = 10 units
+    }
+    CHECK(written(HUGE_VAL, {}) == 32767);  // the largest Profile Velocity, not an undefined lround(inf)
+}
+
 TEST_CASE("activation holds the present position even with a stale goal in the servo") {
     std::vector<ServoSetup> servos = etroll_servos();
     servos[0].start_degrees = 30.0;

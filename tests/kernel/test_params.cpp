@@ -1,6 +1,8 @@
 // Typed parameter validation against a plugin's schema.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "rollsense/params.hpp"
 
 using namespace rollsense;
@@ -35,6 +37,25 @@ TEST_CASE("unknown keys, wrong types, ranges, choices and missing keys name the 
     auto range = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"gain", ParamValue{11.0}}}, "f");
     REQUIRE_FALSE(range.ok());
     CHECK_THAT(range.error().message, Catch::Contains("11 is outside the allowed range [0, 10]"));
+
+    // Independent review item 3: NaN passed every range check; infinity a one-sided one.
+    for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+        auto r = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"gain", ParamValue{bad}}}, "f");
+        REQUIRE_FALSE(r.ok());
+        CHECK_THAT(r.error().message, Catch::Contains("f: key 'gain': ") &&
+                                          Catch::Contains(" is not a finite number in the allowed range [0, 10]"));
+    }
+    const ParamSchema at_least_one = {param_number("speed", 10.0, "speed", 1, {}, "")};
+    auto inf = validate_params(at_least_one, {{"speed", ParamValue{HUGE_VAL}}}, "f");
+    REQUIRE_FALSE(inf.ok());
+    CHECK_THAT(inf.error().message, Catch::Contains("inf is not a finite number in the allowed range [1, inf]"));
+    auto nan_in_list = validate_params(
+        schema(), {{"count", ParamValue{std::int64_t{1}}}, {"angles", ParamValue{std::vector<double>{0, std::nan("")}}}}, "f");
+    REQUIRE_FALSE(nan_in_list.ok());
+    CHECK_THAT(nan_in_list.error().message, Catch::Contains("nan is not a finite number in the allowed range [-90, 90] deg"));
+    // Without a declared range a number stays free: NaN is a plugin's "none" (mock_actuator's contact).
+    const ParamSchema free = {param_number("x", 0.0, "free", {}, {}, "")};
+    CHECK(validate_params(free, {{"x", ParamValue{std::nan("")}}}, "f").ok());
 
     auto list_range = validate_params(
         schema(), {{"count", ParamValue{std::int64_t{1}}}, {"angles", ParamValue{std::vector<double>{0, 95}}}}, "f");

@@ -98,7 +98,40 @@ TEST_CASE("a joint without kernel limits, or limits wider than the device, is re
                Catch::Contains("joint 'pusher' of device 'hand' has no limits") && Catch::Contains("pushr"));
     auto wide = robot_from(dir, replace(kt::kTestProfile, "finger = { min = -50", "finger = { min = -120"));
     REQUIRE_FALSE(wide.ok());
-    CHECK_THAT(wide.error().message, Catch::Contains("exceed what the device allows"));
+    CHECK_THAT(wide.error().message, Catch::Contains("are not within what the device allows"));
+}
+
+// Independent review item 2: a NaN or negative max_velocity / max_current (or a
+// NaN min / max) passed every comparison and switched that limit off.
+TEST_CASE("a joint limit that is NaN or negative is refused, naming the key", "[profile][review]") {
+    kt::TempDir dir;
+    const std::string finger = "finger = { min = -50, max = 50, max_velocity = 60, max_current = 300 }";
+    struct Case {
+        const char* limits;
+        const char* says;
+    };
+    for (const Case c : {Case{"min = -50, max = 50, max_velocity = 0/0, max_current = 300",
+                              "p.lua: joints.finger.max_velocity is nan, expected a number >= 0"},
+                         Case{"min = -50, max = 50, max_velocity = -1, max_current = 300",
+                              "p.lua: joints.finger.max_velocity is -1, expected a number >= 0"},
+                         Case{"min = -50, max = 50, max_velocity = 60, max_current = 0/0",
+                              "p.lua: joints.finger.max_current is nan"},
+                         Case{"min = -50, max = 50, max_velocity = 60, max_current = -300",
+                              "p.lua: joints.finger.max_current is -300"},
+                         Case{"min = -50, max = 50, max_velocity = 1/0, max_current = 300",
+                              "p.lua: joints.finger.max_velocity is inf"},
+                         Case{"min = 0/0, max = 50, max_velocity = 60, max_current = 300",
+                              "p.lua: joints.finger limits [nan, 50] are not within what the device allows"},
+                         Case{"min = -50, max = 0/0, max_velocity = 60, max_current = 300",
+                              "limits [-50, nan] are not within"}}) {
+        INFO(c.limits);
+        auto r = robot_from(dir, replace(kt::kTestProfile, finger, std::string("finger = { ") + c.limits + " }"));
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().code == ErrorCode::invalid_argument);
+        CHECK_THAT(r.error().message, Catch::Contains(c.says));
+    }
+    // 0 (or none) is "the device's limit", as before.
+    CHECK(robot_from(dir, replace(kt::kTestProfile, finger, "finger = { min = -50, max = 50, max_velocity = 0 }")).ok());
 }
 
 TEST_CASE("a missing plugin and a missing profile say where they were looked for", "[profile]") {

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <csignal>
+#include <sstream>
 #include <thread>
 
 #include "kernel_fixture.hpp"
@@ -89,9 +90,56 @@ rs.write_output("result.txt", string.format("%s|%s|%s|%s|%s|%.3f", tostring(ok),
     CHECK_THAT(out, Catch::StartsWith("false|"));
     CHECK_THAT(out, Catch::Contains("joint 'finger': goal 70 deg is outside the joint limits [-50, 50]"));
     CHECK_THAT(out, Catch::Contains("nothing was moved"));
-    CHECK_THAT(out, Catch::Contains("velocity 500 deg/s exceeds the limit 60"));
+    CHECK_THAT(out, Catch::Contains("velocity 500 deg/s is outside [0, 60], the velocity limits of profile"));
     CHECK_THAT(out, Catch::Contains("current 900 mA exceeds the limit 300 mA"));
     CHECK_THAT(out, Catch::EndsWith("|false|0.000"));
+}
+
+// Independent review item 1: a negative profile velocity passed the limit (its
+// absolute value was checked, and the servo then ran unlimited); NaN passed
+// every comparison; a NaN tolerance or a negative timeout were taken.
+TEST_CASE("a negative or NaN velocity, a NaN tolerance and a negative timeout are refused and nothing moves",
+          "[limits][review]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local f = rs.joint("finger")
+local out = {}
+local function try(fn) local ok, err = pcall(fn); out[#out + 1] = ok and "moved" or err end
+try(function() f:move(40, { velocity = -5 }) end)
+try(function() f:move(40, { velocity = 0/0 }) end)
+try(function() f:move(40, { velocity = 1/0 }) end)
+try(function() f:spin(0/0) end)
+try(function() f:spin(-70) end)
+try(function() f:move(40, { tolerance = 0/0 }) end)
+try(function() f:move(40, { tolerance = -1 }) end)
+try(function() f:move(40, { timeout_ms = -1 }) end)
+try(function() f:wait({ timeout_ms = 0/0 }) end)
+try(function() rs.wait_joints({ f }, { tolerance = -0.5 }) end)
+out[#out + 1] = string.format("%s %.3f", tostring(f:moving()), f:position())
+rs.write_output("result.txt", table.concat(out, "\n"))
+)");
+    INFO(r.summary.status.message());
+    REQUIRE(r.summary.status.ok());
+    std::vector<std::string> lines;
+    std::istringstream in(kt::read_file(r.out / "result.txt"));
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    REQUIRE(lines.size() == 11);
+    const auto refused = [&](std::size_t i, const std::string& says) {
+        INFO(lines[i]);
+        CHECK_THAT(lines[i], Catch::Contains("script.lua:" + std::to_string(i + 5) + ": " + says));
+    };
+    refused(0, "joint 'finger': velocity -5 deg/s is outside [0, 60], the velocity limits of profile");
+    CHECK_THAT(lines[0], Catch::EndsWith("; nothing was moved"));
+    refused(1, "option 'velocity' must be a finite number, not ");  // Lua prints 0/0 as nan or -nan
+    refused(2, "option 'velocity' must be a finite number, not inf");
+    refused(3, "joint 'finger': velocity nan deg/s is outside [-60, 60]");
+    refused(4, "joint 'finger': velocity -70 deg/s is outside [-60, 60]");
+    refused(5, "option 'tolerance' must be a finite number");
+    refused(6, "option 'tolerance' is -1.0; it must be >= 0");
+    refused(7, "option 'timeout_ms' is -1.0; it must be >= 0");
+    refused(8, "option 'timeout_ms' must be a finite number");
+    refused(9, "option 'tolerance' is -0.5; it must be >= 0");
+    CHECK(lines[10] == "false 0.000");  // nothing moved
 }
 
 TEST_CASE("a failing script gets its cleanup, and the kernel stops every joint first", "[safety]") {

@@ -96,15 +96,16 @@ std::string with_article(std::string_view noun) {
 std::string format_number(double d) {
     std::ostringstream os;
     os.precision(10);
-    os << d;
+    os << (std::isnan(d) ? std::fabs(d) : d);  // "nan", not the "-nan" of Lua's 0/0
     return os.str();
 }
 
 std::optional<std::string> check_range(const ParamSpec& spec, double x) {
-    if ((spec.min && x < *spec.min) || (spec.max && x > *spec.max)) {
+    // A declared range takes finite numbers only: NaN would pass `<` and `>`, infinity a one-sided range.
+    if (((spec.min || spec.max) && !std::isfinite(x)) || x < spec.min.value_or(x) || x > spec.max.value_or(x)) {
         std::string range = "[" + (spec.min ? format_number(*spec.min) : std::string("-inf")) + ", " +
                             (spec.max ? format_number(*spec.max) : std::string("inf")) + "]";
-        return format_number(x) + " is outside the allowed range " + range +
+        return format_number(x) + (std::isfinite(x) ? " is outside" : " is not a finite number in") + " the allowed range " + range +
                (spec.unit.empty() ? "" : " " + spec.unit);
     }
     return std::nullopt;

@@ -1,6 +1,7 @@
 #include "analysis/lua/script_settings.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "rollsense/csv.hpp"
@@ -98,6 +99,10 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
         if (!lua_isnil(L, -1)) d.spec.min = luaL_checknumber(L, -1);
         lua_getfield(L, entry, "max");
         if (!lua_isnil(L, -1)) d.spec.max = luaL_checknumber(L, -1);
+        for (auto bound : {d.spec.min, d.spec.max})
+            if (bound && !std::isfinite(*bound))
+                luaL_error(L, "rs.settings: %s: min and max must be finite numbers (leave one out for no bound)",
+                           d.key.c_str());
         lua_pop(L, 2);
         d.spec.doc = runtime::lua_api::opt_field_string(L, entry, "help", "");
         if (d.fallback)
@@ -127,7 +132,10 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
                                  " (objects: " + catalogue->ids() + ")"};
             if (d.list != ListKind::numbers) continue;
             auto n = csv::parse_number(item, d.key);
-            const bool in_range = n && (!d.spec.min || *n >= *d.spec.min) && (!d.spec.max || *n <= *d.spec.max);
+            // A declared range takes finite numbers only, as a single number's (validate_params).
+            const bool ranged = d.spec.min || d.spec.max;
+            const bool in_range = n && (!ranged || std::isfinite(*n)) && (!d.spec.min || *n >= *d.spec.min) &&
+                                  (!d.spec.max || *n <= *d.spec.max);
             if (!in_range)
                 return Error{ErrorCode::invalid_argument, where + ": '" + item + "' is not a number" +
                                                               range_text(d.spec) + about};

@@ -104,37 +104,34 @@ void check_options(lua_State* L, int table, const char* call, std::initializer_l
     }
 }
 
-double opt_field_number(lua_State* L, int table, const char* key, double fallback) {
-    if (lua_isnoneornil(L, table)) return fallback;
+namespace {
+// Pushes option `key` of the option table at `table` (nil without a table); true when it is not nil.
+bool push_option(lua_State* L, int table, const char* key) {
+    if (lua_isnoneornil(L, table)) return lua_pushnil(L), false;
     luaL_checktype(L, table, LUA_TTABLE);
-    lua_getfield(L, table, key);
-    double v = fallback;
-    if (!lua_isnil(L, -1)) {
-        if (!lua_isnumber(L, -1)) luaL_error(L, "option '%s' must be a number", key);
-        v = lua_tonumber(L, -1);
-    }
+    return lua_getfield(L, table, key) != LUA_TNIL;
+}
+}  // namespace
+
+double opt_field_number(lua_State* L, int table, const char* key, double fallback) {
+    const bool given = push_option(L, table, key);
+    const double v = given ? lua_tonumber(L, -1) : fallback;
+    if (given && (!lua_isnumber(L, -1) || !std::isfinite(v)))  // NaN or infinity would pass every range check
+        luaL_error(L, "option '%s' must be a finite number, not %s", key, luaL_tolstring(L, -1, nullptr));
     lua_pop(L, 1);
     return v;
 }
 
 bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback) {
-    if (lua_isnoneornil(L, table)) return fallback;
-    luaL_checktype(L, table, LUA_TTABLE);
-    lua_getfield(L, table, key);
-    bool v = lua_isnil(L, -1) ? fallback : lua_toboolean(L, -1) != 0;
+    const bool v = push_option(L, table, key) ? lua_toboolean(L, -1) != 0 : fallback;
     lua_pop(L, 1);
     return v;
 }
 
 std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback) {
-    if (lua_isnoneornil(L, table)) return fallback;
-    luaL_checktype(L, table, LUA_TTABLE);
-    lua_getfield(L, table, key);
-    std::string v = fallback;
-    if (!lua_isnil(L, -1)) {
-        if (!lua_isstring(L, -1)) luaL_error(L, "option '%s' must be a string", key);
-        v = lua_tostring(L, -1);
-    }
+    const bool given = push_option(L, table, key);
+    if (given && !lua_isstring(L, -1)) luaL_error(L, "option '%s' must be a string", key);
+    std::string v = given ? lua_tostring(L, -1) : fallback;
     lua_pop(L, 1);
     return v;
 }

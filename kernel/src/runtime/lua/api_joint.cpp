@@ -41,6 +41,15 @@ bool wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout
     return true;
 }
 
+// A wait's {timeout_ms=, tolerance=}: the timeout in s (HUGE_VAL: not given) and the tolerance, neither < 0.
+std::pair<double, double> wait_options(lua_State* L, int table, double timeout_ms) {
+    timeout_ms = opt_field_number(L, table, "timeout_ms", timeout_ms);
+    const double tolerance = opt_field_number(L, table, "tolerance", 0.5);
+    for (auto [key, v] : {std::pair{"timeout_ms", timeout_ms}, std::pair{"tolerance", tolerance}})
+        if (v < 0) luaL_error(L, "option '%s' is %f; it must be >= 0", key, v);
+    return {timeout_ms / 1000.0, tolerance};
+}
+
 // A timeout that fits the move: trapezoid duration plus a margin.
 double default_timeout(const Joint& j, double goal, double velocity, double acceleration) {
     const double distance = std::abs(goal - j.state.position);
@@ -55,6 +64,7 @@ bool l_move(lua_State* L) {
     Joint& j = check_joint(L, 1);
     const double goal = luaL_checknumber(L, 2);
     check_options(L, 3, "move", {"velocity", "acceleration", "mode", "current", "wait", "timeout_ms", "tolerance"});
+    const auto [timeout, tolerance] = wait_options(L, 3, HUGE_VAL);  // checked before anything moves
     JointCommand c;
     c.mode = position_mode_of(j.info);
     c.position = goal;
@@ -71,32 +81,20 @@ bool l_move(lua_State* L) {
     }
     command_or_raise(L, j, c);
     if (!opt_field_bool(L, 3, "wait", true)) return false;
-    const double timeout_ms = opt_field_number(L, 3, "timeout_ms", -1);
-    const double timeout = timeout_ms >= 0 ? timeout_ms / 1000.0
-                                           : default_timeout(j, goal, j.command.profile_velocity, c.profile_acceleration);
-    const double tol = opt_field_number(L, 3, "tolerance", 0.5);
     char what[160];
     std::snprintf(what, sizeof what, "joint '%s' to reach %.3f %s", j.name.c_str(), goal, j.info.unit.c_str());
-    return wait_arrival(L, {&j}, timeout, tol, what);
+    return wait_arrival(L, {&j}, timeout < HUGE_VAL ? timeout : default_timeout(j, goal, j.command.profile_velocity,
+                                                                                c.profile_acceleration), tolerance, what);
 }
 
-// j:push(current_mA): current (torque) mode, e.g. the pushing finger clamping.
-int l_push(lua_State* L) {
+// j:push(current_mA): current (torque) mode, e.g. the pushing finger clamping;
+// j:spin(velocity): velocity mode. The one number is the goal `field` of `mode`.
+template <ControlMode mode, double JointCommand::*field>
+int l_goal(lua_State* L) {
     Joint& j = check_joint(L, 1);
     JointCommand c;
-    c.mode = ControlMode::current;
-    c.current = luaL_checknumber(L, 2);
-    c.position = j.state.position;
-    command_or_raise(L, j, c);
-    return 0;
-}
-
-// j:spin(velocity): velocity mode.
-int l_spin(lua_State* L) {
-    Joint& j = check_joint(L, 1);
-    JointCommand c;
-    c.mode = ControlMode::velocity;
-    c.velocity = luaL_checknumber(L, 2);
+    c.mode = mode;
+    c.*field = luaL_checknumber(L, 2);
     c.position = j.state.position;
     command_or_raise(L, j, c);
     return 0;
@@ -123,9 +121,8 @@ int l_torque(lua_State* L) {
 bool l_wait_arrived(lua_State* L) {
     Joint& j = check_joint(L, 1);
     check_options(L, 2, "wait", {"timeout_ms", "tolerance"});
-    const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
-    const double tol = opt_field_number(L, 2, "tolerance", 0.5);
-    return wait_arrival(L, {&j}, timeout_ms / 1000.0, tol, "joint '" + j.name + "' to arrive");
+    const auto [timeout, tolerance] = wait_options(L, 2, 10000);
+    return wait_arrival(L, {&j}, timeout, tolerance, "joint '" + j.name + "' to arrive");
 }
 
 int l_position(lua_State* L) {
@@ -204,9 +201,8 @@ bool l_wait_joints(lua_State* L) {
         lua_pop(L, 1);
     }
     check_options(L, 2, "rs.wait_joints", {"timeout_ms", "tolerance"});
-    const double timeout_ms = opt_field_number(L, 2, "timeout_ms", 10000);
-    const double tol = opt_field_number(L, 2, "tolerance", 0.5);
-    return wait_arrival(L, std::move(list), timeout_ms / 1000.0, tol, "joints " + names + " to arrive");
+    const auto [timeout, tolerance] = wait_options(L, 2, 10000);
+    return wait_arrival(L, std::move(list), timeout, tolerance, "joints " + names + " to arrive");
 }
 
 }  // namespace
@@ -214,10 +210,12 @@ bool l_wait_joints(lua_State* L) {
 void register_joints(lua_State* L) {
     static const luaL_Reg methods[] = {{"move", waiting<l_move, finish_wait>},
                                        {"wait", waiting<l_wait_arrived, finish_wait>},
-                                       {"push", l_push},         {"spin", l_spin},         {"hold", l_hold},
-                                       {"torque", l_torque},     {"position", l_position}, {"velocity", l_velocity},
-                                       {"current", l_current},   {"moving", l_moving},     {"name", l_name},
-                                       {"state", l_state},       {"limits", l_limits},     {nullptr, nullptr}};
+                                       {"push", l_goal<ControlMode::current, &JointCommand::current>},
+                                       {"spin", l_goal<ControlMode::velocity, &JointCommand::velocity>},
+                                       {"hold", l_hold},         {"torque", l_torque},     {"position", l_position},
+                                       {"velocity", l_velocity}, {"current", l_current},   {"moving", l_moving},
+                                       {"name", l_name},         {"state", l_state},       {"limits", l_limits},
+                                       {nullptr, nullptr}};
     luaL_newmetatable(L, kJointMeta);
     protect_metatable(L);
     lua_newtable(L);

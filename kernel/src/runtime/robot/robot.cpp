@@ -1,8 +1,10 @@
 #include "runtime/robot/robot.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace rollsense::runtime {
 
@@ -10,7 +12,7 @@ namespace {
 std::string fmt(double v) {
     std::ostringstream os;
     os.precision(6);
-    os << v;
+    os << (std::isnan(v) ? std::fabs(v) : v);  // "nan", not the "-nan" of Lua's 0/0
     return os.str();
 }
 bool is_position_mode(ControlMode m) {
@@ -25,6 +27,9 @@ void take_state(JointState& to, const JointState& from) {
     to.position = from.position, to.velocity = from.velocity, to.current = from.current, to.moving = from.moving;
     to.torque_enabled = from.torque_enabled, to.mode = from.mode, to.fault_bits = from.fault_bits;
 }
+// A joint's member, or nullptr for no joint (the JointAccess lookups).
+template <class T>
+const T* member_of(const Joint* j, T Joint::*member) { return j ? &(j->*member) : nullptr; }
 }  // namespace
 
 ControlMode position_mode_of(const JointInfo& info) {
@@ -93,10 +98,16 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         }
     }
 
-    // Channel columns: a lone sensor's channel names; several sensors are prefixed.
+    // Channel columns: a lone sensor's channel names; several sensors are prefixed. One column per name.
     for (auto& s : r->sensors_) {
         for (const auto& ch : s.handle->plugin().channels()) {
-            r->channel_columns_.push_back(r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name);
+            const std::string column = r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name;
+            const auto& taken = r->channel_columns_;
+            if (column == "time" || column == "valid" || std::count(taken.begin(), taken.end(), column))
+                return Error{ErrorCode::plugin_error, file + ": devices." + s.handle->instance() + " (plugin '" +
+                                 s.handle->plugin_name() + "'): the channel column '" + column + "' is taken; channel "
+                                 "names must be unique and not 'time' or 'valid' (with several sensors: <device>_<channel>)"};
+            r->channel_columns_.push_back(column);
             r->channel_units_.push_back(ch.unit);
         }
         s.frame.values.assign(s.channels, 0.0);
@@ -124,10 +135,15 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                  "' has no limits; add joints." + info.name +
                                  " = { min = ..., max = ... } (the kernel enforces them; the profile's joints: " +
                                  (listed.empty() ? "none" : listed) + ")"};
-            if (lim->min < info.min_position || lim->max > info.max_position)
+            // Written so that NaN fails: it would switch a limit's check off.
+            for (auto [key, v] : {std::pair{"max_velocity", lim->max_velocity}, std::pair{"max_current", lim->max_current}})
+                if (!(v >= 0 && v <= DBL_MAX))
+                    return Error{ErrorCode::invalid_argument, file + ": joints." + info.name + "." + key + " is " +
+                                                                  fmt(v) + ", expected a number >= 0 (0 or none: the device's own)"};
+            if (!(lim->min >= info.min_position && lim->max <= info.max_position))
                 return Error{ErrorCode::invalid_argument,
                              file + ": joints." + info.name + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
-                                 "] exceed what the device allows [" + fmt(info.min_position) + ", " +
+                                 "] are not within what the device allows [" + fmt(info.min_position) + ", " +
                                  fmt(info.max_position) + "] " + info.unit};
             Joint j;
             j.name = info.name;
@@ -184,11 +200,12 @@ std::string Robot::joint_names() const {
     return out.empty() ? "none" : out;
 }
 
-Joint* Robot::find_joint(const std::string& name) {
-    for (auto& j : joints_)
+const Joint* Robot::find_joint(const std::string& name) const {
+    for (const auto& j : joints_)
         if (j.name == name) return &j;
     return nullptr;
 }
+Joint* Robot::find_joint(const std::string& name) { return const_cast<Joint*>(std::as_const(*this).find_joint(name)); }
 
 ComponentHandle* Robot::find_device(const std::string& name) {
     for (auto& a : actuators_)
@@ -330,11 +347,14 @@ Status Robot::command_joint(Joint& j, const JointCommand& c) {
         return {ErrorCode::limit_violation, who + ": goal " + fmt(c.position) + " " + j.info.unit +
                                                 " is outside the joint limits [" + fmt(j.limit.min) + ", " +
                                                 fmt(j.limit.max) + "] of " + profile_label_ + "; nothing was moved"};
-    if (j.limit.max_velocity > 0 && (std::abs(c.profile_velocity) > j.limit.max_velocity ||
-                                     std::abs(c.velocity) > j.limit.max_velocity))
-        return {ErrorCode::limit_violation, who + ": velocity " + fmt(std::max(std::abs(c.profile_velocity), std::abs(c.velocity))) +
-                                                " " + j.info.unit + "/s exceeds the limit " + fmt(j.limit.max_velocity) +
-                                                " of " + profile_label_ + "; nothing was moved"};
+    // A profile velocity is a speed (0: the limit); velocity mode's goal has a sign. NaN fails every comparison.
+    const double v_max = j.limit.max_velocity > 0 ? j.limit.max_velocity : DBL_MAX;
+    const bool speed_ok = c.profile_velocity >= 0 && c.profile_velocity <= v_max;
+    if (!speed_ok || !(std::abs(c.velocity) <= v_max))
+        return {ErrorCode::limit_violation, who + ": velocity " + fmt(speed_ok ? c.velocity : c.profile_velocity) + " " +
+                                                j.info.unit + "/s is outside [" + fmt(speed_ok ? -v_max : 0) + ", " +
+                                                fmt(v_max) + "], the velocity limits of " + profile_label_ +
+                                                "; nothing was moved"};
     const bool uses_current = c.mode == ControlMode::current || c.mode == ControlMode::current_based_position;
     if (uses_current) {
         if (j.limit.max_current <= 0)
@@ -351,26 +371,10 @@ Status Robot::command_joint(Joint& j, const JointCommand& c) {
     return {};
 }
 
-const JointState* Robot::state(const std::string& joint) const {
-    for (const auto& j : joints_)
-        if (j.name == joint) return &j.state;
-    return nullptr;
-}
-const JointInfo* Robot::info(const std::string& joint) const {
-    for (const auto& j : joints_)
-        if (j.name == joint) return &j.info;
-    return nullptr;
-}
-const JointCommand* Robot::command(const std::string& joint) const {
-    for (const auto& j : joints_)
-        if (j.name == joint) return &j.command;
-    return nullptr;
-}
-const JointLimit* Robot::limit(const std::string& joint) const {
-    for (const auto& j : joints_)
-        if (j.name == joint) return &j.limit;
-    return nullptr;
-}
+const JointState* Robot::state(const std::string& joint) const { return member_of(find_joint(joint), &Joint::state); }
+const JointInfo* Robot::info(const std::string& joint) const { return member_of(find_joint(joint), &Joint::info); }
+const JointCommand* Robot::command(const std::string& joint) const { return member_of(find_joint(joint), &Joint::command); }
+const JointLimit* Robot::limit(const std::string& joint) const { return member_of(find_joint(joint), &Joint::limit); }
 
 Status Robot::set_command(const std::string& joint, const JointCommand& c) {
     auto* j = find_joint(joint);
@@ -413,11 +417,7 @@ void Robot::disable_controller(const std::string& name, double time) {
 }
 
 void Robot::disable_all_controllers(double time) {
-    for (auto& c : controllers_)
-        if (c.enabled) {
-            c.controller->disable(time, *this);
-            c.enabled = false;
-        }
+    for (const auto& c : controllers_) disable_controller(c.name, time);
 }
 
 // The SDK hands sensors the joints as parallel name and state vectors; they
@@ -479,6 +479,9 @@ Status Robot::sample(double time, TrialData& data) {
                                                            std::to_string(s.frame.values.size()) + " values, expected " +
                                                            std::to_string(s.channels));
             });
+        for (std::size_t c = 0; c < s.channels && s.frame.valid; ++c)  // NaN is no reading, whatever the plugin says
+            if (!std::isfinite(s.frame.values[c]))
+                s.frame.valid = false, s.frame.reason = channel_columns_[column + c] + " read " + fmt(s.frame.values[c]);
         if (!s.frame.valid) {
             valid = false;
             log_debug(s.handle->instance(), "invalid sample at t=" + fmt(time) + ": " + s.frame.reason);

@@ -80,6 +80,7 @@ public:
 
     // Joint table.
     Joint* find_joint(const std::string& name);
+    const Joint* find_joint(const std::string& name) const;
     const std::vector<Joint>& joints() const { return joints_; }
     std::string joint_names() const;  // "a, b, c" for messages
     // Check a command against the joint's limits and store it for the next write.

@@ -26,8 +26,11 @@ std::int32_t JointMap::joint_to_velocity_units(double velocity) const {
 }
 
 std::uint32_t JointMap::joint_to_profile_velocity(double velocity) const {
-    if (velocity <= 0.0) return 0;
-    const double units = deg_s_to_velocity_units(velocity / scale());
+    // 0 is the servo's "no limit": never written. "The device's maximum" (0, or a negative or NaN that got
+    // this far) is this joint's max_velocity, else the model's factory Velocity Limit.
+    if (!(velocity > 0.0)) velocity = max_velocity;
+    if (!(velocity > 0.0)) return model->default_velocity_limit;
+    const double units = std::min(deg_s_to_velocity_units(velocity / scale()), 32767.0);  // lround(inf) is undefined
     return static_cast<std::uint32_t>(std::clamp(std::lround(units), 1L, 32767L));
 }
 

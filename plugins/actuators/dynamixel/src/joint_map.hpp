@@ -36,8 +36,10 @@ struct JointMap {
     std::int32_t joint_to_ticks(double position) const;
     double velocity_units_to_joint(double units) const;      // unit/s
     std::int32_t joint_to_velocity_units(double velocity) const;  // rounds, keeps sign
-    // Profile values: 0 stays 0 (the servo's "no limit"); any positive value
-    // is at least 1 unit, so a slow command never turns into "no limit".
+    // Profile values: a velocity is never 0 (the servo's "no limit"): 0 (the
+    // device's maximum) is max_velocity, else the model's factory Velocity
+    // Limit; any positive value is at least 1 unit, so a slow command never
+    // turns into "no limit". An acceleration of 0 stays 0 (no limit).
     std::uint32_t joint_to_profile_velocity(double velocity) const;
     std::uint32_t joint_to_profile_acceleration(double acceleration) const;
     double current_units_to_ma(double units) const;
