@@ -184,7 +184,7 @@ TEST_CASE("a profile velocity of 0, negative or NaN is never written as 0 (the s
     };
     for (double v : {0.0, -5.0, std::nan("")}) {
         INFO(v);
-        CHECK(written(v, {}) == find_model("XM430-W350")->default_velocity_limit);  // no max_velocity: the model's
+        CHECK(written(v, {}) == static_cast<int>(find_model("XM430-W350")->default_velocity_limit));  // no max_velocity: the model's
         CHECK(written(v, {13.74, 60, 40, 120}) == 10);  // the joint's max_velocity: 13.74 deg/s = 10 units
     }
     CHECK(written(HUGE_VAL, {}) == 32767);  // the largest Profile Velocity, not an undefined lround(inf)
