@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <charconv>
 
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -54,15 +53,6 @@ struct ShardDataset {
 };
 
 Error refused(const std::string& message) { return Error{ErrorCode::invalid_argument, message}; }
-
-Result<std::string> read_bytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (!in.good() && !in.eof()) return Error{ErrorCode::io_error, file.string() + ": cannot be read"};
-    if (!in.is_open()) return Error{ErrorCode::not_found, file.string() + ": cannot be opened"};
-    return bytes.str();
-}
 
 Result<ShardDataset> open_shard(const fs::path& dir) {
     ShardDataset s;
@@ -328,7 +318,7 @@ Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards
     std::vector<PendingFile> batch;
     for (const auto& p : placed) {
         if (auto data = p.shard->dataset.load(*p.record); !data) return data.error();
-        auto bytes = read_bytes(p.shard->dir / p.record->file);
+        auto bytes = csv::read_file(p.shard->dir / p.record->file);
         if (!bytes) return bytes.error();
         batch.push_back({dir / p.record->file, std::move(bytes).value()});
         if (batch.size() >= kFilesPerCommit) {
@@ -340,7 +330,7 @@ Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards
     }
     for (const char* name : {"dataset-info.csv", kRunConfigFile}) {
         if (!fs::exists(shards.front().dir / name, ec)) continue;
-        auto bytes = read_bytes(shards.front().dir / name);
+        auto bytes = csv::read_file(shards.front().dir / name);
         if (!bytes) return bytes.error();
         batch.push_back({dir / name, std::move(bytes).value()});
     }

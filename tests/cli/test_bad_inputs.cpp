@@ -116,3 +116,36 @@ TEST_CASE("a trial file missing from trials/ is named with its manifest line and
     CHECK(fs::exists(ds / "trials" / (id + ".csv")));
     CHECK(read_file(ds / "manifest.csv").find("\n" + id + ",") != std::string::npos);
 }
+
+// Review: a manifest.csv that is a folder gave "unexpected error:
+// basic_filebuf::underflow error reading the file: Is a directory", exit 1,
+// from every command that reads a dataset; a dataset-info.csv or trial file
+// that is a folder already gave "...: is a folder, not a CSV file", exit 3.
+TEST_CASE("a manifest.csv that is a folder is named by every reader of the dataset (3)") {
+    TempDir dir("rollsense-cli-manifest-folder");
+    const fs::path ds = dir / "ds";
+    const std::string record = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 " +
+                               "--set runs=2 --set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress " +
+                               "-q --out " + ds.string();
+    REQUIRE(run_rollsense(record).status == 0);
+    const std::string model = (dir / "m.rsm").string();
+    REQUIRE(run_rollsense("train " + ds.string() + " --set learners=3 -o " + model).status == 0);
+    fs::remove(ds / "manifest.csv");
+    fs::create_directory(ds / "manifest.csv");
+    const std::string expected = (ds / "manifest.csv").string() + ": is a folder, not a CSV file";
+    for (const std::string& command :
+         {"features " + ds.string() + " -o " + (dir / "f.csv").string(), "evaluate " + ds.string() + " --folds 2",
+          "report " + ds.string(), "train " + ds.string() + " -o " + (dir / "m2.rsm").string(),
+          "predict " + model + " " + ds.string(), "view " + ds.string() + " --port 0 --for 0.1"}) {
+        INFO(command);
+        const auto r = run_rollsense(command);
+        INFO(r.output);
+        CHECK(r.status == 3);
+        CHECK(count_of(r.output, expected) == 1);
+        CHECK(r.output.find("unexpected error") == std::string::npos);
+    }
+    const auto resumed = run_rollsense(record + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 3);
+    CHECK(count_of(resumed.output, expected) == 1);
+}
