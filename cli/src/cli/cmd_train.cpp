@@ -73,10 +73,9 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense train: %s\n", st.error().describe().c_str());
         return exit_code_for(st.code());
     }
-    std::string params;
-    for (const auto& [k, v] : model->params.values()) params += " " + k + "=" + format_param_value(v);
+    const std::string params = learn::describe_param_values(model->params);
     std::printf("trained '%s' on %zu classes%s%s\nwrote %s\n", s.classifier.c_str(),
-                model->classifier->class_names().size(), params.empty() ? "" : ", parameters:", params.c_str(),
+                model->classifier->class_names().size(), params.empty() ? "" : ", parameters: ", params.c_str(),
                 out.c_str());
     return kExitOk;
 }
