@@ -297,6 +297,7 @@ Result<fs::path> followed(fs::path out) {
 }
 
 Status check_out_folder(const fs::path& out) {
+    if (auto s = check_can_be_folder(out); !s) return refused(s.message() + ": merge into a new folder");
     std::error_code ec;
     if (!fs::exists(out, ec)) return {};
     if (!fs::is_directory(out, ec) || !fs::is_empty(out, ec))

@@ -32,9 +32,9 @@ hardware profile the same script drives the real hand on the monotonic clock.
 options:
   --profile NAME|FILE   robot profile (share/profiles/NAME.lua); default: sim
   --out DIR             dataset folder for recorded trials and outputs: new,
-                        empty, or with --resume the run's dataset (a folder
-                        holding other files is refused: the run would write
-                        over them); default: runs/<script>-<date>-<time>
+                        empty, or with --resume the run's dataset (a file,
+                        or a folder holding other files, is refused: the run
+                        would write over them); default: runs/<script>-<date>-<time>
   --resume              continue the dataset in --out: trials already on disk
                         are kept and skipped; the result equals an uninterrupted run.
                         Refused when script, profile, --set or --seed differ
