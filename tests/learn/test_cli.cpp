@@ -294,3 +294,61 @@ TEST_CASE("an unreadable trial file is named once on the terminal, with file and
     }
     fs::remove_all(dir);
 }
+
+// Review: `evaluate -o ev.json` wrote the text report into ev.json and the JSON
+// into ev.json.json. -o FILE.json now names the JSON, the text going beside it
+// as FILE.txt; any other name is the text, with the JSON as its stem + .json.
+TEST_CASE("evaluate -o: a .json name gets the JSON, the text beside it", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string();
+    for (const char* name : {"ev.json", "ev.txt", "ev"}) {
+        INFO(name);
+        const auto out = dir / "out" / name;
+        fs::create_directories(out.parent_path());
+        const auto r = rollsense_cli("evaluate " + d + " --folds 3 --repeats 1 --set learners=5 -o " + out.string());
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        const fs::path text = std::string(name) == "ev" ? out : dir / "out" / "ev.txt";
+        std::ifstream json_in(dir / "out" / "ev.json"), text_in(text);
+        const std::string json((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+        const std::string report((std::istreambuf_iterator<char>(text_in)), std::istreambuf_iterator<char>());
+        CHECK(rollsense::testing::JsonReader::parse(json)["clean"].num() == 33);
+        CHECK_THAT(report, Catch::Contains("repeated stratified 3-fold"));
+        CHECK_FALSE(fs::exists(dir / "out" / "ev.json.json"));
+        fs::remove_all(dir / "out");
+    }
+    fs::remove_all(dir);
+}
+
+// Review: `train DATASET -o M --folds 99` exited 0: train took every option of
+// evaluate, --repeats (unlisted) and the optimiser's --folds and --seed without
+// --optimize, and ignored them. evaluate and report ignored --evaluations and
+// --no-nested without --optimize the same way.
+TEST_CASE("learning commands refuse options they would ignore (2)", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string(), model = (dir / "m.rsm").string();
+    const struct {
+        std::string args, says;
+    } cases[] = {
+        {"train " + d + " -o " + model + " --repeats 3", "unknown option '--repeats' (see --help)"},
+        {"train " + d + " -o " + model + " --folds 99", "--folds applies with --optimize only"},
+        {"train " + d + " -o " + model + " --seed=4", "--seed applies with --optimize only"},
+        {"train " + d + " -o " + model + " --evaluations 3", "--evaluations applies with --optimize only"},
+        {"evaluate " + d + " --evaluations 3", "--evaluations applies with --optimize only"},
+        {"evaluate " + d + " --no-nested", "--no-nested applies with --optimize only"},
+        {"report " + d + " --no-nested", "--no-nested applies with --optimize only"},
+    };
+    for (const auto& c : cases) {
+        INFO(c.args);
+        const auto r = rollsense_cli(c.args);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains(c.says) && !Catch::Contains("clean "));
+    }
+    CHECK_FALSE(fs::exists(model));
+    // With --optimize they are the optimiser's.
+    const auto r = rollsense_cli("train " + d + " -o " + model + " --optimize --folds 3 --seed 4 --evaluations 2");
+    INFO(r.output);
+    CHECK(r.status == 0);
+    fs::remove_all(dir);
+}

@@ -15,7 +15,9 @@
 namespace rollsense::cli {
 
 using LearnSetup = learn::CommandSetup;
-LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags);  // cmd_evaluate.cpp
+LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags,
+                                 const std::vector<std::string>& not_taken);  // cmd_evaluate.cpp
+void require_optimize(const Args& args, const std::vector<std::string>& options);  // cmd_evaluate.cpp
 int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
             std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory);
 
@@ -33,14 +35,16 @@ options:
   --classifier NAME   classifier plugin ({default_classifier})
   --set KEY=VALUE     classifier parameter, repeatable
   --optimize          choose the parameters by Bayesian optimisation
-  --evaluations N     optimiser evaluations (30)
-  --folds K, --seed S partition of the optimiser's CV (5, 1)
+  --evaluations N     with --optimize: optimiser evaluations (30)
+  --folds K, --seed S with --optimize: partition of the optimiser's CV (5, 1)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features' when INPUT is a dataset)";
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize"});
+    // One model on every clean trial: no repetitions, and no partition unless the optimiser's.
+    const LearnSetup s = learn_setup_from_args(args, {"--optimize"}, {"--repeats"});
+    require_optimize(args, {"--folds", "--seed"});
     setup_logging(args);
     const std::string out = args.option("--output", "-o");
     if (out.empty()) throw UsageError("-o MODEL is required: where to save the trained model");
