@@ -19,6 +19,12 @@ fs::path damaged_copy(const fs::path& dir, const std::string& file) {
     fs::resize_file(dir / file, fs::file_size(whole) / 2);
     return dir / file;
 }
+// Four trials of the stock script into `ds` (it records only the trials not yet
+// on disk, so the same command resumes).
+std::string record_four_trials(const fs::path& ds) {
+    return "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 --set runs=2 " +
+           "--set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress -q --out " + ds.string();
+}
 }  // namespace
 
 // Item 1: the folder was searched, found empty, and the command went on with the installed plugins.
@@ -71,10 +77,7 @@ TEST_CASE("a damaged plugin file that shadows an installed one is named once by 
 TEST_CASE("a trial file missing from trials/ is named with its manifest line and the way out by every reader") {
     TempDir dir("rollsense-cli-missing-trial");
     const fs::path ds = dir / "ds";
-    // Four trials of the stock script (it records only the trials not yet on disk, so it can resume).
-    const std::string record = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 " +
-                               "--set runs=2 --set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress " +
-                               "-q --out " + ds.string();
+    const std::string record = record_four_trials(ds);
     REQUIRE(run_rollsense(record).status == 0);
     const std::string manifest = read_file(ds / "manifest.csv");
     const auto second = manifest.find('\n', manifest.find('\n') + 1) + 1;  // line 3
@@ -124,9 +127,7 @@ TEST_CASE("a trial file missing from trials/ is named with its manifest line and
 TEST_CASE("a manifest.csv that is a folder is named by every reader of the dataset (3)") {
     TempDir dir("rollsense-cli-manifest-folder");
     const fs::path ds = dir / "ds";
-    const std::string record = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 " +
-                               "--set runs=2 --set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress " +
-                               "-q --out " + ds.string();
+    const std::string record = record_four_trials(ds);
     REQUIRE(run_rollsense(record).status == 0);
     const std::string model = (dir / "m.rsm").string();
     REQUIRE(run_rollsense("train " + ds.string() + " --set learners=3 -o " + model).status == 0);
