@@ -60,7 +60,7 @@ TEST_CASE("a classifier plugin's wrong scores or label stop evaluate, train's us
         r = rollsense_cli("predict " + model.string() + " " + d + " --plugin-path " + ROLLSENSE_LEARN_TEST_PLUGIN_DIR);
         INFO(r.output);
         CHECK(r.status == 3);
-        CHECK_THAT(r.output, Catch::Contains("rollsense predict: classifier plugin 'test_odd_scores' " + std::string(c.says)));
+        CHECK_THAT(r.output, Catch::Contains("rollsense predict: plugin error: classifier plugin 'test_odd_scores' " + std::string(c.says)));
     }
     // The honest mode passes every check: one finite score per class in evaluation.json.
     auto r = rollsense_cli("evaluate " + d + " --folds 3 --repeats 1" + kPlugin + " -o " + (dir / "ok.txt").string());
