@@ -150,3 +150,18 @@ TEST_CASE("a manifest.csv that is a folder is named by every reader of the datas
     CHECK(resumed.status == 3);
     CHECK(count_of(resumed.output, expected) == 1);
 }
+
+// Found checking the readers of the review's finding above: --resume refused a
+// run-config.csv that is a folder as a bad command line (2), though the command
+// line was right and the dataset's file is wrong.
+TEST_CASE("--resume names a run-config.csv that is a folder as the dataset's error (3)") {
+    TempDir dir("rollsense-cli-run-config-folder");
+    const fs::path ds = dir / "ds";
+    REQUIRE(run_rollsense(record_four_trials(ds)).status == 0);
+    fs::remove(ds / "run-config.csv");
+    fs::create_directory(ds / "run-config.csv");
+    const auto r = run_rollsense(record_four_trials(ds) + " --resume");
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "cannot resume: " + (ds / "run-config.csv").string() + ": is a folder, not a CSV file") == 1);
+}
