@@ -154,7 +154,7 @@ TEST_CASE("a manifest.csv that is a folder is named by every reader of the datas
 // Found checking the readers of the review's finding above: --resume refused a
 // run-config.csv that is a folder as a bad command line (2), though the command
 // line was right and the dataset's file is wrong.
-TEST_CASE("--resume names a run-config.csv that is a folder as the dataset's error (3)") {
+TEST_CASE("a run-config.csv that is a folder is named by --resume as the dataset's error (3)") {
     TempDir dir("rollsense-cli-run-config-folder");
     const fs::path ds = dir / "ds";
     REQUIRE(run_rollsense(record_four_trials(ds)).status == 0);
