@@ -160,6 +160,20 @@ Status check_can_write(const std::filesystem::path& file) {
     return {};
 }
 
+Status check_can_be_folder(const std::filesystem::path& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    for (fs::path part = dir; !part.empty(); part = part.parent_path()) {
+        if (fs::exists(part, ec)) {  // the nearest part that exists decides
+            if (fs::is_directory(part, ec)) return {};
+            return {ErrorCode::invalid_argument,
+                    dir.string() + ": " + (part == dir ? "is" : part.string() + " is") + " a file, not a folder"};
+        }
+        if (part == part.parent_path()) break;  // the root
+    }
+    return {};
+}
+
 void remove_stale_temporaries(const std::filesystem::path& folder) {
     std::error_code ec;
     for (auto it = std::filesystem::directory_iterator(folder, ec); !ec && it != std::filesystem::directory_iterator();

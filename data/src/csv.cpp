@@ -5,25 +5,50 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <optional>
 
 namespace rollsense::csv {
 
-Result<Reader> Reader::open(const std::filesystem::path& file) {
-    Reader r;
-    r.path_ = file;
+namespace {
+
+// A file opened for reading, or the error naming it. A folder opens as a
+// stream, and its first read throws from the stream buffer (found by
+// fuzz_manifest: a manifest whose file column names trials/; and a manifest.csv
+// that is itself a folder), so it is refused before.
+Result<std::shared_ptr<std::ifstream>> open_for_reading(const std::filesystem::path& file) {
     std::error_code ec;
-    // A folder opens as a stream, and its first read fails (found by fuzz_manifest:
-    // a manifest whose file column names trials/).
     if (std::filesystem::is_directory(file, ec))
         return Error{ErrorCode::parse_error, file.string() + ": is a folder, not a CSV file"};
-    r.in_ = std::make_shared<std::ifstream>(file, std::ios::binary);
-    if (!*r.in_) {
+    auto in = std::make_shared<std::ifstream>(file, std::ios::binary);
+    if (!*in) {
         if (!std::filesystem::exists(file, ec))
             return Error{ErrorCode::not_found, file.string() + ": no such file"};
         return Error{ErrorCode::io_error, file.string() + ": cannot be opened for reading (check permissions)"};
     }
+    return in;
+}
+
+}  // namespace
+
+Result<std::string> read_file(const std::filesystem::path& file) {
+    auto in = open_for_reading(file);
+    if (!in) return in.error();
+    try {
+        return std::string((std::istreambuf_iterator<char>(**in)), std::istreambuf_iterator<char>());
+    } catch (const std::ios_base::failure& e) {
+        // As in Reader::read_record: a refused read throws from the stream buffer.
+        return Error{ErrorCode::io_error, file.string() + ": cannot be read (" + e.what() + ")"};
+    }
+}
+
+Result<Reader> Reader::open(const std::filesystem::path& file) {
+    Reader r;
+    r.path_ = file;
+    auto in = open_for_reading(file);
+    if (!in) return in.error();
+    r.in_ = std::move(in).value();
     auto got = r.read_record(r.header_);
     if (!got.ok()) return got.error();
     if (!got.value() || (r.header_.size() == 1 && r.header_[0].empty()))

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <optional>
 #include <unordered_map>
@@ -264,9 +263,9 @@ struct TornLine {
     std::size_t line = 0;
 };
 Result<std::optional<TornLine>> find_torn_line(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return Error{ErrorCode::io_error, file.string() + ": cannot be opened for reading (check permissions)"};
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto read = csv::read_file(file);
+    if (!read) return read.error();
+    const std::string& text = *read;
     std::size_t row_end = 0;  // bytes up to the last line end outside quotes
     bool quoted = false;      // a doubled quote inside a field toggles twice: no net change
     for (std::size_t i = 0; i < text.size(); ++i) {

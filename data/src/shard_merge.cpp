@@ -6,7 +6,6 @@
 #include <cerrno>
 #include <charconv>
 
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -54,15 +53,6 @@ struct ShardDataset {
 };
 
 Error refused(const std::string& message) { return Error{ErrorCode::invalid_argument, message}; }
-
-Result<std::string> read_bytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (!in.good() && !in.eof()) return Error{ErrorCode::io_error, file.string() + ": cannot be read"};
-    if (!in.is_open()) return Error{ErrorCode::not_found, file.string() + ": cannot be opened"};
-    return bytes.str();
-}
 
 Result<ShardDataset> open_shard(const fs::path& dir) {
     ShardDataset s;
@@ -307,6 +297,7 @@ Result<fs::path> followed(fs::path out) {
 }
 
 Status check_out_folder(const fs::path& out) {
+    if (auto s = check_can_be_folder(out); !s) return refused(s.message() + ": merge into a new folder");
     std::error_code ec;
     if (!fs::exists(out, ec)) return {};
     if (!fs::is_directory(out, ec) || !fs::is_empty(out, ec))
@@ -328,7 +319,7 @@ Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards
     std::vector<PendingFile> batch;
     for (const auto& p : placed) {
         if (auto data = p.shard->dataset.load(*p.record); !data) return data.error();
-        auto bytes = read_bytes(p.shard->dir / p.record->file);
+        auto bytes = csv::read_file(p.shard->dir / p.record->file);
         if (!bytes) return bytes.error();
         batch.push_back({dir / p.record->file, std::move(bytes).value()});
         if (batch.size() >= kFilesPerCommit) {
@@ -340,7 +331,7 @@ Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards
     }
     for (const char* name : {"dataset-info.csv", kRunConfigFile}) {
         if (!fs::exists(shards.front().dir / name, ec)) continue;
-        auto bytes = read_bytes(shards.front().dir / name);
+        auto bytes = csv::read_file(shards.front().dir / name);
         if (!bytes) return bytes.error();
         batch.push_back({dir / name, std::move(bytes).value()});
     }

@@ -19,6 +19,12 @@ fs::path damaged_copy(const fs::path& dir, const std::string& file) {
     fs::resize_file(dir / file, fs::file_size(whole) / 2);
     return dir / file;
 }
+// Four trials of the stock script into `ds` (it records only the trials not yet
+// on disk, so the same command resumes).
+std::string record_four_trials(const fs::path& ds) {
+    return "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 --set runs=2 " +
+           "--set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress -q --out " + ds.string();
+}
 }  // namespace
 
 // Item 1: the folder was searched, found empty, and the command went on with the installed plugins.
@@ -71,10 +77,7 @@ TEST_CASE("a damaged plugin file that shadows an installed one is named once by 
 TEST_CASE("a trial file missing from trials/ is named with its manifest line and the way out by every reader") {
     TempDir dir("rollsense-cli-missing-trial");
     const fs::path ds = dir / "ds";
-    // Four trials of the stock script (it records only the trials not yet on disk, so it can resume).
-    const std::string record = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 " +
-                               "--set runs=2 --set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress " +
-                               "-q --out " + ds.string();
+    const std::string record = record_four_trials(ds);
     REQUIRE(run_rollsense(record).status == 0);
     const std::string manifest = read_file(ds / "manifest.csv");
     const auto second = manifest.find('\n', manifest.find('\n') + 1) + 1;  // line 3
@@ -115,4 +118,50 @@ TEST_CASE("a trial file missing from trials/ is named with its manifest line and
     CHECK(resumed.status == 0);
     CHECK(fs::exists(ds / "trials" / (id + ".csv")));
     CHECK(read_file(ds / "manifest.csv").find("\n" + id + ",") != std::string::npos);
+}
+
+// Review: a manifest.csv that is a folder gave "unexpected error:
+// basic_filebuf::underflow error reading the file: Is a directory", exit 1,
+// from every command that reads a dataset; a dataset-info.csv or trial file
+// that is a folder already gave "...: is a folder, not a CSV file", exit 3.
+TEST_CASE("a manifest.csv that is a folder is named by every reader of the dataset (3)") {
+    TempDir dir("rollsense-cli-manifest-folder");
+    const fs::path ds = dir / "ds";
+    const std::string record = record_four_trials(ds);
+    REQUIRE(run_rollsense(record).status == 0);
+    const std::string model = (dir / "m.rsm").string();
+    REQUIRE(run_rollsense("train " + ds.string() + " --set learners=3 -o " + model).status == 0);
+    fs::remove(ds / "manifest.csv");
+    fs::create_directory(ds / "manifest.csv");
+    const std::string expected = (ds / "manifest.csv").string() + ": is a folder, not a CSV file";
+    for (const std::string& command :
+         {"features " + ds.string() + " -o " + (dir / "f.csv").string(), "evaluate " + ds.string() + " --folds 2",
+          "report " + ds.string(), "train " + ds.string() + " -o " + (dir / "m2.rsm").string(),
+          "predict " + model + " " + ds.string(), "view " + ds.string() + " --port 0 --for 0.1"}) {
+        INFO(command);
+        const auto r = run_rollsense(command);
+        INFO(r.output);
+        CHECK(r.status == 3);
+        CHECK(count_of(r.output, expected) == 1);
+        CHECK(r.output.find("unexpected error") == std::string::npos);
+    }
+    const auto resumed = run_rollsense(record + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 3);
+    CHECK(count_of(resumed.output, expected) == 1);
+}
+
+// Found checking the readers of the review's finding above: --resume refused a
+// run-config.csv that is a folder as a bad command line (2), though the command
+// line was right and the dataset's file is wrong.
+TEST_CASE("a run-config.csv that is a folder is named by --resume as the dataset's error (3)") {
+    TempDir dir("rollsense-cli-run-config-folder");
+    const fs::path ds = dir / "ds";
+    REQUIRE(run_rollsense(record_four_trials(ds)).status == 0);
+    fs::remove(ds / "run-config.csv");
+    fs::create_directory(ds / "run-config.csv");
+    const auto r = run_rollsense(record_four_trials(ds) + " --resume");
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "cannot resume: " + (ds / "run-config.csv").string() + ": is a folder, not a CSV file") == 1);
 }

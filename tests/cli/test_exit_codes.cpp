@@ -68,13 +68,25 @@ TEST_CASE("a disk that refuses writes exits 5, not 4 (hardware)") {
     CHECK(r.output.find("I/O error") != std::string::npos);
 }
 
-TEST_CASE("an output folder under a regular file is an I/O error (5), named") {
+// Review: `--out FILE` was "I/O error: FILE: cannot create: Not a directory",
+// exit 5. A file where the folder should be is a bad command line, refused before
+// the run like a folder holding other files, and so is a path through a file.
+TEST_CASE("an --out that is a file, or under a regular file, is a bad command line (2), named") {
     TempDir dir("rollsense-cli-io");
     write_file(dir / "file", "x");
-    const auto r = run_rollsense("run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile mock --no-progress --out " + shell_quoted(dir / "file" / "out"));
+    const std::string run = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/demo_roll.lua --profile mock --no-progress --out ";
+    auto r = run_rollsense(run + shell_quoted(dir / "file"));
     INFO(r.output);
-    CHECK(r.status == 5);
-    CHECK(r.output.find((dir / "file").string()) != std::string::npos);
+    CHECK(r.status == 2);
+    CHECK(r.output.find("--out " + (dir / "file").string() + ": is a file, not a folder (choose a new or empty folder") !=
+          std::string::npos);
+    CHECK(r.output.find("I/O error") == std::string::npos);
+    r = run_rollsense(run + shell_quoted(dir / "file" / "out"));
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(r.output.find("--out " + (dir / "file" / "out").string() + ": " + (dir / "file").string() +
+                        " is a file, not a folder") != std::string::npos);
+    CHECK(read_file(dir / "file") == "x");
 }
 
 TEST_CASE("other failures keep their codes") {

@@ -89,3 +89,33 @@ TEST_CASE("a manifest whose file names a folder is refused with an error, not a 
     CHECK(r.error().message.find((dir / "ds" / "trials").string() + ": is a folder, not a CSV file") !=
           std::string::npos);
 }
+
+// Review: a manifest.csv that is itself a folder, beside dataset-info.csv, was
+// read whole for a torn last line and threw from the stream buffer
+// ("unexpected error: basic_filebuf::underflow error reading the file: Is a
+// directory", exit 1). Resuming reads it the same way.
+TEST_CASE("a manifest.csv that is a folder is refused naming it, not thrown", "[data][bounds]") {
+    for (const bool recorded : {true, false}) {
+        INFO("dataset-info.csv beside it: " << recorded);
+        TempDir dir;
+        if (recorded) write(dir / "ds" / "dataset-info.csv", kInfo);
+        std::filesystem::create_directories(dir / "ds" / "manifest.csv");
+        Result<DatasetReader> r = Error{ErrorCode::ok, ""};
+        REQUIRE_NOTHROW(r = DatasetReader::open(dir / "ds"));
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().code == ErrorCode::parse_error);
+        CHECK(r.error().message == (dir / "ds" / "manifest.csv").string() + ": is a folder, not a CSV file");
+    }
+    TempDir dir;
+    write(dir / "ds" / "dataset-info.csv", kInfo);
+    std::filesystem::create_directories(dir / "ds" / "manifest.csv");
+    DatasetInfo info;  // kInfo's setup, so that resume reaches the manifest
+    info.channels = {"ch1"};
+    info.sample_rate_hz = 31.1;
+    info.profile = "test";
+    info.seed = 1;
+    Result<std::unique_ptr<DatasetWriter>> w = Error{ErrorCode::ok, ""};
+    REQUIRE_NOTHROW(w = DatasetWriter::open(dir / "ds", info, DatasetOpenMode::resume));
+    REQUIRE_FALSE(w.ok());
+    CHECK_THAT(w.error().message, Catch::Contains((dir / "ds" / "manifest.csv").string() + ": is a folder, not a CSV file"));
+}

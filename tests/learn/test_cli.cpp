@@ -10,6 +10,7 @@
 
 #include "rollsense/dataset.hpp"
 #include "rollsense/features.hpp"
+#include "cli_dataset.hpp"
 #include "json_reader.hpp"
 #include "run_command.hpp"
 
@@ -20,47 +21,7 @@ namespace {
 
 using Run = rollsense::testing::CommandRun;
 Run rollsense_cli(const std::string& args) { return rollsense::testing::run_rollsense(args); }
-
-std::vector<double> bump(std::size_t n, double amp, double centre, double width) {
-    std::vector<double> x(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        const double u = (static_cast<double>(i) - centre) / width;
-        x[i] = amp * std::exp(-0.5 * u * u);
-    }
-    return x;
-}
-
-// Three objects whose peaks differ in amplitude and spacing; one trial per
-// object stops on the sensor (incomplete ch3) and must be rejected.
-fs::path make_dataset() {
-    const auto dir = fs::temp_directory_path() / ("rollsense-test-cli-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    DatasetInfo info;
-    info.channels = {"ch1", "ch2", "ch3"};
-    auto w = DatasetWriter::open(dir / "dataset", info, DatasetOpenMode::create);
-    REQUIRE(w.ok());
-    const char* objects[] = {"C1", "P1", "S2"};
-    for (int o = 0; o < 3; ++o)
-        for (int r = 0; r < 12; ++r) {
-            TrialRecord rec;
-            rec.info.id = std::string(objects[o]) + "-r" + std::to_string(r);
-            rec.info.object = objects[o];
-            rec.info.speed = "10";
-            rec.info.repetition = r;
-            TrialData d;
-            const std::size_t n = 140;
-            for (std::size_t i = 0; i < n; ++i) d.time.push_back(static_cast<double>(i) / 31.1);
-            const double spacing = 12.0 + 6.0 * o + 0.3 * r;
-            const double stop = r == 11 ? 60.0 : 0.0;
-            d.channels = {bump(n, 0.2 + 0.1 * o, 35, 6), bump(n, 0.25 + 0.1 * o, 35 + spacing, 6),
-                          bump(n, 0.2 + 0.05 * o, 35 + 2 * spacing + stop, 6)};
-            d.valid.assign(n, 1);
-            rec.samples = n;
-            REQUIRE((*w)->add_trial(rec, d).ok());
-        }
-    REQUIRE((*w)->flush().ok());
-    return dir;
-}
+using rollsense::testing::make_dataset;
 
 }  // namespace
 
@@ -331,5 +292,63 @@ TEST_CASE("an unreadable trial file is named once on the terminal, with file and
         CHECK_THAT(r.output, Catch::Contains("trial 'P1-r4' left out") && Catch::Contains("'1.2.3'") &&
                                  Catch::Contains("unreadable 1"));
     }
+    fs::remove_all(dir);
+}
+
+// Review: `evaluate -o ev.json` wrote the text report into ev.json and the JSON
+// into ev.json.json. -o FILE.json now names the JSON, the text going beside it
+// as FILE.txt; any other name is the text, with the JSON as its stem + .json.
+TEST_CASE("evaluate -o: a .json name gets the JSON, the text beside it", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string();
+    for (const char* name : {"ev.json", "ev.txt", "ev"}) {
+        INFO(name);
+        const auto out = dir / "out" / name;
+        fs::create_directories(out.parent_path());
+        const auto r = rollsense_cli("evaluate " + d + " --folds 3 --repeats 1 --set learners=5 -o " + out.string());
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        const fs::path text = std::string(name) == "ev" ? out : dir / "out" / "ev.txt";
+        std::ifstream json_in(dir / "out" / "ev.json"), text_in(text);
+        const std::string json((std::istreambuf_iterator<char>(json_in)), std::istreambuf_iterator<char>());
+        const std::string report((std::istreambuf_iterator<char>(text_in)), std::istreambuf_iterator<char>());
+        CHECK(rollsense::testing::JsonReader::parse(json)["clean"].num() == 33);
+        CHECK_THAT(report, Catch::Contains("repeated stratified 3-fold"));
+        CHECK_FALSE(fs::exists(dir / "out" / "ev.json.json"));
+        fs::remove_all(dir / "out");
+    }
+    fs::remove_all(dir);
+}
+
+// Review: `train DATASET -o M --folds 99` exited 0: train took every option of
+// evaluate, --repeats (unlisted) and the optimiser's --folds and --seed without
+// --optimize, and ignored them. evaluate and report ignored --evaluations and
+// --no-nested without --optimize the same way.
+TEST_CASE("learning commands refuse options they would ignore (2)", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string(), model = (dir / "m.rsm").string();
+    const struct {
+        std::string args, says;
+    } cases[] = {
+        {"train " + d + " -o " + model + " --repeats 3", "unknown option '--repeats' (see --help)"},
+        {"train " + d + " -o " + model + " --folds 99", "--folds applies with --optimize only"},
+        {"train " + d + " -o " + model + " --seed=4", "--seed applies with --optimize only"},
+        {"train " + d + " -o " + model + " --evaluations 3", "--evaluations applies with --optimize only"},
+        {"evaluate " + d + " --evaluations 3", "--evaluations applies with --optimize only"},
+        {"evaluate " + d + " --no-nested", "--no-nested applies with --optimize only"},
+        {"report " + d + " --no-nested", "--no-nested applies with --optimize only"},
+    };
+    for (const auto& c : cases) {
+        INFO(c.args);
+        const auto r = rollsense_cli(c.args);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains(c.says) && !Catch::Contains("clean "));
+    }
+    CHECK_FALSE(fs::exists(model));
+    // With --optimize they are the optimiser's.
+    const auto r = rollsense_cli("train " + d + " -o " + model + " --optimize --folds 3 --seed 4 --evaluations 2");
+    INFO(r.output);
+    CHECK(r.status == 0);
     fs::remove_all(dir);
 }

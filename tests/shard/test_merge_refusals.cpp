@@ -206,6 +206,20 @@ TEST_CASE("rollsense merge refuses what is not a finished shard, and an output f
         CHECK(rt::read_file(dir / "merged/notes.txt") == "mine");
         CHECK_FALSE(fs::exists(dir / "merged/manifest.csv"));
     }
+    // Review: an OUT that is a file was "already exists and is not empty", and
+    // one under a file an I/O error from the staging folder.
+    SECTION("an output that is a file, or under one") {
+        rt::write_file(dir / "merged", "mine");
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        CHECK(r.status == 3);
+        CHECK(r.output.find((dir / "merged").string() + ": is a file, not a folder: merge into a new folder") !=
+              std::string::npos);
+        r = merge(dir / "merged" / "out", {s0, s1, s2});
+        CHECK(r.status == 3);
+        CHECK(r.output.find((dir / "merged" / "out").string() + ": " + (dir / "merged").string() +
+                            " is a file, not a folder: merge into a new folder") != std::string::npos);
+        CHECK(rt::read_file(dir / "merged") == "mine");
+    }
 }
 
 TEST_CASE("a merge that fails on a damaged trial leaves nothing behind, and the retry merges", "[merge]") {

@@ -1,5 +1,6 @@
 // rollsense evaluate INPUT: how well a classifier identifies the objects, with
 // the paper's protocol and the honest one side by side.
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <string>
@@ -56,15 +57,29 @@ const std::vector<std::string> kLearnOptions = {"--folds",      "--repeats",    
 const std::vector<std::string> kPipelineOnly = {"--trials", "--series-amplitude", "--cv", "--group-by", "--block"};
 }  // namespace
 
-// Shared by evaluate and train (declared again in cmd_train.cpp).
+// Options that set the optimiser: given without --optimize they would be
+// ignored, so they are refused, naming the way out.
+void require_optimize(const Args& args, const std::vector<std::string>& options) {
+    if (args.flag("--optimize")) return;
+    for (const auto& o : options)
+        if (args.flag(o) || !args.options(o).empty())  // "--o", "--o VALUE" or "--o=VALUE"
+            throw UsageError(o + " applies with --optimize only (it sets the optimiser); add --optimize or drop " + o);
+}
 
-LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags) {
-    std::vector<std::string> known = kLearnOptions;
+// Shared by evaluate, report and train (declared again in cmd_report.cpp and
+// cmd_train.cpp). `not_taken`: options of the learning commands this command has
+// no use for, refused as unknown.
+LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags,
+                                 const std::vector<std::string>& not_taken) {
+    std::vector<std::string> known;
+    for (const auto& o : kLearnOptions)
+        if (std::find(not_taken.begin(), not_taken.end(), o) == not_taken.end()) known.push_back(o);
     known.insert(known.end(), feature_option_names().begin(), feature_option_names().end());
     known.insert(known.end(), feature_flag_names().begin(), feature_flag_names().end());
     known.insert(known.end(), extra_flags.begin(), extra_flags.end());
     for (const char* k : {"-v", "--verbose", "-q", "--quiet"}) known.emplace_back(k);
     args.reject_unknown(known);
+    require_optimize(args, {"--evaluations", "--no-nested"});
     std::vector<std::string> valued = kLearnOptions;
     valued.insert(valued.end(), feature_option_names().begin(), feature_option_names().end());
     const auto pos = args.positionals(valued);
@@ -246,27 +261,28 @@ options:
                       classifier and speed in the report and evaluation.json
                       (docs/identification.md)
   --optimize          also run the Bayesian optimisation (classifier.md §3 search space)
-  --evaluations N     optimiser evaluations (30)
+  --evaluations N     with --optimize: optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV (much faster, no honest tuned figure)
-  -o, --output FILE   also write the report to FILE and evaluation.json beside
-                      it (FILE's stem + .json; schema: docs/evaluation-json.md)
+  -o, --output FILE   also write the report and evaluation.json, beside each
+                      other: FILE.txt and FILE.json for -o FILE.json, else
+                      FILE and FILE's stem + .json (schema: docs/evaluation-json.md)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features' when INPUT is a dataset)";
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--prefixes"});
+    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--prefixes"}, {});
     setup_logging(args);
     const auto out = args.option("--output", "-o");
+    const auto files = learn::evaluation_files(out);
     if (!out.empty())
-        if (int rc = check_output_files("evaluate", s.input, {out, learn::json_path_beside(out)}); rc != kExitOk)
-            return rc;
+        if (int rc = check_output_files("evaluate", s.input, {files.text, files.json}); rc != kExitOk) return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
     if (int rc = run_learning_pipeline("evaluate", args, s, registry, result); rc != kExitOk) return rc;
     std::printf("\n%s", learn::format_evaluation(result.evaluation).c_str());
     if (!out.empty()) {
-        if (auto st = learn::write_evaluation_files(result.evaluation, out); !st) {
+        if (auto st = learn::write_evaluation_files(result.evaluation, files); !st) {
             std::fprintf(stderr, "rollsense evaluate: %s\n", st.error().describe().c_str());
             return exit_code_for(st.code());
         }

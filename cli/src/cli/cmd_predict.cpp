@@ -192,14 +192,19 @@ void range_warnings(const std::array<double, features::kFeatureCount>& x, const 
     }
 }
 
-void decide(const Classifier& clf, std::span<const double> input, Outcome& o) {
+// A trial the classifier cannot decide keeps its reason; a prediction that
+// breaks the plugin contract (learn::check_prediction) stops the command: no
+// answer of that plugin can be trusted.
+Status decide(const Classifier& clf, std::span<const double> input, Outcome& o) {
     auto p = clf.predict(input);
     if (!p) {
+        if (p.error().code == ErrorCode::plugin_error) return p.error();
         o.reason = "the classifier failed: " + p.error().describe();
-        return;
+        return {};
     }
     o.cls = p->class_name;
     o.scores = p->scores;
+    return {};
 }
 
 // The trials to classify: a whole dataset, or one file of a dataset's trials/.
@@ -233,8 +238,8 @@ Result<Input> open_input(const fs::path& path) {
     return Input{std::move(ds).value(), {record}};
 }
 
-std::vector<Outcome> predict_features(const Classifier& clf, const Input& in, const features::FeatureSettings& fs_,
-                                      const TrainingDescription& t) {
+Result<std::vector<Outcome>> predict_features(const Classifier& clf, const Input& in,
+                                              const features::FeatureSettings& fs_, const TrainingDescription& t) {
     std::vector<Outcome> out;
     features::FeatureExtractor extractor(fs_);
     // The channels and samples of features::extract_dataset.
@@ -253,7 +258,7 @@ std::vector<Outcome> predict_features(const Classifier& clf, const Input& in, co
             else if (!f->clean) o.reason = "no clean peaks: " + f->reason;
             else {
                 range_warnings(f->values, t, o.warnings);
-                decide(clf, f->values, o);
+                if (auto s = decide(clf, f->values, o); !s) return s.error();
             }
         }
         out.push_back(std::move(o));
@@ -272,7 +277,8 @@ Result<std::vector<Outcome>> predict_series(const Classifier& clf, const Input& 
     auto find = [&out](const std::string& id) -> Outcome& {
         return *std::find_if(out.begin(), out.end(), [&](const Outcome& o) { return o.trial_id == id; });
     };
-    for (std::size_t r = 0; r < table->trial_ids.size(); ++r) decide(clf, table->table.row(r), find(table->trial_ids[r]));
+    for (std::size_t r = 0; r < table->trial_ids.size(); ++r)
+        if (auto s = decide(clf, table->table.row(r), find(table->trial_ids[r])); !s) return s.error();
     for (const auto& refused : table->refused) find(refused.trial_id).reason = "series refused: " + refused.reason;
     return out;
 }
@@ -379,7 +385,9 @@ int run(const std::vector<std::string>& argv) {
             std::fprintf(stderr, "rollsense predict: series prepared with the model's channels and length and the "
                                  "default rule of docs/series-preparation.md (the model does not store other settings)\n");
     } else {
-        outcomes = predict_features(**clf, *input, settings, training);
+        auto f = predict_features(**clf, *input, settings, training);
+        if (!f) return fail(f.error(), kExitConfig);
+        outcomes = std::move(f).value();
     }
     const auto common = dataset_warnings(input->dataset.info(), training, *header);
     for (auto& o : outcomes) {

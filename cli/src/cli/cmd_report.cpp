@@ -18,7 +18,8 @@ namespace rollsense::cli {
 
 // Shared with evaluate and train (cmd_evaluate.cpp, cmd_features.cpp).
 using LearnSetup = learn::CommandSetup;
-LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags);
+LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags,
+                                 const std::vector<std::string>& not_taken);
 int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
                           runtime::PluginRegistry& registry, learn::PipelineResult& out);  // cmd_evaluate.cpp
 features::FeatureSettings feature_settings_from_args(const Args& args);
@@ -48,7 +49,7 @@ options:
                       grouped and blocked CV beside random k-fold, shown in
                       the accuracy table (as 'rollsense evaluate --help' says)
   --optimize          also run the paper's Bayesian optimisation and nested CV
-  --evaluations N     optimiser evaluations (30)
+  --evaluations N     with --optimize: optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
   --classifier LIST   classifier plugin (default {default_classifier}), or
                       several, comma-separated; NAME:KEY=VALUE gives one
@@ -65,7 +66,7 @@ exit codes: 0 ok, 1 the evaluation failed, 2 bad command line,
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested"});
+    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested"}, {});
     setup_logging(args);
     std::error_code ec;
     if (!std::filesystem::is_directory(s.input, ec)) {
@@ -79,8 +80,8 @@ int run(const std::vector<std::string>& argv) {
     in.dataset_dir = s.input;
     in.output = args.option("--output", "-o");
     const auto page = report::report_path(in);
-    const auto text = page.parent_path() / "evaluation.txt";
-    if (int rc = check_output_files("report", s.input, {page, text, learn::json_path_beside(text)}); rc != kExitOk)
+    const auto evaluation = learn::evaluation_files(page.parent_path() / "evaluation.txt");
+    if (int rc = check_output_files("report", s.input, {page, evaluation.text, evaluation.json}); rc != kExitOk)
         return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
@@ -95,7 +96,7 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense report: %s\n", written.error().describe().c_str());
         return exit_code_for(written.error().code);
     }
-    if (auto st = learn::write_evaluation_files(in.evaluation, text); !st) {
+    if (auto st = learn::write_evaluation_files(in.evaluation, evaluation); !st) {
         std::fprintf(stderr, "rollsense report: %s\n", st.error().describe().c_str());
         return exit_code_for(st.code());
     }

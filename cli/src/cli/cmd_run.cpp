@@ -32,9 +32,9 @@ hardware profile the same script drives the real hand on the monotonic clock.
 options:
   --profile NAME|FILE   robot profile (share/profiles/NAME.lua); default: sim
   --out DIR             dataset folder for recorded trials and outputs: new,
-                        empty, or with --resume the run's dataset (a folder
-                        holding other files is refused: the run would write
-                        over them); default: runs/<script>-<date>-<time>
+                        empty, or with --resume the run's dataset (a file,
+                        or a folder holding other files, is refused: the run
+                        would write over them); default: runs/<script>-<date>-<time>
   --resume              continue the dataset in --out: trials already on disk
                         are kept and skipped; the result equals an uninterrupted run.
                         Refused when script, profile, --set or --seed differ
@@ -164,9 +164,14 @@ int run(const std::vector<std::string>& argv) {
         deciding.emplace_back("--plugin-path", p);
     }
     o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.seed, sets);
-    // A --resume whose options differ from the recording's is the command line's error (2), before anything opens.
+    // A --resume whose options differ from the recording's is the command line's error (2), before anything opens;
+    // a run-config.csv that cannot be read is the dataset's (3, or 5 for a read the system refuses).
     if (o.resume && std::filesystem::exists(o.out_dir / kRunConfigFile))
-        if (auto s = check_resume_config(o.out_dir, o.run_config); !s.ok()) throw UsageError(s.message());
+        if (auto s = check_resume_config(o.out_dir, o.run_config); !s.ok()) {
+            if (s.code() == ErrorCode::invalid_argument) throw UsageError(s.message());
+            std::fprintf(stderr, "rollsense run: %s\n", s.error().describe().c_str());
+            return exit_code_for(s.code(), kExitConfig);
+        }
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.sandbox.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));

@@ -15,7 +15,9 @@
 namespace rollsense::cli {
 
 using LearnSetup = learn::CommandSetup;
-LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags);  // cmd_evaluate.cpp
+LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags,
+                                 const std::vector<std::string>& not_taken);  // cmd_evaluate.cpp
+void require_optimize(const Args& args, const std::vector<std::string>& options);  // cmd_evaluate.cpp
 int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
             std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory);
 
@@ -33,14 +35,16 @@ options:
   --classifier NAME   classifier plugin ({default_classifier})
   --set KEY=VALUE     classifier parameter, repeatable
   --optimize          choose the parameters by Bayesian optimisation
-  --evaluations N     optimiser evaluations (30)
-  --folds K, --seed S partition of the optimiser's CV (5, 1)
+  --evaluations N     with --optimize: optimiser evaluations (30)
+  --folds K, --seed S with --optimize: partition of the optimiser's CV (5, 1)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features' when INPUT is a dataset)";
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize"});
+    // One model on every clean trial: no repetitions, and no partition unless the optimiser's.
+    const LearnSetup s = learn_setup_from_args(args, {"--optimize"}, {"--repeats"});
+    require_optimize(args, {"--folds", "--seed"});
     setup_logging(args);
     const std::string out = args.option("--output", "-o");
     if (out.empty()) throw UsageError("-o MODEL is required: where to save the trained model");
@@ -73,10 +77,9 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense train: %s\n", st.error().describe().c_str());
         return exit_code_for(st.code());
     }
-    std::string params;
-    for (const auto& [k, v] : model->params.values()) params += " " + k + "=" + format_param_value(v);
+    const std::string params = learn::describe_param_values(model->params);
     std::printf("trained '%s' on %zu classes%s%s\nwrote %s\n", s.classifier.c_str(),
-                model->classifier->class_names().size(), params.empty() ? "" : ", parameters:", params.c_str(),
+                model->classifier->class_names().size(), params.empty() ? "" : ", parameters: ", params.c_str(),
                 out.c_str());
     return kExitOk;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "rollsense/atomic_file.hpp"
 #include "rollsense/checksum.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset_files.hpp"
@@ -87,8 +88,12 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
 }  // namespace
 
 Status check_out_folder(const fs::path& dir, bool resume, const std::optional<Shard>& shard) {
+    if (auto s = check_can_be_folder(dir); !s)
+        return {ErrorCode::invalid_argument, "--out " + s.message() +
+                                                 " (choose a new or empty folder with --out, or a dataset folder to "
+                                                 "continue with --resume)"};
     std::error_code ec;
-    if (!fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return {};  // new, empty, or not a folder (the writer says)
+    if (!fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return {};  // new or empty
     if (holds_dataset(dir))
         return resume ? check_resumed_shard(dir, shard) : check_no_dataset_in(dir);
     std::vector<std::string> names;

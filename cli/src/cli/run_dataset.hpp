@@ -39,7 +39,8 @@ std::string resume_command(const std::string& script, const std::filesystem::pat
 // --out checked before the run starts, so a refusal writes nothing. A new or
 // empty folder is fine, and so is one holding a dataset (manifest.csv or
 // dataset-info.csv: the dataset writer then refuses it without --resume, or
-// checks with --resume that it is this run's). Refused: a folder holding other
+// checks with --resume that it is this run's). Refused: a file, or a path
+// through a file (check_can_be_folder); a folder holding other
 // files, which the run would write over (--resume continues datasets only);
 // and a --resume whose --shard is not the folder's (run-info.csv's shard K/N,
 // shard-plan.csv): a shard is resumed as that shard, a whole run without one.

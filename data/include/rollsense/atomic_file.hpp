@@ -21,6 +21,12 @@ Status write_file_atomic(const std::filesystem::path& file, std::string_view con
 // error names `file` and its folder.
 Status check_can_write(const std::filesystem::path& file);
 
+// The same for a folder a command creates or fills (run --out, merge OUT):
+// neither it nor the nearest part of its path that exists is a file. The error
+// (invalid_argument) is "DIR: is a file, not a folder", or "DIR: PART is a file,
+// not a folder" for a part of its path; the caller adds the way out.
+Status check_can_be_folder(const std::filesystem::path& dir);
+
 // The same for several files at once (group commit): every temporary is written
 // and synced before any rename, and the folder is synced once. Each file is
 // still atomic on its own. Used by the recorder so that a fast simulated run

@@ -58,6 +58,11 @@ private:
     std::size_t record_line_ = 0;
 };
 
+// A whole file at once (a manifest checked for a torn last line, a shard's
+// files copied by merge), with Reader::open's errors: a folder, a missing file
+// and an unreadable one are each refused naming it.
+Result<std::string> read_file(const std::filesystem::path& file);
+
 // Parse a whole number field; `where` goes in the error.
 Result<double> parse_number(std::string_view text, const std::string& where);
 

@@ -218,16 +218,24 @@ Result<BayesOptResult> bayes_optimize(const SearchSpace& space, const Objective&
     return result;
 }
 
+namespace {
+// "name=value"; a string as it is (format_param_value quotes it).
+std::string describe_value(const std::string& name, const ParamValue& v) {
+    const auto* s = std::get_if<std::string>(&v);
+    return name + "=" + (s ? *s : format_param_value(v));
+}
+}  // namespace
+
 std::string describe_params(const ParamSet& params, const SearchSpace& space) {
     std::string out;
-    for (const auto& d : space) {
-        if (!params.has(d.name)) continue;
-        if (!out.empty()) out += ' ';
-        out += d.name + "=";
-        const auto& v = params.values().at(d.name);
-        if (auto s = std::get_if<std::string>(&v)) out += *s;
-        else out += format_param_value(v);
-    }
+    for (const auto& d : space)
+        if (params.has(d.name)) out += (out.empty() ? "" : " ") + describe_value(d.name, params.values().at(d.name));
+    return out;
+}
+
+std::string describe_param_values(const ParamSet& params) {
+    std::string out;
+    for (const auto& [name, v] : params.values()) out += (out.empty() ? "" : " ") + describe_value(name, v);
     return out;
 }
 

@@ -66,7 +66,11 @@ Result<SearchSpace> declared_search_space(const ClassifierFactory& factory, cons
 Result<SearchSpace> tuning_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
                                  std::size_t cols, const SearchSpace& given, const std::string& classifier);
 
-// "learners=123 min_leaf_size=2 ..." for reports.
+// "learners=123 min_leaf_size=2 ..." for reports: the values of `params` that
+// `space` searches, in its order (optimiser progress, chosen parameters).
 std::string describe_params(const ParamSet& params, const SearchSpace& space);
+// Every value of `params` in key order, the same way: what evaluation.json's
+// "parameters" holds, for the text evaluation and `rollsense train`.
+std::string describe_param_values(const ParamSet& params);
 
 }  // namespace rollsense::learn

@@ -2,6 +2,7 @@
 
 #include <exception>
 
+#include "analysis/learn/checked_classifier.hpp"
 #include "analysis/learn/folds.hpp"
 
 namespace rollsense::learn {
@@ -46,10 +47,9 @@ Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureT
         for (std::size_t r : rows) {
             auto p = c.predict(table.row(r));
             if (!p) return p.error();
-            if (p->label < 0 || static_cast<std::size_t>(p->label) >= table.class_names.size())
-                return Error{ErrorCode::plugin_error, "classifier predicted label " + std::to_string(p->label) +
-                                                          " outside the table's " +
-                                                          std::to_string(table.class_names.size()) + " classes"};
+            // Plugins are checked as they predict (checked_classifier); this
+            // guards the confusion matrix against any classifier.
+            if (auto s = check_prediction(*p, table.class_names.size(), "classifier"); !s) return s.error();
             out.push_back(std::move(p).value());
         }
     } catch (const StatusError& e) {

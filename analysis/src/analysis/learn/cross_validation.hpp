@@ -29,7 +29,7 @@ FeatureTable subset(const FeatureTable& table, std::span<const std::size_t> rows
 Result<ClassifierPtr> train_classifier(const FeatureTable& table, const ClassifierFactory& factory,
                                        const ParamSet& params);
 // Predictions (label and per-class scores) for table rows `rows`; exceptions
-// and labels outside the table's classes turned into errors.
+// and predictions check_prediction refuses turned into errors.
 Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureTable& table,
                                              std::span<const std::size_t> rows);
 // Labels only, for table rows `rows`.

@@ -388,7 +388,7 @@ std::string format_report(const EvaluationReport& r, bool with_timing) {
     std::snprintf(buf, sizeof buf, "preset, %d x repeated stratified %d-fold CV:\n  accuracy ", b.repeats, b.folds);
     out += buf;
     out += figure(b.mean, b.sd, b.wilson, b.correct, b.total) + "\n";
-    if (!r.params.values().empty()) out += "  parameters: " + describe_params(r.params, r.space) + "\n";
+    if (!r.params.values().empty()) out += "  parameters: " + describe_param_values(r.params) + "\n";
     for (const auto& s : r.scheme_cv) {
         std::snprintf(buf, sizeof buf, "%s, %d x %d-fold CV (whole groups held out):\n  accuracy ",
                       s.scheme.describe().c_str(), s.cv.repeats, s.cv.folds);

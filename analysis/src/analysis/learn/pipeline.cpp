@@ -336,19 +336,18 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     return out;
 }
 
-std::filesystem::path json_path_beside(const std::filesystem::path& text_path) {
-    auto p = text_path;
-    p.replace_extension(".json");
-    if (p == text_path) p += ".json";  // a text file already named *.json: keep both
-    return p;
+EvaluationFiles evaluation_files(const std::filesystem::path& output) {
+    EvaluationFiles f{output, output};
+    if (output.extension() == ".json") f.text.replace_extension(".txt");
+    else f.json.replace_extension(".json");
+    return f;
 }
 
-Status write_evaluation_files(const Evaluation& evaluation, const std::filesystem::path& text_path) {
-    if (auto st = write_file_atomic(text_path, format_evaluation(evaluation)); !st)
-        return {st.code(), "cannot write '" + text_path.string() + "': " + st.message()};
-    const auto json = json_path_beside(text_path);
-    if (auto st = write_file_atomic(json, evaluation_json(evaluation)); !st)
-        return {st.code(), "cannot write '" + json.string() + "': " + st.message()};
+Status write_evaluation_files(const Evaluation& evaluation, const EvaluationFiles& files) {
+    if (auto st = write_file_atomic(files.text, format_evaluation(evaluation)); !st)
+        return {st.code(), "cannot write '" + files.text.string() + "': " + st.message()};
+    if (auto st = write_file_atomic(files.json, evaluation_json(evaluation)); !st)
+        return {st.code(), "cannot write '" + files.json.string() + "': " + st.message()};
     return {};
 }
 

@@ -133,9 +133,15 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
                                     const std::function<Status(const std::vector<features::FeatureRow>&)>& on_rows = {},
                                     PipelineStage* failed = nullptr);
 
-// evaluation.json beside a text file: same folder and stem ("out/evaluation.txt" → "out/evaluation.json").
-std::filesystem::path json_path_beside(const std::filesystem::path& text_path);
-// Writes `text_path` (format_evaluation) and the JSON beside it, atomically.
-Status write_evaluation_files(const Evaluation& evaluation, const std::filesystem::path& text_path);
+// The text evaluation and evaluation.json an output name stands for, in the
+// same folder with the same stem: "out/eval.json" → out/eval.txt and
+// out/eval.json (the JSON where it was asked for); any other name is the text,
+// with the JSON beside it ("out/eval.txt" → out/eval.json, "out/eval" → out/eval.json).
+struct EvaluationFiles {
+    std::filesystem::path text, json;
+};
+EvaluationFiles evaluation_files(const std::filesystem::path& output);
+// Writes both (format_evaluation, evaluation_json), each atomically.
+Status write_evaluation_files(const Evaluation& evaluation, const EvaluationFiles& files);
 
 }  // namespace rollsense::learn

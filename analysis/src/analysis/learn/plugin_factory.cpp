@@ -1,5 +1,7 @@
 #include "analysis/learn/plugin_factory.hpp"
 
+#include "analysis/learn/checked_classifier.hpp"
+
 namespace rollsense::learn {
 
 Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& registry, const std::string& plugin,
@@ -17,7 +19,8 @@ Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& reg
         std::shared_ptr<runtime::ClassifierHandle> owner(std::move(handle).value());
         if (auto s = owner->configure(*params, context); !s) return s;
         if (auto s = owner->activate(); !s) return s;
-        return ClassifierPtr(owner, &owner->plugin());
+        // Written outside this repository: what it predicts is checked before use.
+        return checked_classifier(ClassifierPtr(owner, &owner->plugin()), "classifier plugin '" + plugin + "'");
     });
 }
 

@@ -1,0 +1,83 @@
+// A classifier plugin as someone outside this repository might write it, whose
+// parameter `mode` chooses what its predictions get wrong, so that tests see
+// every command refuse them (a plugin error naming it) instead of writing them
+// into evaluation.json or printing them. mode 0 predicts honestly: the class of
+// the nearest training mean of the first feature, with scores summing to 1.
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "rollsense/plugin.hpp"
+
+namespace {
+using namespace rollsense;
+
+ParamSchema odd_scores_schema() {
+    return {param_int("mode", std::int64_t{0},
+                      "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99", 0, 3)};
+}
+
+class OddScores final : public Classifier {
+public:
+    Status on_configure(const ParamSet& p, const PluginContext&) override {
+        mode_ = p.get_int("mode");
+        return {};
+    }
+    Status train(const FeatureTable& data) override {
+        classes_ = data.class_names;
+        means_.assign(classes_.size(), 0.0);
+        std::vector<double> counts(classes_.size(), 0.0);
+        for (std::size_t r = 0; r < data.rows; ++r) {
+            const auto c = static_cast<std::size_t>(data.y[r]);
+            means_[c] += data.row(r)[0];
+            counts[c] += 1.0;
+        }
+        for (std::size_t c = 0; c < means_.size(); ++c) means_[c] /= std::max(counts[c], 1.0);
+        return {};
+    }
+    Result<Prediction> predict(std::span<const double> x) const override {
+        Prediction p;
+        p.scores.assign(classes_.size(), 0.0);
+        std::size_t best = 0;
+        for (std::size_t c = 1; c < means_.size(); ++c)
+            if (std::abs(x[0] - means_[c]) < std::abs(x[0] - means_[best])) best = c;
+        p.label = static_cast<int>(best);
+        p.class_name = classes_[best];
+        p.scores[best] = 1.0;
+        if (mode_ == 1) p.scores.assign(classes_.size(), std::numeric_limits<double>::quiet_NaN());
+        if (mode_ == 2) p.scores = {0.0, 1.0};
+        if (mode_ == 3) p.label = 99;
+        return p;
+    }
+    std::vector<std::string> class_names() const override { return classes_; }
+    Status save(const std::filesystem::path& file) const override {
+        std::ofstream out(file);
+        out << "rollsense-test-odd-scores mode " << mode_ << '\n';  // predict loads the model with default parameters
+        for (std::size_t c = 0; c < classes_.size(); ++c) out << classes_[c] << ' ' << means_[c] << '\n';
+        return out ? Status{} : Status{ErrorCode::io_error, file.string() + ": cannot write"};
+    }
+    Status load(const std::filesystem::path& file) override {
+        std::ifstream in(file);
+        std::string name, key;
+        double mean = 0;
+        if (!(in >> name >> key >> mode_) || name != "rollsense-test-odd-scores")
+            return {ErrorCode::parse_error, file.string() + ": not a test_odd_scores model"};
+        classes_.clear();
+        means_.clear();
+        while (in >> name >> mean) {
+            classes_.push_back(name);
+            means_.push_back(mean);
+        }
+        if (classes_.empty()) return {ErrorCode::parse_error, file.string() + ": no classes"};
+        return {};
+    }
+
+private:
+    std::int64_t mode_ = 0;
+    std::vector<std::string> classes_;
+    std::vector<double> means_;
+};
+}  // namespace
+
+ROLLSENSE_PLUGIN(OddScores, classifier, "test_odd_scores", "0.0.1", "test classifier whose predictions go wrong on demand",
+                 odd_scores_schema)
