@@ -240,3 +240,37 @@ TEMPLATE_TEST_CASE("a servo only answers at its own baud rate, as on a real bus"
     CHECK(p->model_number == 1020);
     CHECK_FALSE(rig.bus->ping(1).ok());  // and now the others are the ones out of step
 }
+
+TEST_CASE("a sync read cut short by a CRC fault: the next READ takes its own reply, not a late one") {
+    // Paced like a wire: when servo 1's corrupt reply ends the SYNC_READ, the
+    // replies of servos 2-4 are still on their way; servo 2's (14 bytes) reaches
+    // the line after the next transaction's flush, ahead of its answer to the READ.
+    PtyRig rig({false, 57600}, {100ms, 0});
+    rig.with_bus([](BusEmulator& b) { b.set_faults(1, {0, -1}); return 0; });
+    const std::uint8_t ids[] = {1, 2, 3, 4};
+    auto r = rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength);
+    REQUIRE_FALSE(r.ok());
+    REQUIRE(r.error().code == ErrorCode::protocol_error);
+    const std::uint16_t block = addr::torque_enable - addr::operating_mode + 1;  // the plugin's prepare() read
+    auto read = rig.bus->read(2, addr::operating_mode, block);
+    INFO((read.ok() ? std::string() : read.error().message));
+    REQUIRE(read.ok());
+    CHECK(read->data.size() == block);
+    CHECK(read->data[0] == static_cast<std::uint8_t>(OperatingMode::position));   // 11 Operating Mode
+    CHECK(read->data[block - 1] == 0);                                             // 64 Torque Enable: off
+    CHECK(rig.bus->statistics().stale_replies == 1);
+}
+
+TEST_CASE("a port lost mid-run (adapter pulled, emulator gone) is a device failure, not a file error") {
+    PtyRig rig;
+    REQUIRE(rig.bus->ping(1).ok());
+    rig.emu.reset();  // the other end of the line is gone
+    auto p = rig.bus->ping(1);
+    REQUIRE_FALSE(p.ok());
+    INFO(p.error().message);
+    CHECK(p.error().code == ErrorCode::hardware_fault);  // exit 4 ("a device failed or stopped answering"), not 5
+    CHECK(rig.bus->statistics().retries == 0);            // no retries into a dead port
+    auto w = rig.bus->write_value(1, addr::led, 1, 1);
+    REQUIRE_FALSE(w.ok());
+    CHECK(w.code() == ErrorCode::hardware_fault);
+}

@@ -4,6 +4,7 @@
 
 #include <regex>
 
+#include "etroll_bus.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
 #include "run_command.hpp"
 
@@ -43,4 +44,36 @@ TEST_CASE("dxl set-id still fails when no servo answers, old id or new", "[dxl][
     CHECK(set.status == 4);
     CHECK(set.output.find("servo 7 did not answer") != std::string::npos);
     CHECK(emu->with_bus([](BusEmulator& b) { return b.ids(); }) == std::vector<std::uint8_t>{1});
+}
+
+TEST_CASE("dxl set-id refuses an id another servo on the bus answers to", "[dxl][cli]") {
+    BusEmulator bus;
+    for (std::uint8_t id : {2, 4}) {
+        ServoSetup s;
+        s.id = id;
+        bus.add_servo(s);
+    }
+    auto emu = PtyBusEmulator::start(std::move(bus));
+    REQUIRE(emu.ok());
+    const auto set = testing::run_rollsense("dxl set-id --device " + (*emu)->device() + " --id 4 --new-id 2");
+    INFO(set.output);
+    CHECK(set.status == 2);
+    CHECK(set.output.find("id 2 is taken: a XM430-W350") != std::string::npos);
+    // Nothing written: both servos keep their ids, servo 4's EEPROM untouched.
+    CHECK((*emu)->with_bus([](BusEmulator& b) { return b.ids(); }) == std::vector<std::uint8_t>{2, 4});
+    CHECK((*emu)->with_bus([](BusEmulator& b) { return b.servo(4)->item(addr::id, 1); }) == 4);
+}
+
+TEST_CASE("dxl set-id on the E-TRoll bus: the emulator's clamped object lets a servo leave its role",
+          "[dxl][cli]") {
+    auto emu = etroll_bus::start();  // the clamp couples servos 1 (sensing), 2 (pushing) and 3 (palm)
+    const auto set = testing::run_rollsense("dxl set-id --device " + emu->device() + " --baud 1000000 --id 1 --new-id 7");
+    INFO(set.output);
+    CHECK(set.status == 0);
+    // The emulator moves on in real time (the coupling runs) and still serves the bus.
+    const auto scan = testing::run_rollsense("dxl scan --device " + emu->device() + " --baud 1000000 --ids 1-8");
+    INFO(scan.output);
+    CHECK(scan.status == 0);
+    CHECK(std::regex_search(scan.output, std::regex(R"(id +7 +XM430-W350)")));
+    CHECK(emu->with_bus([](BusEmulator& b) { return b.ids(); }) == std::vector<std::uint8_t>{7, 2, 3, 4});
 }

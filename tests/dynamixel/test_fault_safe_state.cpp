@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <thread>
 
@@ -68,11 +69,55 @@ struct ReadBack {
     int mode = -1;
     double current_ma = 0;
     bool moving = false;
+    int watchdog = -2;  // Bus Watchdog (98): 0 off, N x 20 ms, -1 tripped
+};
+
+// What the servos' own control tables say (servo 1 is the failed one).
+std::map<int, ReadBack> read_back(PtyBusEmulator& emu) {
+    std::map<int, ReadBack> out;
+    for (std::uint8_t id : {2, 3, 4})
+        out[id] = emu.with_bus([id](BusEmulator& b) {
+            const EmulatedServo& s = *b.servo(id);
+            return ReadBack{s.torque_enabled(), static_cast<int>(s.mode()), std::abs(s.current_ma()),
+                            s.item(addr::moving, 1) != 0, s.item(addr::bus_watchdog, 1)};
+        });
+    return out;
+}
+
+// A SYNC_WRITE has no reply: let the serving thread take the last bytes the
+// robot sent before the servos move on, as a wire would deliver them.
+void wait_until_delivered(Robot& robot, PtyBusEmulator& emu) {
+    auto* handle = dynamic_cast<ActuatorHandle*>(robot.find_device("hand"));
+    REQUIRE(handle);
+    auto stats = handle->plugin().invoke("statistics", {});
+    REQUIRE(stats.ok());
+    const auto sent = static_cast<std::uint64_t>(std::get<std::int64_t>(stats->at("bytes_sent")));
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (emu.bytes_handled() < sent && std::chrono::steady_clock::now() < give_up)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    REQUIRE(emu.bytes_handled() >= sent);
+}
+
+// After shutdown the robot's port is closed: a fresh client's first answer
+// comes after every byte the robot sent (the line keeps order), as a person at
+// the rig would check.
+void sync_with_a_fresh_client(PtyBusEmulator& emu) {
+    auto port = hal::SerialPort::open(emu.device(), 57600);
+    REQUIRE(port.ok());
+    Bus client(std::move(port).value(), BusOptions{std::chrono::milliseconds(100), 3});
+    REQUIRE(client.ping(4).ok());
+}
+
+struct Outcome {
+    Status failure;
+    std::map<int, ReadBack> held;      // after the safe state, the run still open
+    std::map<int, ReadBack> released;  // after shutdown, the process about to exit
 };
 
 // Clamp, roll, then `kind` strikes servo 1 (the sensing finger); the robot
-// fails in that period and is made safe; then a new client reads servos 2-4 back.
-std::map<int, ReadBack> clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind, Status& failure) {
+// fails in that period and is made safe, then shut down, as Scheduler::run and
+// Session::run do; servos 2-4 are read back after each.
+Outcome clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind) {
     std::vector<ServoSetup> servos = etroll_servos();
     servos[1].start_degrees = -66.0;
     servos[1].contact_degrees = -44.0;  // the object, in the pushing finger's way
@@ -87,83 +132,54 @@ std::map<int, ReadBack> clamp_roll_and_fail_servo_1(bool pusher_torque_off, Faul
         });
     };
 
-    {
-        const Profile profile = etroll_on((*emu)->device(), pusher_torque_off);
-        PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
-        auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
-        INFO((created.ok() ? std::string() : created.error().message));
-        REQUIRE(created.ok());
-        auto& robot = **created;
-        REQUIRE(robot.activate(0.0).ok());
-        JointCommand push;
-        push.mode = ControlMode::current;
-        push.current = 120;  // share/lua/etroll.lua's clamp current
-        REQUIRE(robot.command_joint(*robot.find_joint("pushing_finger"), push).ok());
-        double t = 0;
-        for (int period = 0; period < 200; ++period) {  // 2 s: the finger reaches the object
-            t += 0.01;
-            step(0.01);
-            REQUIRE(robot.control_tick(t, 0.01).ok());
-        }
-        REQUIRE(std::abs(robot.find_joint("pushing_finger")->state.current) > 100);  // squeezing
-        JointCommand roll = hold_command(*robot.find_joint("sensing_finger"));
-        roll.position = 40;
-        roll.profile_velocity = 20;
-        REQUIRE(robot.command_joint(*robot.find_joint("sensing_finger"), roll).ok());
-        for (int period = 0; period < 50; ++period) {
-            t += 0.01;
-            step(0.01);
-            REQUIRE(robot.control_tick(t, 0.01).ok());
-        }
-        REQUIRE(robot.find_joint("sensing_finger")->state.moving);  // mid-roll
-
-        (*emu)->with_bus([kind](BusEmulator& b) {
-            b.schedule({1, kind, b.elapsed()});  // due at the next advance
-            return 0;
-        });
+    Outcome out;
+    const Profile profile = etroll_on((*emu)->device(), pusher_torque_off);
+    PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
+    auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
+    INFO((created.ok() ? std::string() : created.error().message));
+    REQUIRE(created.ok());
+    auto& robot = **created;
+    REQUIRE(robot.activate(0.0).ok());
+    JointCommand push;
+    push.mode = ControlMode::current;
+    push.current = 120;  // share/lua/etroll.lua's clamp current
+    REQUIRE(robot.command_joint(*robot.find_joint("pushing_finger"), push).ok());
+    double t = 0;
+    for (int period = 0; period < 200; ++period) {  // 2 s: the finger reaches the object
         t += 0.01;
         step(0.01);
-        failure = robot.control_tick(t, 0.01);
-        REQUIRE_FALSE(failure.ok());
-        robot.safe_state(t);  // as Scheduler::run does, in the same period
-        robot.shutdown(t);    // and Session::run at the end (the safe state once more)
-        // A SYNC_WRITE has no reply: let the serving thread take the last bytes
-        // before the servos move on, as a wire would deliver them.
-        auto* handle = dynamic_cast<ActuatorHandle*>(robot.find_device("hand"));
-        REQUIRE(handle);
-        auto stats = handle->plugin().invoke("statistics", {});
-        REQUIRE(stats.ok());
-        const auto sent = static_cast<std::uint64_t>(std::get<std::int64_t>(stats->at("bytes_sent")));
-        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-        while ((*emu)->bytes_handled() < sent && std::chrono::steady_clock::now() < give_up)
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        REQUIRE((*emu)->bytes_handled() >= sent);
-        // Less than the Bus Watchdog's 500 ms: this test is about the kernel's
-        // safe state, not the servos' own (test_bus_watchdog.cpp).
-        step(0.3);
-    }  // the robot and its port are gone
-
-    auto port = hal::SerialPort::open((*emu)->device(), 57600);
-    REQUIRE(port.ok());
-    Bus client(std::move(port).value(), BusOptions{std::chrono::milliseconds(100), 3});
-    std::map<int, ReadBack> out;
-    for (std::uint8_t id : {2, 3, 4}) {
-        ReadBack r;
-        auto torque = client.read_value(id, addr::torque_enable, 1);
-        auto mode = client.read_value(id, addr::operating_mode, 1);
-        auto current = client.read_value(id, addr::present_current, 2);
-        auto moving = client.read_value(id, addr::moving, 1);
-        REQUIRE(torque.ok());
-        REQUIRE(mode.ok());
-        REQUIRE(current.ok());
-        REQUIRE(moving.ok());
-        const auto* model = (*emu)->with_bus([id](BusEmulator& b) { return &b.servo(id)->model(); });
-        r.torque = *torque != 0;
-        r.mode = *mode;
-        r.current_ma = std::abs(current_units_to_ma(*model, *current));
-        r.moving = *moving != 0;
-        out[id] = r;
+        REQUIRE(robot.control_tick(t, 0.01).ok());
     }
+    REQUIRE(std::abs(robot.find_joint("pushing_finger")->state.current) > 100);  // squeezing
+    JointCommand roll = hold_command(*robot.find_joint("sensing_finger"));
+    roll.position = 40;
+    roll.profile_velocity = 20;
+    REQUIRE(robot.command_joint(*robot.find_joint("sensing_finger"), roll).ok());
+    for (int period = 0; period < 50; ++period) {
+        t += 0.01;
+        step(0.01);
+        REQUIRE(robot.control_tick(t, 0.01).ok());
+    }
+    REQUIRE(robot.find_joint("sensing_finger")->state.moving);  // mid-roll
+
+    (*emu)->with_bus([kind](BusEmulator& b) {
+        b.schedule({1, kind, b.elapsed()});  // due at the next advance
+        return 0;
+    });
+    t += 0.01;
+    step(0.01);
+    out.failure = robot.control_tick(t, 0.01);
+    REQUIRE_FALSE(out.failure.ok());
+    robot.safe_state(t);  // as Scheduler::run does, in the same period
+    wait_until_delivered(robot, **emu);
+    // Less than the Bus Watchdog's 500 ms: this test is about the kernel's
+    // safe state, not the servos' own (test_bus_watchdog.cpp).
+    step(0.3);
+    out.held = read_back(**emu);
+    robot.shutdown(t);  // as Session::run does at the end
+    sync_with_a_fresh_client(**emu);
+    step(0.3);
+    out.released = read_back(**emu);
     return out;
 }
 
@@ -171,30 +187,35 @@ std::map<int, ReadBack> clamp_roll_and_fail_servo_1(bool pusher_torque_off, Faul
 
 TEST_CASE("a silent servo mid-roll: the pushing finger stops squeezing and every answering servo holds",
           "[safety][fault]") {
-    Status failure;
-    auto servo = clamp_roll_and_fail_servo_1(false, FaultKind::silent, failure);
+    const auto [failure, servo, released] = clamp_roll_and_fail_servo_1(false, FaultKind::silent);
     CHECK(failure.code() == ErrorCode::timeout);
     CHECK_THAT(failure.message(), Catch::Contains("device 'hand'") && Catch::Contains("servo 1"));
     // Profile safe action "hold": position mode at the present position, torque on, no push.
-    CHECK(servo[2].torque);
-    CHECK(servo[2].mode == static_cast<int>(OperatingMode::position));
-    CHECK(servo[2].current_ma <= kSafeCurrentMa);
+    CHECK(servo.at(2).torque);
+    CHECK(servo.at(2).mode == static_cast<int>(OperatingMode::position));
+    CHECK(servo.at(2).current_ma <= kSafeCurrentMa);
     for (int id : {3, 4}) {
         INFO("servo " << id);
-        CHECK(servo[id].torque);
-        CHECK_FALSE(servo[id].moving);
-        CHECK(servo[id].current_ma <= kSafeCurrentMa);
+        CHECK(servo.at(id).torque);
+        CHECK_FALSE(servo.at(id).moving);
+        CHECK(servo.at(id).current_ma <= kSafeCurrentMa);
+    }
+    // After shutdown every servo that answers is released (torque_off_on_deactivate,
+    // the default) with its Bus Watchdog off: nothing left holding once the process ends.
+    for (int id : {2, 3, 4}) {
+        INFO("servo " << id << " after shutdown");
+        CHECK_FALSE(released.at(id).torque);
+        CHECK(released.at(id).watchdog == 0);
     }
 }
 
 TEST_CASE("a silent servo mid-roll: a pushing finger whose safe action is torque off is released",
           "[safety][fault]") {
-    Status failure;
-    auto servo = clamp_roll_and_fail_servo_1(true, FaultKind::silent, failure);
+    const auto [failure, servo, released] = clamp_roll_and_fail_servo_1(true, FaultKind::silent);
     CHECK_FALSE(failure.ok());
-    CHECK_FALSE(servo[2].torque);
-    CHECK(servo[2].current_ma <= kSafeCurrentMa);
-    CHECK(servo[3].torque);
+    CHECK_FALSE(servo.at(2).torque);
+    CHECK(servo.at(2).current_ma <= kSafeCurrentMa);
+    CHECK(servo.at(3).torque);
 }
 
 TEST_CASE("every injected fault kind on one servo: a typed error naming it, the others made safe",
@@ -203,18 +224,114 @@ TEST_CASE("every injected fault kind on one servo: a typed error naming it, the 
                               std::pair{FaultKind::corrupt, ErrorCode::protocol_error},
                               std::pair{FaultKind::slow, ErrorCode::timeout}}) {
         INFO("fault " << to_string(kind));
-        Status failure;
-        auto servo = clamp_roll_and_fail_servo_1(false, kind, failure);
+        const auto [failure, servo, released] = clamp_roll_and_fail_servo_1(false, kind);
         INFO(failure.message());
         CHECK(failure.code() == code);
         CHECK_THAT(failure.message(), Catch::Contains("servo 1"));
-        CHECK(servo[2].torque);
-        CHECK(servo[2].mode == static_cast<int>(OperatingMode::position));
-        CHECK(servo[2].current_ma <= kSafeCurrentMa);
+        CHECK(servo.at(2).torque);
+        CHECK(servo.at(2).mode == static_cast<int>(OperatingMode::position));
+        CHECK(servo.at(2).current_ma <= kSafeCurrentMa);
         for (int id : {3, 4}) {
             INFO("servo " << id);
-            CHECK(servo[id].torque);
-            CHECK_FALSE(servo[id].moving);
+            CHECK(servo.at(id).torque);
+            CHECK_FALSE(servo.at(id).moving);
+            // Shut down after the fault: the device was in error, not active, and
+            // still every servo that answers is released, its watchdog off.
+            CHECK_FALSE(released.at(id).torque);
+            CHECK(released.at(id).watchdog == 0);
         }
+        CHECK_FALSE(released.at(2).torque);
     }
+}
+
+namespace {
+
+// The review's bring-up: no servo at its joint's zero, so a hold at an unread
+// (zero) position would move every one of them.
+std::vector<ServoSetup> servos_off_zero() {
+    std::vector<ServoSetup> servos = etroll_servos();
+    servos[0].start_degrees = 30.0;
+    servos[1].start_degrees = -20.0;
+    servos[3].start_degrees = 90.0;
+    return servos;
+}
+
+struct Register {
+    bool torque;
+    std::int32_t goal, present, watchdog;
+};
+
+std::map<int, Register> registers(PtyBusEmulator& emu) {
+    std::map<int, Register> out;
+    for (std::uint8_t id : {1, 2, 3, 4})
+        out[id] = emu.with_bus([id](BusEmulator& b) {
+            const EmulatedServo& s = *b.servo(id);
+            return Register{s.torque_enabled(), s.item(addr::goal_position, 4), s.item(addr::present_position, 4),
+                            s.item(addr::bus_watchdog, 1)};
+        });
+    return out;
+}
+
+// Activation refused part-way (servos 1 and 2 already holding), then the safe
+// state and the shutdown Session::run does after any failure; the servos are
+// given 1 s to move, should anything have told them to.
+std::map<int, Register> refused_activation(const std::vector<ServoSetup>& servos,
+                                           const std::function<void(BusEmulator&)>& fault, Status& failure) {
+    BusEmulator bus;
+    for (const auto& s : servos) bus.add_servo(s);
+    fault(bus);
+    auto emu = PtyBusEmulator::start(std::move(bus), {false, 0});
+    REQUIRE(emu.ok());
+    const Profile profile = etroll_on((*emu)->device(), false);
+    PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
+    auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
+    REQUIRE(created.ok());
+    auto& robot = **created;
+    failure = robot.activate(0.0);
+    REQUIRE_FALSE(failure.ok());
+    robot.safe_state(0.0);
+    robot.shutdown(0.0);
+    sync_with_a_fresh_client(**emu);
+    (*emu)->with_bus([](BusEmulator& b) {
+        b.advance(1.0);
+        return 0;
+    });
+    return registers(**emu);
+}
+
+void check_nothing_moved_all_released(const std::vector<ServoSetup>& start, std::map<int, Register>& after) {
+    for (const auto& s : start) {
+        INFO("servo " << int(s.id));
+        const std::int32_t start_tick = degrees_to_ticks(s.start_degrees);
+        CHECK_FALSE(after.at(s.id).torque);                              // 64 Torque Enable
+        CHECK(std::abs(after.at(s.id).present - start_tick) <= 1);       // 132: where it was
+        CHECK(after.at(s.id).watchdog == 0);                             // 98: not left to trip
+        if (s.id <= 2) CHECK(after.at(s.id).goal == after.at(s.id).present);  // 116: as activation set it
+    }
+}
+
+}  // namespace
+
+TEST_CASE("an activation refused for a joint outside its limits moves nothing and leaves every torque off",
+          "[safety][activate]") {
+    std::vector<ServoSetup> start = servos_off_zero();
+    start[2].start_degrees = -120.0;  // the palm at 23 mm, below its 30 mm (the servo's limit)
+    Status failure;
+    auto after = refused_activation(start, [](BusEmulator&) {}, failure);
+    INFO(failure.message());
+    CHECK(failure.code() == ErrorCode::hardware_fault);  // exit 4: the hand is not where it can start
+    CHECK_THAT(failure.message(), Catch::Contains("joint 'palm' (servo 3)") && Catch::Contains("torque is off"));
+    check_nothing_moved_all_released(start, after);
+}
+
+TEST_CASE("an activation refused for a servo's hardware error leaves the servos switched on before it released",
+          "[safety][activate]") {
+    const std::vector<ServoSetup> start = servos_off_zero();
+    Status failure;
+    auto after = refused_activation(
+        start, [](BusEmulator& bus) { bus.raise_hardware_error(3, hw_error::overheating); }, failure);
+    INFO(failure.message());
+    CHECK(failure.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(failure.message(), Catch::Contains("servo 3") && Catch::Contains("hardware error"));
+    check_nothing_moved_all_released(start, after);
 }

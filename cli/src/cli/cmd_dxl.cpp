@@ -161,6 +161,14 @@ int info(const Common& c, int id) {
     return kExitOk;
 }
 
+// The model of the servo answering to `id`, if one does (the port is closed again after).
+std::optional<std::uint16_t> model_answering(const Common& c, std::uint8_t id) {
+    auto bus = open_bus(c, 50ms);
+    if (!bus.ok()) return std::nullopt;  // the caller's own open says why
+    auto reply = bus->ping(id);
+    return reply.ok() ? std::optional<std::uint16_t>(reply->model_number) : std::nullopt;
+}
+
 // `answers_after`, if given, settles a write whose status packet never came:
 // a servo given a new id takes it as it executes the WRITE, so its reply may
 // come from the new id, which a transaction addressed to the old one ignores.
@@ -205,6 +213,13 @@ int run_dxl(const std::vector<std::string>& raw) {
         const auto n = args.option("--new-id");
         if (n.empty()) throw UsageError("set-id needs --new-id M");
         const int new_id = parse_int(n, "--new-id", 0, dxl::kMaxId);
+        if (new_id == id) throw UsageError("--new-id " + n + " is the servo's id already");
+        // Two servos on one id answer together and garble each other's replies:
+        // the new id must be free on this bus.
+        if (auto taken = model_answering(c, static_cast<std::uint8_t>(new_id)))
+            return fail({ErrorCode::invalid_argument,
+                         "id " + n + " is taken: a " + model_name(*taken) + " on " + c.device +
+                             " answers to it; give another --new-id (rollsense dxl scan lists the ids in use)"});
         return write_eeprom(c, id, dxl::addr::id, new_id, "id is now " + std::to_string(new_id),
                             static_cast<std::uint8_t>(new_id));
     }

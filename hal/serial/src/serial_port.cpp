@@ -25,6 +25,11 @@ int poll_ms(std::chrono::microseconds left) {
     return static_cast<int>((left.count() + 999) / 1000);
 }
 
+// A port that opened and worked, then failed (a pulled USB adapter, the
+// emulator gone): the device is lost, which the run reports as a device
+// failure (exit 4), not as a file it could not read or write (exit 5).
+constexpr ErrorCode kLost = ErrorCode::hardware_fault;
+
 }  // namespace
 
 Result<SerialPort> SerialPort::open(const std::string& device, std::uint32_t baud) {
@@ -106,7 +111,7 @@ Status SerialPort::write_all(std::span<const std::uint8_t> bytes, std::chrono::m
             continue;
         }
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0 && errno != EAGAIN) return {ErrorCode::io_error, name_ + ": write failed: " + errno_text()};
+        if (n < 0 && errno != EAGAIN) return {kLost, name_ + ": write failed: " + errno_text()};
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - Clock::now());
         if (left.count() <= 0) return {ErrorCode::timeout, name_ + ": the port did not accept data in time"};
         pollfd p{fd_, POLLOUT, 0};
@@ -123,17 +128,17 @@ Result<std::size_t> SerialPort::read_some(std::span<std::uint8_t> buffer, std::c
         if (n > 0) return static_cast<std::size_t>(n);
         if (n < 0 && errno == EINTR) continue;
         if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK)
-            return Error{ErrorCode::io_error, name_ + ": read failed: " + errno_text() +
+            return Error{kLost, name_ + ": read failed: " + errno_text() +
                                                   (errno == EIO ? " (device unplugged or emulator gone?)" : "")};
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - Clock::now());
         if (left.count() <= 0) return std::size_t{0};
         pollfd p{fd_, POLLIN, 0};
         const int r = ::poll(&p, 1, poll_ms(left));
-        if (r < 0 && errno != EINTR) return Error{ErrorCode::io_error, name_ + ": poll failed: " + errno_text()};
+        if (r < 0 && errno != EINTR) return Error{kLost, name_ + ": poll failed: " + errno_text()};
         if (r > 0 && (p.revents & (POLLERR | POLLNVAL)))
-            return Error{ErrorCode::io_error, name_ + ": the port reported an error (unplugged?)"};
+            return Error{kLost, name_ + ": the port reported an error (unplugged?)"};
         if (r > 0 && (p.revents & POLLHUP) && !(p.revents & POLLIN))
-            return Error{ErrorCode::io_error, name_ + ": the other end hung up"};
+            return Error{kLost, name_ + ": the other end hung up"};
     }
 }
 
@@ -154,13 +159,13 @@ Status SerialPort::read_exact(std::span<std::uint8_t> buffer, std::chrono::micro
 
 Status SerialPort::discard_input() {
     if (fd_ < 0) return {ErrorCode::state_error, "serial port is not open"};
-    if (tcflush(fd_, TCIFLUSH) != 0) return {ErrorCode::io_error, name_ + ": tcflush: " + errno_text()};
+    if (tcflush(fd_, TCIFLUSH) != 0) return {kLost, name_ + ": tcflush: " + errno_text()};
     return {};
 }
 
 Status SerialPort::drain() {
     if (fd_ < 0) return {ErrorCode::state_error, "serial port is not open"};
-    if (tcdrain(fd_) != 0) return {ErrorCode::io_error, name_ + ": tcdrain: " + errno_text()};
+    if (tcdrain(fd_) != 0) return {kLost, name_ + ": tcdrain: " + errno_text()};
     return {};
 }
 

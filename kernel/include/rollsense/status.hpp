@@ -20,7 +20,7 @@ enum class ErrorCode {
     io_error,          // the OS reported an I/O failure
     timeout,           // a device or operation did not answer in time
     protocol_error,    // a peer answered with something that is not the protocol
-    hardware_fault,    // a device reported a fault of its own (overload, NACK, ...)
+    hardware_fault,    // a device reported a fault of its own, or was lost (overload, NACK, unplugged)
     limit_violation,   // a command outside joint / current / velocity limits
     state_error,       // an operation not allowed in the current lifecycle state
     plugin_error,      // a plugin threw or violated its contract

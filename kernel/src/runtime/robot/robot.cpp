@@ -224,12 +224,13 @@ std::vector<std::string> Robot::device_names() const {
 
 Status Robot::activate(double time) {
     const auto devices = lock_devices();
+    const auto start = [](ComponentHandle& h) { return h.state() == LifecycleState::inactive ? h.activate() : Status{}; };
+    // Not read yet: a failure before the read below must not hold a joint at position 0 (safe_commands).
+    for (auto& j : joints_) j.state.fault = "position unknown: not read since activation";
     for (auto& s : sensors_)
-        if (s.handle->state() == LifecycleState::inactive)
-            if (auto st = s.handle->activate(); !st.ok()) return st;
+        if (auto st = start(*s.handle); !st.ok()) return st;
     for (auto& a : actuators_)
-        if (a.handle->state() == LifecycleState::inactive)
-            if (auto st = a.handle->activate(); !st.ok()) return st;
+        if (auto st = start(*a.handle); !st.ok()) return st;
     // Latch the measured position as the command: no jump to a stale goal.
     if (auto st = read_actuators(time); !st.ok()) return st;
     for (auto& j : joints_) j.command = hold_command(j);
@@ -269,23 +270,18 @@ Status Robot::control_tick(double time, double dt) {
 }
 
 void Robot::safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out) const {
-    std::size_t k = 0;
-    for (const auto& j : joints_) {
-        if (j.actuator != &actuator) continue;
-        JointCommand c = hold_command(j);
-        c.torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty();
-        if (k < out.size()) out[k] = c;  // sized at create(): no allocation on the way to safety
-        ++k;
-    }
+    std::size_t k = 0;  // out is sized at create(): no allocation on the way to safety
+    for (const auto& j : joints_)
+        if (j.actuator == &actuator && k < out.size()) {
+            out[k] = hold_command(j);  // torque off: the profile says so, or the joint's fault (or unknown position)
+            out[k++].torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty();
+        }
 }
 
-// Every actuator that may still drive a joint gets the safe commands: active
-// ones, and those in the error state, which is where one silent servo puts
-// the whole bus's device while the other servos on it still answer (and still
-// push). A plugin applies what it can and reports what it could not; its
-// failure here keeps the handle's state (it is logged, not escalated), so a
-// second safe_state() tries again. Inactive and unconfigured devices are not
-// driving anything.
+// The safe commands go to every actuator that may still drive a joint: active
+// ones, and those in error (one silent servo puts its whole bus there while the
+// others on it still push). A plugin applies what it can; its failure here is
+// logged, keeps the handle's state, and a second safe_state() tries again.
 void Robot::safe_state(double time) noexcept {
     const auto devices = lock_devices();
     try {
@@ -323,8 +319,11 @@ void Robot::shutdown(double time) noexcept {
     const auto devices = lock_devices();
     safe_state(time);
     // Nobody else sees these statuses: logged here (a device logs no fault itself).
+    // A failed device is recovered: its plugin releases what still answers (torque off), as deactivate would.
     const auto stop = [](ComponentHandle& h) {
-        Status s = h.state() == LifecycleState::active ? h.deactivate() : Status{};
+        Status s = h.state() == LifecycleState::active  ? h.deactivate()
+                   : h.state() == LifecycleState::error ? h.recover()
+                                                        : Status{};
         if (s.ok() && h.state() == LifecycleState::inactive) s = h.cleanup();
         if (!s.ok()) log_error("kernel", "shutdown: " + s.message());
     };

@@ -44,7 +44,7 @@ public:
     // Activate every device; each joint then holds where it is.
     Status activate(double time);
     // Best effort, never throws: stop every joint (hold, or torque off where the
-    // profile says so), then deactivate and clean up every device.
+    // profile says so), then deactivate (or recover, if failed) and clean up every device.
     void shutdown(double time) noexcept;
     // Stop every joint now: the profile's safe action (hold here, or torque
     // off) to every actuator that is active or failed, so the servos that

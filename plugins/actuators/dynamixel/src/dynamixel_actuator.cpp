@@ -201,7 +201,7 @@ Status DynamixelActuator::hold_here(std::size_t i) {
         if (auto st = bus_->write_value(id, addr::goal_position, 4, *present); !st.ok()) {
             if (st.code() == ErrorCode::limit_violation) {
                 const auto& j = config_.joints[i];
-                return {ErrorCode::limit_violation,
+                return {ErrorCode::hardware_fault,
                         who(i) + " is at " + std::to_string(j.ticks_to_joint(*present)) + " " + j.unit +
                             ", outside its limits [" + std::to_string(j.min) + ", " + std::to_string(j.max) +
                             "]; move it inside by hand (torque is off) or widen 'min'/'max'"};
@@ -216,30 +216,38 @@ Status DynamixelActuator::hold_here(std::size_t i) {
     return set_torque(i, true);
 }
 
+Status DynamixelActuator::activate_servo(std::size_t i) {
+    auto hw = bus_->read_value(ids_[i], addr::hardware_error_status, 1);
+    if (!hw.ok()) return with_joint(i, hw.status());
+    rt_[i].hardware_error = static_cast<std::uint8_t>(*hw);
+    if (*hw != 0)
+        return {ErrorCode::hardware_fault,
+                who(i) + " reports a hardware error: " + describe_hardware_error(rt_[i].hardware_error) +
+                    "; remove the cause, then reboot it (device:call('reboot', {joint='" + config_.joints[i].name +
+                    "'}) or power-cycle)"};
+    // Cleared before the goals are written: a tripped watchdog makes them read-only.
+    if (auto st = set_watchdog(i, 0); !st.ok()) return st;
+    if (auto st = prepare(i, config_.joints[i].default_mode); !st.ok()) return st;
+    if (auto st = hold_here(i); !st.ok()) return st;
+    return set_watchdog(i, config_.bus_watchdog_ms);
+}
+
 Status DynamixelActuator::on_activate() {
     if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
     for (std::size_t i = 0; i < ids_.size(); ++i) {
-        auto hw = bus_->read_value(ids_[i], addr::hardware_error_status, 1);
-        if (!hw.ok()) return with_joint(i, hw.status());
-        rt_[i].hardware_error = static_cast<std::uint8_t>(*hw);
-        if (*hw != 0)
-            return {ErrorCode::hardware_fault,
-                    who(i) + " reports a hardware error: " + describe_hardware_error(rt_[i].hardware_error) +
-                        "; remove the cause, then reboot it (device:call('reboot', {joint='" +
-                        config_.joints[i].name + "'}) or power-cycle)"};
-        // Cleared before the goals are written: a tripped watchdog makes them read-only.
-        if (auto st = set_watchdog(i, 0); !st.ok()) return st;
-        if (auto st = prepare(i, config_.joints[i].default_mode); !st.ok()) return st;
-        if (auto st = hold_here(i); !st.ok()) return st;
-        if (auto st = set_watchdog(i, config_.bus_watchdog_ms); !st.ok()) return st;
+        if (auto st = activate_servo(i); !st.ok()) {
+            // A refused activation leaves nothing holding: every servo that
+            // answers gets torque off (those already switched on included),
+            // whatever torque_off_on_deactivate says: the run never started.
+            (void)release_servos();
+            return st;
+        }
     }
     arm_last_resort();
     return {};
 }
 
-Status DynamixelActuator::on_deactivate() {
-    rearm_watchdog_ = false;
-    if (!bus_ || !config_.torque_off_on_deactivate) return {};
+Status DynamixelActuator::release_servos() {
     Status first;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         if (config_.bus_watchdog_ms > 0) (void)set_watchdog(i, 0);  // no trip while the bus is idle
@@ -249,6 +257,12 @@ Status DynamixelActuator::on_deactivate() {
     return first;
 }
 
+Status DynamixelActuator::on_deactivate() {
+    rearm_watchdog_ = false;
+    if (!bus_ || !config_.torque_off_on_deactivate) return {};
+    return release_servos();
+}
+
 Status DynamixelActuator::on_cleanup() {
     disarm_last_resort();
     bus_.reset();
@@ -256,8 +270,12 @@ Status DynamixelActuator::on_cleanup() {
     return {};
 }
 
+// After a fault the kernel's shutdown recovers the device (the error state
+// has no deactivate): the servos that still answer are released as a
+// deactivate would, before the bus closes; the silent one costs its timeouts.
 Status DynamixelActuator::on_recover() {
     disarm_last_resort();
+    if (bus_ && config_.torque_off_on_deactivate) (void)release_servos();
     bus_.reset();
     emulator_ = nullptr;
     rt_.assign(config_.joints.size(), Runtime{});
@@ -325,6 +343,7 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
                     who(i) + ": hardware error (" + describe_hardware_error(rt_[i].hardware_error) +
                         "); the servo turned its torque off. Remove the cause, then "
                         "device:call('reboot', {joint='" + j.name + "'})"};
+        if (!c.torque_enabled) continue;  // a release: no goal is sent (below), nothing to check
         if (is_position_mode(c.mode) && (c.position < j.min - 1e-9 || c.position > j.max + 1e-9))
             return {ErrorCode::limit_violation, who(i) + ": goal " + std::to_string(c.position) + " " + j.unit +
                                                     " is outside [" + std::to_string(j.min) + ", " +
@@ -349,6 +368,13 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         const auto& j = config_.joints[i];
         const auto& c = commands[i];
+        // A release: torque off, goal and mode left as they are (the safe state
+        // releases joints whose position it never read: their goal must not become 0).
+        if (!c.torque_enabled) {
+            if (rt_[i].torque)
+                if (auto st = set_torque(i, false); !st.ok()) failed(std::move(st));
+            continue;
+        }
         if (c.mode != rt_[i].mode) {
             // Operating Mode is EEPROM: torque off, switch, and torque comes
             // back only after this period's goals are in place.
@@ -371,13 +397,7 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
                 continue;
             }
         }
-        if (!c.torque_enabled && rt_[i].torque) {
-            if (auto st = set_torque(i, false); !st.ok()) {
-                failed(std::move(st));
-                continue;
-            }
-        }
-        if (c.torque_enabled && !rt_[i].torque) enable_after.push_back(i);
+        if (!rt_[i].torque) enable_after.push_back(i);
 
         const std::int32_t limit = j.current_limit_units();
         std::int32_t goal_current = limit;
@@ -507,6 +527,7 @@ Result<ValueMap> DynamixelActuator::invoke(const std::string& verb, const ValueM
                         {"retries", static_cast<std::int64_t>(s.retries)},
                         {"timeouts", static_cast<std::int64_t>(s.timeouts)},
                         {"crc_errors", static_cast<std::int64_t>(s.crc_errors)},
+                        {"stale_replies", static_cast<std::int64_t>(s.stale_replies)},
                         {"bytes_sent", static_cast<std::int64_t>(s.bytes_sent)},
                         {"bytes_received", static_cast<std::int64_t>(s.bytes_received)}};
     }

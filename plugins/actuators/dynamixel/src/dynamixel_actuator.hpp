@@ -55,6 +55,10 @@ private:
     // Goal = present position (or zero current), then torque on.
     Status hold_here(std::size_t i);
     Status set_torque(std::size_t i, bool on);
+    // Hardware error check, watchdog, EEPROM items, hold here, watchdog armed.
+    Status activate_servo(std::size_t i);
+    // Bus Watchdog off and torque off on every servo that answers; the first failure.
+    Status release_servos();
     // Bus Watchdog (98): clear a tripped one (it is logged: the last run ended
     // without telling the servo), then set it to `ms` (0 = off).
     Status set_watchdog(std::size_t i, int ms);

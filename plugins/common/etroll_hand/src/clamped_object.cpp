@@ -25,6 +25,8 @@ Status clamp_object(hal::dxl::BusEmulator& bus, const ClampedObject& object) {
         auto* sensing = b.servo(object.sensing_id);
         auto* pushing = b.servo(object.pushing_id);
         auto* palm = b.servo(object.palm_id);
+        // A servo given a new id (rollsense dxl set-id) has left its role: no clamp.
+        if (!sensing || !pushing || !palm) return;
         const double contact =
             pushing_contact_degrees(object, hal::dxl::ticks_to_degrees(sensing->position_ticks()),
                                     hal::dxl::ticks_to_degrees(palm->position_ticks()));

@@ -36,6 +36,7 @@ struct BusStatistics {
     std::uint64_t bytes_sent = 0;
     std::uint64_t bytes_received = 0;
     std::uint64_t garbage_bytes = 0;
+    std::uint64_t stale_replies = 0;  // a servo's late reply to an earlier instruction, skipped
 };
 
 struct PingReply {
@@ -91,12 +92,13 @@ public:
     Status write_value(std::uint8_t id, std::uint16_t address, std::uint16_t size, std::int64_t value);
 
 private:
-    // Send one instruction, collect `expect` status packets from `ids` in order.
+    // Send one instruction, collect one status packet from each of `ids` in
+    // order, each with `reply_params` parameter bytes (or an error code).
     Result<std::vector<Packet>> transact(std::uint8_t target, Instruction inst, const Bytes& params,
-                                         std::span<const std::uint8_t> ids);
+                                         std::span<const std::uint8_t> ids, std::size_t reply_params);
     Status send(const Bytes& packet);
-    // Wait for the status packet of `id`; skips echoes and other ids.
-    Result<Packet> receive_status(std::uint8_t id, Instruction inst);
+    // Wait for the status packet of `id`; skips echoes, other ids and replies of another length.
+    Result<Packet> receive_status(std::uint8_t id, Instruction inst, std::size_t reply_params);
 
     std::unique_ptr<SerialLink> port_;
     BusOptions options_;
