@@ -261,6 +261,33 @@ TEST_CASE("a sync read cut short by a CRC fault: the next READ takes its own rep
     CHECK(rig.bus->statistics().stale_replies == 1);
 }
 
+// Review of the change: a reply of another length was skipped in silence, so a
+// servo that answered was reported as one that did not ("check its power, its id").
+TEST_CASE("a servo whose only reply has another length is named as answering, with both lengths") {
+    PtyRig rig({false, 57600}, {100ms, 0});  // no retries: the one attempt sees the late reply
+    rig.with_bus([](BusEmulator& b) { b.set_faults(1, {0, -1}); return 0; });
+    const std::uint8_t ids[] = {1, 2, 3, 4};
+    REQUIRE_FALSE(rig.bus->sync_read(ids, kStateBlockAddress, kStateBlockLength).ok());
+    rig.with_bus([](BusEmulator& b) { b.set_faults(2, {-1, 0}); return 0; });  // its own answer never comes
+    auto read = rig.bus->read(2, addr::operating_mode, 54);
+    REQUIRE_FALSE(read.ok());
+    INFO(read.error().message);
+    CHECK(read.error().code == ErrorCode::protocol_error);
+    CHECK_THAT(read.error().message, Catch::Contains("servo 2 answered READ with " + std::to_string(kStateBlockLength) +
+                                                     " bytes of data, not the 54 asked for"));
+}
+
+// Scan stops only when the port fails (below): one servo's bad reply is that id's.
+TEMPLATE_TEST_CASE("scan goes past a servo whose replies are garbled", "", PtyRig, VirtualRig) {
+    TestType rig;
+    rig.with_bus([](BusEmulator& b) { b.set_faults(2, {0, -1}); return 0; });  // every reply of servo 2 garbled
+    auto found = rig.bus->scan(1, 4, 20ms);
+    REQUIRE(found.ok());
+    std::vector<int> ids;
+    for (const auto& p : *found) ids.push_back(p.id);
+    CHECK(ids == std::vector<int>{1, 3, 4});
+}
+
 TEST_CASE("a port lost mid-run (adapter pulled, emulator gone) is a device failure, not a file error") {
     PtyRig rig;
     REQUIRE(rig.bus->ping(1).ok());
@@ -273,4 +300,7 @@ TEST_CASE("a port lost mid-run (adapter pulled, emulator gone) is a device failu
     auto w = rig.bus->write_value(1, addr::led, 1, 1);
     REQUIRE_FALSE(w.ok());
     CHECK(w.code() == ErrorCode::hardware_fault);
+    auto scan = rig.bus->scan(1, 4, 20ms);  // stops at the first id: the port, not a servo, failed
+    REQUIRE_FALSE(scan.ok());
+    CHECK(scan.error().code == ErrorCode::hardware_fault);
 }

@@ -115,6 +115,7 @@ try(function() f:move(40, { tolerance = -1 }) end)
 try(function() f:move(40, { timeout_ms = -1 }) end)
 try(function() f:wait({ timeout_ms = 0/0 }) end)
 try(function() rs.wait_joints({ f }, { tolerance = -0.5 }) end)
+try(function() f:move(40, { acceleration = -1 }) end)
 out[#out + 1] = string.format("%s %.3f", tostring(f:moving()), f:position())
 rs.write_output("result.txt", table.concat(out, "\n"))
 )");
@@ -123,7 +124,7 @@ rs.write_output("result.txt", table.concat(out, "\n"))
     std::vector<std::string> lines;
     std::istringstream in(kt::read_file(r.out / "result.txt"));
     for (std::string line; std::getline(in, line);) lines.push_back(line);
-    REQUIRE(lines.size() == 11);
+    REQUIRE(lines.size() == 12);
     const auto refused = [&](std::size_t i, const std::string& says) {
         INFO(lines[i]);
         CHECK_THAT(lines[i], Catch::Contains("script.lua:" + std::to_string(i + 5) + ": " + says));
@@ -139,7 +140,8 @@ rs.write_output("result.txt", table.concat(out, "\n"))
     refused(7, "option 'timeout_ms' is -1.0; it must be >= 0");
     refused(8, "option 'timeout_ms' must be a finite number");
     refused(9, "option 'tolerance' is -0.5; it must be >= 0");
-    CHECK(lines[10] == "false 0.000");  // nothing moved
+    refused(10, "option 'acceleration' is -1.0; it must be >= 0 (0: no limit)");  // a servo reads a negative as 0: none
+    CHECK(lines[11] == "false 0.000");  // nothing moved
 }
 
 TEST_CASE("a failing script gets its cleanup, and the kernel stops every joint first", "[safety]") {

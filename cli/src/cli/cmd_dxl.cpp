@@ -161,12 +161,15 @@ int info(const Common& c, int id) {
     return kExitOk;
 }
 
-// The model of the servo answering to `id`, if one does (the port is closed again after).
-std::optional<std::uint16_t> model_answering(const Common& c, std::uint8_t id) {
+// What answers to `id`, if anything (the port is closed again after). Only a
+// timeout shows the id is free: two servos that share it garble their replies.
+std::optional<std::string> what_answers(const Common& c, std::uint8_t id) {
     auto bus = open_bus(c, 50ms);
     if (!bus.ok()) return std::nullopt;  // the caller's own open says why
     auto reply = bus->ping(id);
-    return reply.ok() ? std::optional<std::uint16_t>(reply->model_number) : std::nullopt;
+    if (reply.ok()) return "a " + model_name(reply->model_number);
+    if (reply.error().code == ErrorCode::timeout) return std::nullopt;
+    return "a reply that is not a servo's (" + reply.error().message + "; two servos sharing the id?)";
 }
 
 // `answers_after`, if given, settles a write whose status packet never came:
@@ -216,9 +219,9 @@ int run_dxl(const std::vector<std::string>& raw) {
         if (new_id == id) throw UsageError("--new-id " + n + " is the servo's id already");
         // Two servos on one id answer together and garble each other's replies:
         // the new id must be free on this bus.
-        if (auto taken = model_answering(c, static_cast<std::uint8_t>(new_id)))
+        if (auto taken = what_answers(c, static_cast<std::uint8_t>(new_id)))
             return fail({ErrorCode::invalid_argument,
-                         "id " + n + " is taken: a " + model_name(*taken) + " on " + c.device +
+                         "id " + n + " is taken: " + *taken + " on " + c.device +
                              " answers to it; give another --new-id (rollsense dxl scan lists the ids in use)"});
         return write_eeprom(c, id, dxl::addr::id, new_id, "id is now " + std::to_string(new_id),
                             static_cast<std::uint8_t>(new_id));

@@ -1,6 +1,7 @@
 #include "rollsense/hal/dynamixel/bus.hpp"
 
 #include <array>
+#include <optional>
 
 namespace rollsense::hal::dxl {
 namespace {
@@ -30,12 +31,15 @@ Bus::Bus(std::unique_ptr<SerialLink> link, BusOptions options) : port_(std::move
 
 Status Bus::send(const Bytes& packet) {
     stats_.bytes_sent += packet.size();
-    return port_->write_all(packet);
+    auto st = port_->write_all(packet);
+    port_failed_ = !st.ok();
+    return st;
 }
 
 Result<Packet> Bus::receive_status(std::uint8_t id, Instruction inst, std::size_t reply_params) {
     const auto deadline = port_->now() + options_.timeout;
     std::array<std::uint8_t, 512> buf{};
+    std::optional<std::size_t> other_length;  // of a reply skipped as another instruction's
     for (;;) {
         while (auto out = parser_.next()) {
             if (out->event == PacketParser::Event::crc_mismatch) {
@@ -53,11 +57,16 @@ Result<Packet> Bus::receive_status(std::uint8_t id, Instruction inst, std::size_
             if (!p.is_status() || p.id != id) continue;
             if (p.error_code() == 0 && p.params.size() != reply_params) {
                 ++stats_.stale_replies;
+                other_length = p.params.size();
                 continue;
             }
             return std::move(out->packet);
         }
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - port_->now());
+        if (left.count() <= 0 && other_length)  // it answered, but not with what was asked: not a wiring fault
+            return Error{ErrorCode::protocol_error, servo(id) + " answered " + to_string(inst) + " with " +
+                                                        std::to_string(*other_length) + " bytes of data, not the " +
+                                                        std::to_string(reply_params) + " asked for"};
         if (left.count() <= 0) {
             ++stats_.timeouts;
             return Error{ErrorCode::timeout, servo(id) + " did not answer " + to_string(inst) + " within " +
@@ -65,7 +74,10 @@ Result<Packet> Bus::receive_status(std::uint8_t id, Instruction inst, std::size_
                                                  " ms"};
         }
         auto n = port_->read_some(buf, left);
-        if (!n.ok()) return n.error();
+        if (!n.ok()) {
+            port_failed_ = true;
+            return n.error();
+        }
         stats_.bytes_received += *n;
         parser_.feed(std::span<const std::uint8_t>(buf.data(), *n));
     }
@@ -137,7 +149,7 @@ Result<std::vector<PingReply>> Bus::scan(std::uint8_t first, std::uint8_t last,
         auto r = ping(static_cast<std::uint8_t>(id));
         if (r.ok()) {
             found.push_back(*r);
-        } else if (r.error().code != ErrorCode::timeout && r.error().code != ErrorCode::protocol_error) {
+        } else if (port_failed_) {  // the adapter is gone; a servo's refusal or a garbled reply is one id's
             options_ = saved;
             return r.error();
         }

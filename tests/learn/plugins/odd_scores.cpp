@@ -14,7 +14,7 @@ using namespace rollsense;
 
 ParamSchema odd_scores_schema() {
     return {param_int("mode", std::int64_t{0},
-                      "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99", 0, 3)};
+                      "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99; 4 a wrong class name", 0, 4)};
 }
 
 class OddScores final : public Classifier {
@@ -47,6 +47,7 @@ public:
         if (mode_ == 1) p.scores.assign(classes_.size(), std::numeric_limits<double>::quiet_NaN());
         if (mode_ == 2) p.scores = {0.0, 1.0};
         if (mode_ == 3) p.label = 99;
+        if (mode_ == 4) p.class_name = "not-a-class";
         return p;
     }
     std::vector<std::string> class_names() const override { return classes_; }

@@ -4,11 +4,15 @@
 
 namespace rollsense::learn {
 
-Status check_prediction(const Prediction& p, std::size_t classes, const std::string& who) {
+Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who) {
+    const std::size_t classes = class_names.size();
     const std::string n = std::to_string(classes);
     if (p.label < 0 || static_cast<std::size_t>(p.label) >= classes)
         return {ErrorCode::plugin_error,
                 who + " predicted label " + std::to_string(p.label) + " outside its " + n + " classes"};
+    if (p.class_name != class_names[static_cast<std::size_t>(p.label)])
+        return {ErrorCode::plugin_error, who + " named its label " + std::to_string(p.label) + " '" + p.class_name +
+                                             "', which is class '" + class_names[static_cast<std::size_t>(p.label)] + "'"};
     if (p.scores.size() != classes)
         return {ErrorCode::plugin_error, who + " returned " + std::to_string(p.scores.size()) + " scores for " + n +
                                              " classes; a prediction has one score per class, in class order"};
@@ -45,15 +49,15 @@ public:
     }
 
 private:
-    // The class count predictions are checked against, once the model exists.
+    // The classes predictions are checked against, once the model exists.
     Status counted(Status s) {
-        if (s) classes_ = inner_->class_names().size();
+        if (s) classes_ = inner_->class_names();
         return s;
     }
 
     ClassifierPtr inner_;
     std::string who_;
-    std::size_t classes_ = 0;
+    std::vector<std::string> classes_;
 };
 
 }  // namespace

@@ -49,7 +49,7 @@ Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureT
             if (!p) return p.error();
             // Plugins are checked as they predict (checked_classifier); this
             // guards the confusion matrix against any classifier.
-            if (auto s = check_prediction(*p, table.class_names.size(), "classifier"); !s) return s.error();
+            if (auto s = check_prediction(*p, table.class_names, "classifier"); !s) return s.error();
             out.push_back(std::move(p).value());
         }
     } catch (const StatusError& e) {

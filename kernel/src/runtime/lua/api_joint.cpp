@@ -70,6 +70,7 @@ bool l_move(lua_State* L) {
     c.position = goal;
     c.profile_velocity = opt_field_number(L, 3, "velocity", j.limit.max_velocity);
     c.profile_acceleration = opt_field_number(L, 3, "acceleration", 0);
+    if (c.profile_acceleration < 0) luaL_error(L, "option 'acceleration' is %f; it must be >= 0 (0: no limit)", c.profile_acceleration);
     const std::string mode = opt_field_string(L, 3, "mode", "");
     if (mode == "current_based_position") {
         c.mode = ControlMode::current_based_position;

@@ -41,7 +41,7 @@ public:
     // Run a plugin call: exceptions become plugin_error, a failing Status is
     // prefixed with the instance name; either moves the component to `error`
     // unless the failure is the caller's: `keeps_state` (e.g. a command refused as
-    // out of range), or a request refused as invalid_argument or not_found (a trial's unknown object).
+    // out of range), or not_found, a request for what does not exist (a trial's unknown object).
     template <class F>
     Status call(const char* what, F&& fn, bool keeps_state = false) {
         // Initialised by the call itself, not assigned over: several calls per control period.
@@ -58,7 +58,7 @@ public:
         }();
         if (s.ok()) return s;
         s = std::move(s).with_context(describe());
-        if (!keeps_state && s.code() != ErrorCode::invalid_argument && s.code() != ErrorCode::not_found) enter_error(s);
+        if (!keeps_state && s.code() != ErrorCode::not_found) enter_error(s);
         return s;
     }
 

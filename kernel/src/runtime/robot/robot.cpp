@@ -139,7 +139,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
             for (auto [key, v] : {std::pair{"max_velocity", lim->max_velocity}, std::pair{"max_current", lim->max_current}})
                 if (!(v >= 0 && v <= DBL_MAX))
                     return Error{ErrorCode::invalid_argument, file + ": joints." + info.name + "." + key + " is " +
-                                                                  fmt(v) + ", expected a number >= 0 (0 or none: the device's own)"};
+                                                                  fmt(v) + ", expected a number >= 0"};
             if (!(lim->min >= info.min_position && lim->max <= info.max_position))
                 return Error{ErrorCode::invalid_argument,
                              file + ": joints." + info.name + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
@@ -352,7 +352,7 @@ Status Robot::command_joint(Joint& j, const JointCommand& c) {
     if (!speed_ok || !(std::abs(c.velocity) <= v_max))
         return {ErrorCode::limit_violation, who + ": velocity " + fmt(speed_ok ? c.velocity : c.profile_velocity) + " " +
                                                 j.info.unit + "/s is outside [" + fmt(speed_ok ? -v_max : 0) + ", " +
-                                                fmt(v_max) + "], the velocity limits of " + profile_label_ +
+                                                (v_max < DBL_MAX ? fmt(v_max) : "inf") + "], the velocity limits of " + profile_label_ +
                                                 "; nothing was moved"};
     const bool uses_current = c.mode == ControlMode::current || c.mode == ControlMode::current_based_position;
     if (uses_current) {

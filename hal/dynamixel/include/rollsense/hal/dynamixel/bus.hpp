@@ -104,6 +104,7 @@ private:
     BusOptions options_;
     PacketParser parser_;
     BusStatistics stats_;
+    bool port_failed_ = false;  // the last transaction's error came from the port, not a servo
 };
 
 // "servo 3: data limit error (...)" as a typed error: the ErrorCode follows
