@@ -62,6 +62,13 @@ TEST_CASE("dxl set-id refuses an id another servo on the bus answers to", "[dxl]
     // Nothing written: both servos keep their ids, servo 4's EEPROM untouched.
     CHECK((*emu)->with_bus([](BusEmulator& b) { return b.ids(); }) == std::vector<std::uint8_t>{2, 4});
     CHECK((*emu)->with_bus([](BusEmulator& b) { return b.servo(4)->item(addr::id, 1); }) == 4);
+    // Two servos sharing an id garble their replies: only a timeout shows an id is free.
+    (*emu)->with_bus([](BusEmulator& b) { b.set_faults(2, {0, -1}); return 0; });
+    const auto garbled = testing::run_rollsense("dxl set-id --device " + (*emu)->device() + " --id 4 --new-id 2");
+    INFO(garbled.output);
+    CHECK(garbled.status == 2);
+    CHECK(garbled.output.find("id 2 is taken: a reply that is not a servo's") != std::string::npos);
+    CHECK((*emu)->with_bus([](BusEmulator& b) { return b.servo(4)->item(addr::id, 1); }) == 4);
 }
 
 TEST_CASE("dxl set-id on the E-TRoll bus: the emulator's clamped object lets a servo leave its role",
