@@ -443,6 +443,22 @@ TEST_CASE("a run a device stops after some trials prints its fault once and the 
     CHECK(failed.output.find(" --resume --profile ") != std::string::npos);
 }
 
+// Independent review, hw item 8: the safe state runs again after a fault (each
+// period, the cleanup, the shutdown), and its failure to read the silent servo was
+// printed each time: five "did not answer" for one fault.
+TEST_CASE("a safe state that fails again and again after a fault prints that failure once") {
+    TempDir dir("rollsense-safe-once");
+    write_file(dir / "faulty.lua", "local p = include('etroll-virtual')\n"
+                                   "p.devices.hand.params.inject = { '2:silent:25' }\nreturn p\n");
+    const auto failed = run_rollsense("run " + kPaper + " --profile " + shell_quoted(dir / "faulty.lua") +
+                                      " --set runs=3 --set objects=C1 --set speeds=20 --set analyse=false --no-progress"
+                                      " --out " + shell_quoted(dir / "out"));
+    INFO(failed.output);
+    CHECK(failed.status == 4);
+    CHECK(count_of(failed.output, "safe state: ") == 1);
+    CHECK(count_of(failed.output, "did not answer") == 2);  // the safe state's READ, and the run's fault
+}
+
 TEST_CASE("a run that fails before any trial removes the folder it created, never one that existed") {
     TempDir dir("rollsense-resume");
     write_file(dir / "fail.lua", "error('before any trial')\n");

@@ -289,25 +289,25 @@ void Robot::safe_state(double time) noexcept {
     } catch (...) {
         log_error("kernel", "safe state: a controller threw while being disabled; going on with the devices");
     }
+    const auto report = [&](auto log, const std::string& text) { if (text != last_safe_report_) log("kernel", last_safe_report_ = text); };
     for (auto& a : actuators_) {
         const auto state = a.handle->state();
         if (state != LifecycleState::active && state != LifecycleState::error) continue;
         try {
-            // Fresh positions where the bus still answers; the last known where
-            // it just failed (reading it again would spend its timeouts first,
-            // and the write must go out within this control period).
+            // Fresh positions where the bus still answers; the last known where it just failed (reading
+            // it again would spend its timeouts first, and the write must go out within this control period).
             if (state == LifecycleState::active) {
                 const auto read =
                     a.handle->call("read", [&] { return a.handle->plugin().read(time, a.states); }, true);
                 if (read.ok())
                     for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
                 else
-                    log_warning("kernel", "safe state: " + read.message() + " (last known positions used)");
+                    report(log_warning, "safe state: " + read.message() + " (last known positions used)");
             }
             safe_commands(*a.handle, a.commands);
             for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = a.commands[i];
             auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, a.commands); }, true);
-            if (!st.ok()) log_error("kernel", "safe state: " + st.message());
+            if (!st.ok()) report(log_error, "safe state: " + st.message());
         } catch (...) {
             // std::bad_alloc in a message: the next device must still be tried.
             log_error("kernel", "safe state: out of memory or an exception while stopping a device");
