@@ -124,6 +124,12 @@ TEST_CASE("a regular file is refused as a serial port") {
     ::unlink(path);
     REQUIRE_FALSE(port.ok());
     CHECK(port.error().message.find("not a terminal") != std::string::npos);
+    CHECK(port.error().message.find("name the adapter's serial port") != std::string::npos);
+    // Review hw item 5: the profile's mistake (exit 3), not a file that could not be read or written (exit 5).
+    CHECK(port.error().code == ErrorCode::not_found);
+    auto null = SerialPort::open("/dev/null", 57600);
+    REQUIRE_FALSE(null.ok());
+    CHECK(null.error().code == ErrorCode::not_found);
 }
 
 TEST_CASE("a rate of zero is refused") {

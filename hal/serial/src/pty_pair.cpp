@@ -13,8 +13,12 @@ namespace rollsense::hal {
 
 Status make_raw(int fd, const std::string& name) {
     termios tio{};
-    if (tcgetattr(fd, &tio) != 0)
-        return {ErrorCode::io_error, name + ": not a terminal (tcgetattr: " + std::strerror(errno) + ")"};
+    if (tcgetattr(fd, &tio) != 0) {  // a file or /dev/null where a port was meant: the profile's mistake (exit 3)
+        const int err = errno;
+        return {err == ENOTTY ? ErrorCode::not_found : ErrorCode::io_error,
+                name + ": not a terminal (tcgetattr: " + std::strerror(err) +
+                    "); name the adapter's serial port (ls /dev/serial/by-id/, rollsense dxl scan)"};
+    }
     cfmakeraw(&tio);
     tio.c_cflag &= ~static_cast<tcflag_t>(CSTOPB | PARENB | CRTSCTS | CSIZE);
     tio.c_cflag |= CS8 | CLOCAL | CREAD;
