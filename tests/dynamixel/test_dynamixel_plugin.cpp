@@ -280,6 +280,26 @@ TEST_CASE("device 'emulator': servos in memory, one sync write and one sync read
     }
 }
 
+// Independent review, hw item 7: baud 1000001 passed (a run then timed out at
+// every servo, "check the wiring"), and a max_current above the model's Current
+// Limit was cut to it without a word.
+TEST_CASE("a baud rate no servo can take and a current above the model's limit are refused at configure") {
+    auto emu = start_emulator(false);
+    auto raw = etroll_raw(emu->device());
+    raw["baud"] = std::int64_t{1000001};
+    DynamixelActuator a;
+    auto st = a.on_configure(validated(raw), {});
+    REQUIRE_FALSE(st.ok());
+    CHECK(st.code() == ErrorCode::invalid_argument);
+    CHECK_THAT(st.message(), Catch::Contains("'baud' 1000001 is not a Dynamixel baud rate (9600, 57600, 115200, 1000000"));
+    raw = etroll_raw(emu->device());
+    raw["max_current"] = std::vector<double>{400, 4000, 400, 300};
+    DynamixelActuator b;
+    st = b.on_configure(validated(raw), {});
+    REQUIRE_FALSE(st.ok());
+    CHECK_THAT(st.message(), Catch::Contains("max_current 4000 mA is above the XM430-W350's Current Limit of 3209 mA"));
+}
+
 TEST_CASE("the pushing finger switches to current mode and clamps the object with the commanded current") {
     std::vector<ServoSetup> servos = etroll_servos();
     servos[1].start_degrees = -66.0;

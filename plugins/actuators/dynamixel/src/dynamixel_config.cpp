@@ -1,5 +1,6 @@
 #include "dynamixel_config.hpp"
 
+#include <cmath>
 #include <set>
 
 namespace rollsense::dynamixel {
@@ -71,6 +72,12 @@ Result<BusConfig> parse_config(const ParamSet& params) {
     BusConfig c;
     c.device = params.get_string("device");
     c.baud = static_cast<std::uint32_t>(params.get_int("baud"));
+    if (!hal::dxl::index_from_baud(c.baud)) {  // a rate no servo can be set to: nothing would ever answer
+        std::string rates;
+        for (std::uint8_t i = 0; i < 8; ++i) rates += (i ? ", " : "") + std::to_string(*hal::dxl::baud_from_index(i));
+        return Error{ErrorCode::invalid_argument,
+                     "'baud' " + std::to_string(c.baud) + " is not a Dynamixel baud rate (" + rates + ")"};
+    }
     c.retries = static_cast<int>(params.get_int("retries"));
     c.timeout = std::chrono::milliseconds(params.get_int("timeout_ms"));
     c.write_position_limits = params.get_bool("write_position_limits");
@@ -148,6 +155,10 @@ Result<BusConfig> parse_config(const ParamSet& params) {
             return Error{ErrorCode::invalid_argument, where + "min (" + std::to_string(j.min) +
                                                           ") must be below max (" + std::to_string(j.max) + ")"};
         j.max_current_ma = currents.empty() ? 0.0 : currents[i];
+        if (const double top = j.model->max_current_limit * j.model->current_unit_ma; j.max_current_ma > top)
+            return Error{ErrorCode::invalid_argument, where + "max_current " + std::to_string(std::lround(j.max_current_ma)) +
+                                                          " mA is above the " + std::string(j.model->name) +
+                                                          "'s Current Limit of " + std::to_string(std::lround(top)) + " mA"};
         j.max_velocity = velocities.empty() ? 0.0 : velocities[i];
         if (!modes.empty()) {
             auto m = parse_mode(modes[i]);
