@@ -457,6 +457,9 @@ TEST_CASE("a safe state that fails again and again after a fault prints that fai
     CHECK(failed.status == 4);
     CHECK(count_of(failed.output, "safe state: ") == 1);
     CHECK(count_of(failed.output, "did not answer") == 2);  // the safe state's READ, and the run's fault
+    // The run's fault names the joint too (review hw item 8), as docs/dynamixel.md shows.
+    CHECK(count_of(failed.output, "timeout: device 'hand' (plugin 'dynamixel'): joint 'pushing_finger' (servo 2): "
+                                  "servo 2 did not answer SYNC_READ") == 1);
 }
 
 TEST_CASE("a run that fails before any trial removes the folder it created, never one that existed") {

@@ -90,6 +90,7 @@ Result<std::vector<Packet>> Bus::transact(std::uint8_t target, Instruction inst,
     // an earlier retried transaction would pass for this one's answer. Start clean.
     (void)port_->discard_input();
     parser_.clear();
+    last_failed_id_.reset();
     Error last;
     for (int attempt = 0; attempt <= options_.retries; ++attempt) {
         if (attempt > 0) {
@@ -106,6 +107,7 @@ Result<std::vector<Packet>> Bus::transact(std::uint8_t target, Instruction inst,
         Failure failure = Failure::none;
         for (std::uint8_t id : ids) {
             auto reply = receive_status(id, inst, reply_params);
+            if (!port_failed_) last_failed_id_ = id;  // until its reply passes
             if (!reply.ok()) {
                 last = reply.error();
                 failure = reply.error().code == ErrorCode::timeout        ? Failure::timeout
@@ -119,6 +121,7 @@ Result<std::vector<Packet>> Bus::transact(std::uint8_t target, Instruction inst,
                 break;
             }
             if (reply->error_code() != 0) return status_packet_error(id, inst, reply->error);
+            last_failed_id_.reset();
             replies.push_back(std::move(reply).value());
         }
         stats_.garbage_bytes = parser_.discarded();

@@ -291,7 +291,11 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
         return {ErrorCode::invalid_argument, "read() got " + std::to_string(states.size()) + " states for " +
                                                  std::to_string(ids_.size()) + " joints"};
     auto replies = bus_->sync_read(ids_, kStateBlockAddress, kStateBlockLength);
-    if (!replies.ok()) return replies.status();
+    if (!replies.ok()) {  // named by joint, as every other fault of one servo is
+        const auto failed = std::find(ids_.begin(), ids_.end(), bus_->last_failed_id().value_or(0));
+        return failed == ids_.end() ? replies.status()
+                                    : with_joint(static_cast<std::size_t>(failed - ids_.begin()), replies.status());
+    }
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         const auto& j = config_.joints[i];
         const auto& r = (*replies)[i];

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -70,6 +71,8 @@ public:
     const BusOptions& options() const noexcept { return options_; }
     void set_options(const BusOptions& options) { options_ = options; }
     const BusStatistics& statistics() const noexcept { return stats_; }
+    // The servo whose reply the last failed transaction lacked (nullopt: the port failed, or none yet).
+    std::optional<std::uint8_t> last_failed_id() const noexcept { return last_failed_id_; }
 
     Result<PingReply> ping(std::uint8_t id);
     // Ping every id in [first, last] one by one (a broadcast ping's replies
@@ -105,6 +108,7 @@ private:
     PacketParser parser_;
     BusStatistics stats_;
     bool port_failed_ = false;  // the last transaction's error came from the port, not a servo
+    std::optional<std::uint8_t> last_failed_id_;
 };
 
 // "servo 3: data limit error (...)" as a typed error: the ErrorCode follows
