@@ -41,13 +41,16 @@ bool wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout
     return true;
 }
 
+// A number option that must not be negative (`meaning_of_0` follows the refusal).
+double opt_nonnegative(lua_State* L, int table, const char* key, double fallback, const char* meaning_of_0 = "") {
+    const double v = opt_field_number(L, table, key, fallback);
+    if (v < 0) luaL_error(L, "option '%s' is %f; it must be >= 0%s", key, v, meaning_of_0);
+    return v;
+}
+
 // A wait's {timeout_ms=, tolerance=}: the timeout in s (HUGE_VAL: not given) and the tolerance, neither < 0.
 std::pair<double, double> wait_options(lua_State* L, int table, double timeout_ms) {
-    timeout_ms = opt_field_number(L, table, "timeout_ms", timeout_ms);
-    const double tolerance = opt_field_number(L, table, "tolerance", 0.5);
-    for (auto [key, v] : {std::pair{"timeout_ms", timeout_ms}, std::pair{"tolerance", tolerance}})
-        if (v < 0) luaL_error(L, "option '%s' is %f; it must be >= 0", key, v);
-    return {timeout_ms / 1000.0, tolerance};
+    return {opt_nonnegative(L, table, "timeout_ms", timeout_ms) / 1000.0, opt_nonnegative(L, table, "tolerance", 0.5)};
 }
 
 // A timeout that fits the move: trapezoid duration plus a margin.
@@ -69,8 +72,7 @@ bool l_move(lua_State* L) {
     c.mode = position_mode_of(j.info);
     c.position = goal;
     c.profile_velocity = opt_field_number(L, 3, "velocity", j.limit.max_velocity);
-    c.profile_acceleration = opt_field_number(L, 3, "acceleration", 0);
-    if (c.profile_acceleration < 0) luaL_error(L, "option 'acceleration' is %f; it must be >= 0 (0: no limit)", c.profile_acceleration);
+    c.profile_acceleration = opt_nonnegative(L, 3, "acceleration", 0, " (0: no limit)");
     const std::string mode = opt_field_string(L, 3, "mode", "");
     if (mode == "current_based_position") {
         c.mode = ControlMode::current_based_position;
