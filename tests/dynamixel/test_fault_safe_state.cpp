@@ -11,6 +11,7 @@
 #include <memory>
 #include <thread>
 
+#include "log_capture.hpp"
 #include "rollsense/hal/dynamixel/bus.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
@@ -64,6 +65,12 @@ Profile etroll_on(const std::string& device, bool pusher_torque_off) {
     return p;
 }
 
+std::size_t count_of(const std::string& text, const std::string& needle) {
+    std::size_t n = 0;
+    for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+    return n;
+}
+
 struct ReadBack {
     bool torque = false;
     int mode = -1;
@@ -75,7 +82,7 @@ struct ReadBack {
 // What the servos' own control tables say (servo 1 is the failed one).
 std::map<int, ReadBack> read_back(PtyBusEmulator& emu) {
     std::map<int, ReadBack> out;
-    for (std::uint8_t id : {2, 3, 4})
+    for (std::uint8_t id : {1, 2, 3, 4})
         out[id] = emu.with_bus([id](BusEmulator& b) {
             const EmulatedServo& s = *b.servo(id);
             return ReadBack{s.torque_enabled(), static_cast<int>(s.mode()), std::abs(s.current_ma()),
@@ -112,6 +119,7 @@ struct Outcome {
     Status failure;
     std::map<int, ReadBack> held;      // after the safe state, the run still open
     std::map<int, ReadBack> released;  // after shutdown, the process about to exit
+    std::string shutdown_log;          // warnings and errors logged by the shutdown
 };
 
 // Clamp, roll, then `kind` strikes servo 1 (the sensing finger); the robot
@@ -176,7 +184,11 @@ Outcome clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind) {
     // safe state, not the servos' own (test_bus_watchdog.cpp).
     step(0.3);
     out.held = read_back(**emu);
-    robot.shutdown(t);  // as Session::run does at the end
+    {
+        const testing::LogCapture log;
+        robot.shutdown(t);  // as Session::run does at the end
+        out.shutdown_log = log.all();
+    }
     sync_with_a_fresh_client(**emu);
     step(0.3);
     out.released = read_back(**emu);
@@ -187,7 +199,7 @@ Outcome clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind) {
 
 TEST_CASE("a silent servo mid-roll: the pushing finger stops squeezing and every answering servo holds",
           "[safety][fault]") {
-    const auto [failure, servo, released] = clamp_roll_and_fail_servo_1(false, FaultKind::silent);
+    const auto [failure, servo, released, log] = clamp_roll_and_fail_servo_1(false, FaultKind::silent);
     CHECK(failure.code() == ErrorCode::timeout);
     CHECK_THAT(failure.message(), Catch::Contains("device 'hand'") && Catch::Contains("servo 1"));
     // Profile safe action "hold": position mode at the present position, torque on, no push.
@@ -207,11 +219,19 @@ TEST_CASE("a silent servo mid-roll: the pushing finger stops squeezing and every
         CHECK_FALSE(released.at(id).torque);
         CHECK(released.at(id).watchdog == 0);
     }
+    // The silent servo cannot confirm its release: the shutdown says which one it is.
+    // It was sent without a reply asked for; this one still hears, and is released.
+    INFO(log);
+    CHECK(count_of(log, "not confirmed released (torque off, Bus Watchdog 0): joint 'sensing_finger' (servo 1) "
+                        "(timeout). Both were sent once more without asking for a reply (SYNC_WRITE)") == 1);
+    CHECK(count_of(log, "did not answer") == 0);  // the fault itself is the run's error, printed once
+    CHECK_FALSE(released.at(1).torque);
+    CHECK(released.at(1).watchdog == 0);
 }
 
 TEST_CASE("a silent servo mid-roll: a pushing finger whose safe action is torque off is released",
           "[safety][fault]") {
-    const auto [failure, servo, released] = clamp_roll_and_fail_servo_1(true, FaultKind::silent);
+    const auto [failure, servo, released, log] = clamp_roll_and_fail_servo_1(true, FaultKind::silent);
     CHECK_FALSE(failure.ok());
     CHECK_FALSE(servo.at(2).torque);
     CHECK(servo.at(2).current_ma <= kSafeCurrentMa);
@@ -224,7 +244,7 @@ TEST_CASE("every injected fault kind on one servo: a typed error naming it, the 
                               std::pair{FaultKind::corrupt, ErrorCode::protocol_error},
                               std::pair{FaultKind::slow, ErrorCode::timeout}}) {
         INFO("fault " << to_string(kind));
-        const auto [failure, servo, released] = clamp_roll_and_fail_servo_1(false, kind);
+        const auto [failure, servo, released, log] = clamp_roll_and_fail_servo_1(false, kind);
         INFO(failure.message());
         CHECK(failure.code() == code);
         CHECK_THAT(failure.message(), Catch::Contains("servo 1"));
@@ -241,6 +261,17 @@ TEST_CASE("every injected fault kind on one servo: a typed error naming it, the 
             CHECK(released.at(id).watchdog == 0);
         }
         CHECK_FALSE(released.at(2).torque);
+        // The failed servo too: one whose replies are corrupt or late still hears,
+        // and was left with its Bus Watchdog armed (it was read before it was written).
+        INFO(log);
+        CHECK_FALSE(released.at(1).torque);
+        CHECK(released.at(1).watchdog == 0);
+        // Released without a clean reply: said, naming the servo, once.
+        if (kind != FaultKind::hardware_error)
+            CHECK(count_of(log, "not confirmed released (torque off, Bus Watchdog 0): joint 'sensing_finger' "
+                                "(servo 1) (" + std::string(to_string(code)) + ")") == 1);
+        else
+            CHECK(log.empty());  // it answers cleanly: released and confirmed
     }
 }
 

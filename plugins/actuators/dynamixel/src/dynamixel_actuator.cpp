@@ -247,20 +247,44 @@ Status DynamixelActuator::on_activate() {
     return {};
 }
 
-Status DynamixelActuator::release_servos() {
-    Status first;
+std::vector<DynamixelActuator::Unconfirmed> DynamixelActuator::release_servos() {
+    std::vector<Unconfirmed> unconfirmed;
+    std::vector<SyncWriteEntry> off;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
-        if (config_.bus_watchdog_ms > 0) (void)set_watchdog(i, 0);  // no trip while the bus is idle
-        auto st = set_torque(i, false);  // keep going: release every servo we can
-        if (!st.ok() && first.ok()) first = st;
+        // Written, not read first: a servo whose replies are corrupt still carries out a WRITE.
+        Status st;
+        if (config_.bus_watchdog_ms > 0)  // no trip while the bus is idle
+            st = with_joint(i, bus_->write_value(ids_[i], addr::bus_watchdog, 1, 0));
+        if (auto torque = set_torque(i, false); st.ok()) st = std::move(torque);  // keep going: every servo we can
+        if (st.ok()) continue;
+        unconfirmed.push_back({i, std::move(st)});
+        off.push_back({ids_[i], Bytes{0}});
     }
-    return first;
+    // Once more for those that did not confirm, as a SYNC_WRITE: it asks for no
+    // reply, so a servo that hears but cannot answer cleanly is released too.
+    if (!off.empty()) {
+        if (config_.bus_watchdog_ms > 0) (void)bus_->sync_write(addr::bus_watchdog, 1, off);
+        (void)bus_->sync_write(addr::torque_enable, 1, off);
+    }
+    return unconfirmed;
+}
+
+Status DynamixelActuator::not_confirmed(const std::vector<Unconfirmed>& servos, bool with_reasons) const {
+    if (servos.empty()) return {};
+    std::string list;
+    for (const auto& [i, why] : servos)
+        list += (list.empty() ? "" : "; ") + (with_reasons ? why.error().describe()  // it names the joint
+                                                           : who(i) + " (" + std::string(to_string(why.code())) + ")");
+    return {servos.front().second.code(),
+            "not confirmed released (torque off, Bus Watchdog 0): " + list +
+                ". Both were sent once more without asking for a reply (SYNC_WRITE); check the torque is off "
+                "(rollsense dxl info) before the next run"};
 }
 
 Status DynamixelActuator::on_deactivate() {
     rearm_watchdog_ = false;
     if (!bus_ || !config_.torque_off_on_deactivate) return {};
-    return release_servos();
+    return not_confirmed(release_servos(), true);
 }
 
 Status DynamixelActuator::on_cleanup() {
@@ -275,7 +299,9 @@ Status DynamixelActuator::on_cleanup() {
 // deactivate would, before the bus closes; the silent one costs its timeouts.
 Status DynamixelActuator::on_recover() {
     disarm_last_resort();
-    if (bus_ && config_.torque_off_on_deactivate) (void)release_servos();
+    // The fault that brought the device here was reported: only who is not known to be released.
+    if (bus_ && config_.torque_off_on_deactivate)
+        if (auto st = not_confirmed(release_servos(), false); !st.ok()) log_warning(kLog, st.message());
     bus_.reset();
     emulator_ = nullptr;
     rt_.assign(config_.joints.size(), Runtime{});

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "dynamixel_config.hpp"
@@ -57,8 +58,14 @@ private:
     Status set_torque(std::size_t i, bool on);
     // Hardware error check, watchdog, EEPROM items, hold here, watchdog armed.
     Status activate_servo(std::size_t i);
-    // Bus Watchdog off and torque off on every servo that answers; the first failure.
-    Status release_servos();
+    // Bus Watchdog off and torque off on every servo; those that did not confirm
+    // (no reply, a corrupt one) get both again without a reply asked for.
+    // Returns the servos that did not confirm, with why.
+    using Unconfirmed = std::pair<std::size_t, Status>;
+    std::vector<Unconfirmed> release_servos();
+    // The servos not known to be released, named (with their errors, or only
+    // their kinds when the fault was reported already); ok if none.
+    Status not_confirmed(const std::vector<Unconfirmed>& servos, bool with_reasons) const;
     // Bus Watchdog (98): clear a tripped one (it is logged: the last run ended
     // without telling the servo), then set it to `ms` (0 = off).
     Status set_watchdog(std::size_t i, int ms);
