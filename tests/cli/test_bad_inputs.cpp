@@ -165,3 +165,29 @@ TEST_CASE("a run-config.csv that is a folder is named by --resume as the dataset
     CHECK(r.status == 3);
     CHECK(count_of(r.output, "cannot resume: " + (ds / "run-config.csv").string() + ": is a folder, not a CSV file") == 1);
 }
+
+// The dynamixel plugin's refusals of its parameters named neither the profile
+// file nor the parameter ("'baud' 1000001 is not ..."), and a position-mode joint's
+// max beyond one turn only warned at activation: both are the profile's error (3),
+// named once with the file, the parameter and the way out, before anything moves.
+TEST_CASE("a dynamixel profile the plugin refuses is named once by file and parameter, with the way out (3)") {
+    TempDir dir("rollsense-cli-dxl-profile");
+    const std::string profile = (dir / "rig.lua").string();
+    for (auto [change, expected] :
+         {std::pair{"hand.params.max = { 200, 60, 110, 300 }",
+                    ": devices.hand.params.max: joint 'sensing_finger' (id 1): 200 deg is servo tick 4324, beyond "
+                    "the one turn a servo reaches in position mode"},
+          std::pair{"hand.params.baud = 1000001", ": devices.hand.params.baud: 1000001 is not a Dynamixel baud rate"},
+          std::pair{"hand.params.max_current = { 400, 400, 4000, 300 }",
+                    ": devices.hand.params.max_current: joint 'palm' (id 3): 4000 mA is above"}}) {
+        INFO(change);
+        write_file(dir / "rig.lua", std::string("local p = include('etroll-virtual')\nlocal hand = p.devices.hand\n") +
+                                        change + "\nreturn p\n");
+        const auto r = run_rollsense("run " + kDemo + " --profile " + shell_quoted(dir / "rig.lua") + " --out " +
+                                     shell_quoted(dir / "out"));
+        INFO(r.output);
+        CHECK(r.status == 3);
+        CHECK(count_of(r.output, profile + expected) == 1);
+        CHECK(count_of(r.output, profile) == 1);
+    }
+}

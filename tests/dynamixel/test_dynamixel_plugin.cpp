@@ -282,22 +282,83 @@ TEST_CASE("device 'emulator': servos in memory, one sync write and one sync read
 
 // Independent review, hw item 7: baud 1000001 passed (a run then timed out at
 // every servo, "check the wiring"), and a max_current above the model's Current
-// Limit was cut to it without a word.
-TEST_CASE("a baud rate no servo can take and a current above the model's limit are refused at configure") {
+// Limit was cut to it without a word. Every refusal names the profile's file and
+// the parameter in it, as the kernel's own profile errors do (they named neither).
+TEST_CASE("configuration refusals name the profile file, the parameter, the joint and the way out") {
     auto emu = start_emulator(false);
+    PluginContext context;
+    context.instance = "hand";
+    context.profile_path = "/rig/profiles/etroll.lua";
+    const std::string where = "/rig/profiles/etroll.lua: devices.hand.params.";
+    auto refusal = [&](const std::string& key, ParamValue value) {
+        auto raw = etroll_raw(emu->device());
+        raw[key] = std::move(value);
+        DynamixelActuator a;
+        auto st = a.on_configure(validated(raw), context);
+        REQUIRE_FALSE(st.ok());
+        CHECK(st.code() == ErrorCode::invalid_argument);
+        CHECK(st.message().find(context.profile_path.string()) == st.message().rfind(context.profile_path.string()));
+        return st.message();
+    };
+    CHECK_THAT(refusal("baud", std::int64_t{1000001}),
+               Catch::StartsWith(where + "baud: 1000001 is not a Dynamixel baud rate; set the servos' own rate, one of "
+                                         "9600, 57600, 115200, 1000000"));
+    CHECK_THAT(refusal("max_current", std::vector<double>{400, 4000, 400, 300}),
+               Catch::StartsWith(where + "max_current: joint 'pushing_finger' (id 2): 4000 mA is above the "
+                                         "XM430-W350's Current Limit of 3209 mA; give at most that"));
+    CHECK_THAT(refusal("ids", std::vector<std::int64_t>{1, 2, 3, 2}),
+               Catch::StartsWith(where + "ids: joint 'winch' (id 2): id 2 appears twice: every joint is its own servo"));
+    CHECK_THAT(refusal("min", std::vector<double>{-90, -90, 30}),
+               Catch::StartsWith(where + "min: has 3 entries but 'ids' has 4"));
+    CHECK_THAT(refusal("models", std::vector<std::string>{"XM430-W350", "XM430-W350", "XM430-W350", "XL320"}),
+               Catch::StartsWith(where + "models: joint 'winch' (id 4): unknown model 'XL320'"));
+    // Found on the bus, not in the lists: a servo of another model.
+    CHECK_THAT(refusal("models", std::vector<std::string>{"XM430-W350", "XM430-W350", "XM430-W350", "XM430-W350"}),
+               Catch::StartsWith(where + "models: joint 'winch' (servo 4): the profile says XM430-W350 but the servo "
+                                         "is XL330-M288"));
+    // Without a profile (a plugin made in C++), the device's parameter is still named.
     auto raw = etroll_raw(emu->device());
     raw["baud"] = std::int64_t{1000001};
     DynamixelActuator a;
-    auto st = a.on_configure(validated(raw), {});
+    CHECK_THAT(a.on_configure(validated(raw), {}).message(), Catch::StartsWith("devices.<device>.params.baud: 1000001"));
+}
+
+// A position-mode joint reaches one turn (ticks 0..4095); limits beyond it only
+// warned at activation ("servo position limits left unchanged"), and a goal
+// there was then refused or dropped by the servo mid-run.
+TEST_CASE("a position-mode joint's min or max beyond one turn is refused at configure; extended position may exceed it") {
+    auto emu = start_emulator(false);
+    PluginContext context;
+    context.instance = "hand";
+    context.profile_path = "/rig/profiles/etroll.lua";
+    auto configure = [&](std::vector<double> mins, std::vector<double> maxs, std::vector<std::string> modes) {
+        auto raw = etroll_raw(emu->device());
+        raw["min"] = std::move(mins);
+        raw["max"] = std::move(maxs);
+        raw["modes"] = std::move(modes);
+        DynamixelActuator a;
+        return a.on_configure(validated(raw), context);
+    };
+    const std::vector<std::string> stock{"position", "position", "position", "extended_position"};
+    auto st = configure({-90, -90, 30, -500}, {200, 90, 100, 500}, stock);
     REQUIRE_FALSE(st.ok());
     CHECK(st.code() == ErrorCode::invalid_argument);
-    CHECK_THAT(st.message(), Catch::Contains("'baud' 1000001 is not a Dynamixel baud rate (9600, 57600, 115200, 1000000"));
-    raw = etroll_raw(emu->device());
-    raw["max_current"] = std::vector<double>{400, 4000, 400, 300};
-    DynamixelActuator b;
-    st = b.on_configure(validated(raw), {});
-    REQUIRE_FALSE(st.ok());
-    CHECK_THAT(st.message(), Catch::Contains("max_current 4000 mA is above the XM430-W350's Current Limit of 3209 mA"));
+    CHECK_THAT(st.message(), Catch::StartsWith("/rig/profiles/etroll.lua: devices.hand.params.max: joint "
+                                               "'sensing_finger' (id 1): 200 deg is servo tick 4324, beyond the one "
+                                               "turn a servo reaches in position mode (ticks 0..4095: -180 .. 179.912 "
+                                               "deg with this offset)"));
+    CHECK_THAT(st.message(), Catch::Contains("or give the joint modes = 'extended_position' (multi-turn)"));
+    // The palm (mm through its pinion, offset 65): 65 - 63 mm is the lowest it reaches in one turn.
+    st = configure({-90, -90, 1, -500}, {90, 90, 100, 500}, stock);
+    CHECK_THAT(st.message(), Catch::Contains("devices.hand.params.min: joint 'palm' (id 3): 1 mm is servo tick -"));
+    // An omitted 'modes' is position mode for every joint: the winch's -500..500 mm is many turns.
+    st = configure({-90, -90, 30, -500}, {90, 90, 100, 500}, {});
+    CHECK_THAT(st.message(), Catch::Contains("devices.hand.params.min: joint 'winch' (id 4): -500 mm"));
+    // Multi-turn modes have no position limits: the same winch is accepted, in either.
+    CHECK(configure({-90, -90, 30, -500}, {90, 90, 100, 500}, stock).ok());
+    CHECK(configure({-90, -90, 30, -500}, {90, 90, 100, 500},
+                    {"position", "position", "position", "current_based_position"})
+              .ok());
 }
 
 TEST_CASE("the pushing finger switches to current mode and clamps the object with the commanded current") {
@@ -444,7 +505,7 @@ TEST_CASE("configuration errors name the joint and the fix") {
         DynamixelActuator a;
         auto st = a.on_configure(validated(raw), {});
         CHECK(st.code() == ErrorCode::invalid_argument);
-        CHECK(st.message().find("'min' has 3 entries") != std::string::npos);
+        CHECK(st.message().find("params.min: has 3 entries") != std::string::npos);
     }
     SECTION("a mm joint without a radius") {
         auto raw = etroll_raw(emu->device());

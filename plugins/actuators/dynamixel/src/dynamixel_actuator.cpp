@@ -63,8 +63,10 @@ Status DynamixelActuator::with_joint(std::size_t i, Status st) const {
 }
 
 Status DynamixelActuator::on_configure(const ParamSet& params, const PluginContext& context) {
-    (void)context;
-    auto cfg = parse_config(params);
+    // Refusals name the profile's file and the parameter, as the kernel's own profile errors do.
+    where_ = "devices." + (context.instance.empty() ? std::string("<device>") : context.instance) + ".params";
+    if (!context.profile_path.empty()) where_ = context.profile_path.string() + ": " + where_;
+    auto cfg = parse_config(params, where_);
     if (!cfg.ok()) return cfg.status();
     config_ = std::move(cfg).value();
 
@@ -92,7 +94,7 @@ Status DynamixelActuator::on_configure(const ParamSet& params, const PluginConte
     const BusOptions options{config_.timeout, config_.retries};
     if (config_.device == "emulator") {
         auto link = start_in_process_emulator(config_);
-        if (!link.ok()) return link.status();
+        if (!link.ok()) return Error{link.error().code, where_ + "." + link.error().message};
         emulator_ = link->get();
         bus_ = std::make_unique<Bus>(std::move(link).value(), options);
     } else {
@@ -114,7 +116,8 @@ Status DynamixelActuator::check_servos() {
         if (reply->model_number != j.model->model_number) {
             const auto* found = find_model(reply->model_number);
             return {ErrorCode::invalid_argument,
-                    who(i) + ": the profile says " + std::string(j.model->name) + " but the servo is " +
+                    where_ + ".models: " + who(i) + ": the profile says " + std::string(j.model->name) +
+                        " but the servo is " +
                         (found ? std::string(found->name) : "model " + std::to_string(reply->model_number)) +
                         "; fix 'models' or the id"};
         }

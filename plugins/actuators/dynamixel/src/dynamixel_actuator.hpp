@@ -79,6 +79,8 @@ private:
     // Set by invoke("rest"): the next write re-arms every servo's Bus Watchdog.
     bool rearm_watchdog_ = false;
 
+    // "<profile file>: devices.<name>.params", the start of a configuration refusal.
+    std::string where_;
     BusConfig config_;
     std::vector<JointInfo> infos_;
     std::vector<std::uint8_t> ids_;

@@ -33,7 +33,8 @@ struct BusConfig {
 ParamSchema dynamixel_schema();
 
 // Check the parallel lists against each other and build the joint maps.
-// Errors name the parameter and the joint.
-Result<BusConfig> parse_config(const ParamSet& params);
+// Errors start "WHERE.KEY: " (the kernel's form for a profile's parameter,
+// e.g. "/x/etroll.lua: devices.hand.params.max: "), then name the joint and the fix.
+Result<BusConfig> parse_config(const ParamSet& params, const std::string& where = "params");
 
 }  // namespace rollsense::dynamixel

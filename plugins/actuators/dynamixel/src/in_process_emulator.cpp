@@ -16,7 +16,7 @@ const JointMap* find(const BusConfig& c, const std::string& name) {
 Result<std::unique_ptr<hal::dxl::VirtualBusLink>> start_in_process_emulator(const BusConfig& config) {
     const auto baud_index = hal::dxl::index_from_baud(config.baud);
     if (!baud_index)
-        return Error{ErrorCode::invalid_argument, "device 'emulator': " + std::to_string(config.baud) +
+        return Error{ErrorCode::invalid_argument, "baud: " + std::to_string(config.baud) +
                                                       " is not a Dynamixel baud rate (e.g. 57600, 1000000)"};
     hal::dxl::BusEmulator bus;
     for (const auto& j : config.joints) {
@@ -34,7 +34,7 @@ Result<std::unique_ptr<hal::dxl::VirtualBusLink>> start_in_process_emulator(cons
         const auto* palm = find(config, "palm");
         if (!sensing || !pushing || !palm)
             return Error{ErrorCode::invalid_argument,
-                         "device 'emulator': an emulated object needs joints named sensing_finger, pushing_finger "
+                         "emulated_object: an emulated object needs joints named sensing_finger, pushing_finger "
                          "and palm (set emulated_object = 0 for a bus without one)"};
         etroll::ClampedObject object;
         object.sensing_id = sensing->id;
@@ -44,11 +44,11 @@ Result<std::unique_ptr<hal::dxl::VirtualBusLink>> start_in_process_emulator(cons
         object.palm_centre_mm = palm->offset;
         object.object_width_mm = config.emulated_object_mm;
         object.hand = config.hand;
-        if (auto st = etroll::clamp_object(bus, object); !st.ok()) return Error{st.code(), "device 'emulator': " + st.message()};
+        if (auto st = etroll::clamp_object(bus, object); !st.ok()) return Error{st.code(), "emulated_object: " + st.message()};
     }
     for (const auto& f : config.inject) {
         if (!bus.servo(f.id))
-            return Error{ErrorCode::invalid_argument, "device 'emulator': inject names servo " + std::to_string(f.id) +
+            return Error{ErrorCode::invalid_argument, "inject: names servo " + std::to_string(f.id) +
                                                           ", which is not on this bus (ids: see 'ids')"};
         bus.schedule(f);
     }

@@ -18,7 +18,7 @@ namespace rollsense::dynamixel {
 // One emulated servo per joint (id, model, default mode, the bus's baud rate,
 // Return Delay Time 0), at its centre tick; with an object between
 // sensing_finger, pushing_finger and palm if the config asks for one, and the
-// config's injected faults scheduled.
+// config's injected faults scheduled. Errors start with the parameter's key.
 Result<std::unique_ptr<hal::dxl::VirtualBusLink>> start_in_process_emulator(const BusConfig& config);
 
 }  // namespace rollsense::dynamixel
