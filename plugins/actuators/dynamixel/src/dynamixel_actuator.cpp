@@ -170,7 +170,7 @@ Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
         if (lo >= 0 && hi <= 4095) {
             if (item(addr::max_position_limit, 4) != hi) changes.push_back({addr::max_position_limit, 4, hi});
             if (item(addr::min_position_limit, 4) != lo) changes.push_back({addr::min_position_limit, 4, lo});
-        } else {
+        } else {  // a multi-turn joint switched to position mode (a position-mode one was refused at configure)
             log_warning(kLog, who(i) + ": limits [" + std::to_string(j.min) + ", " + std::to_string(j.max) +
                                   "] fall outside one turn (ticks " + std::to_string(lo) + ".." + std::to_string(hi) +
                                   "); servo position limits left unchanged");
