@@ -1,6 +1,6 @@
 // What `rollsense run` adds around a run's dataset: the run configuration
 // that --resume compares (rollsense/run_config.hpp), the exact command that
-// resumes an interrupted run, and the removal of an output folder that a
+// resumes an interrupted run, the trials a dataset holds, and the removal of an output folder that a
 // run created and failed before filling.
 #pragma once
 
@@ -35,6 +35,9 @@ std::string shell_quote(const std::string& text);
 // trials, as given ({"--profile", "etroll"}, {"--set", "runs=2"}, ...).
 std::string resume_command(const std::string& script, const std::filesystem::path& out,
                            const std::vector<std::pair<std::string, std::string>>& options);
+
+// The trials the manifest of the dataset in `dir` lists (0: none, or it cannot be read).
+std::size_t trials_listed(const std::filesystem::path& dir);
 
 // --out checked before the run starts, so a refusal writes nothing. A new or
 // empty folder is fine, and so is one holding a dataset (manifest.csv or
