@@ -18,6 +18,43 @@ const std::string kFour = " --set runs=2 --set objects=C1,P2 --set speeds=10 --s
 std::size_t manifest_rows(const fs::path& dataset) { return count_of(read_file(dataset / "manifest.csv"), "\n") - 1; }
 }  // namespace
 
+// Review (cli item 1): the failed analysis printed `continue with: ... --resume`,
+// which recorded nothing and failed the same way again.
+TEST_CASE("a run whose analysis fails after its trials are recorded points at the analysis commands, not --resume") {
+    TempDir dir("rollsense-cli-way-on");
+    const auto out = dir / "out";
+    const auto failed = run_rollsense("run " + kPaper + kFour + " --out " + shell_quoted(out));
+    INFO(failed.output);
+    REQUIRE(failed.status == 1);
+    CHECK(count_of(failed.output, "5 folds need at least 5 rows") == 1);
+    CHECK(failed.output.find("failed: 4 trials saved, 0 already on disk") != std::string::npos);
+    CHECK(failed.output.find("continue with:") == std::string::npos);
+    CHECK(failed.output.find("the analysis failed, not the recording: the 4 trials of " + out.string() +
+                             " are on disk (--resume would run the same analysis on them again)") != std::string::npos);
+    const std::string commands = "analyse them with: rollsense report " + out.string() + "; rollsense train " +
+                                 out.string() + " -o " + (out / "model.rsm").string() + " (";
+    CHECK(failed.output.find(commands) != std::string::npos);
+    REQUIRE(manifest_rows(out) == 4);
+
+    // What the message says: a resume runs the same analysis on the same trials and fails again ...
+    const auto resumed = run_rollsense("run " + kPaper + kFour + " -q --resume --out " + shell_quoted(out));
+    INFO(resumed.output);
+    CHECK(resumed.status == 1);
+    CHECK(count_of(resumed.output, "5 folds need at least 5 rows") == 1);
+    CHECK(resumed.output.find("failed: 0 trials saved, 4 already on disk") != std::string::npos);
+    CHECK(resumed.output.find("continue with:") == std::string::npos);
+    // ... and the printed commands, with an option that fits the dataset, analyse it.
+    const auto report = run_rollsense("report " + shell_quoted(out) + " --folds 2 --repeats 2");
+    INFO(report.output);
+    CHECK(report.status == 0);
+    CHECK(fs::exists(out / "report.html"));
+    CHECK(fs::exists(out / "evaluation.json"));
+    const auto train = run_rollsense("train " + shell_quoted(out) + " -o " + shell_quoted(out / "model.rsm"));
+    INFO(train.output);
+    CHECK(train.status == 0);
+    CHECK(fs::exists(out / "model.rsm"));
+}
+
 // Review (cli item 2): the summary said "0 already on disk" of a dataset that held
 // every trial, and no way on was printed: the count was of the trials the script
 // skipped, and this run failed before its script started.

@@ -12,6 +12,7 @@
 #include "cli/run_dataset.hpp"
 #include "live/live_view.hpp"
 #include "analysis/lua/script_settings.hpp"
+#include "analysis/lua/unfinished_analysis.hpp"
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
@@ -225,8 +226,16 @@ int run(const std::vector<std::string>& argv) {
     const bool wrote = summary.trials_saved + already > 0 || folder_state(o.out_dir) != out_before;
     if (!removed && wrote && std::filesystem::exists(o.out_dir, ec))
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
-    // However it stopped (Ctrl-C, a script error, a device), the trials on disk stay: the way on.
-    if (!summary.status.ok() && summary.trials_saved + already > 0)
+    if (summary.status.ok() || summary.trials_saved + already == 0) return exit_code_for(summary.status.code());
+    // However it stopped, the saved trials stay: the way on. After an analysis that failed of itself, a resume would
+    // only run it again on the same trials; one stopped (Ctrl-C, --time-limit) or cut short by the disk can go on.
+    const auto analysed = runtime::lua_api::unfinished_analysis();
+    if (analysed && !summary.cancelled && summary.status.code() != ErrorCode::io_error)
+        std::fprintf(stderr, "the analysis failed, not the recording: the %zu trials of %s are on disk (--resume "
+                             "would run the same analysis on them again)\nanalyse them with: %s (options such as "
+                             "--folds, --classifier: their --help)\n",
+                     trials_listed(*analysed), analysed->c_str(), analysis_commands(*analysed, o.out_dir).c_str());
+    else
         std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     return exit_code_for(summary.status.code());
 }

@@ -60,6 +60,13 @@ std::size_t trials_listed(const fs::path& dir) {
     return dataset ? dataset->trials().size() : 0;
 }
 
+std::string analysis_commands(const fs::path& dataset, const fs::path& out) {
+    const std::string in = shell_quote(dataset.string());
+    const bool beside = dataset.lexically_normal() == out.lexically_normal();  // report's default: DATASET/report.html
+    return "rollsense report " + in + (beside ? "" : " -o " + shell_quote((out / "report.html").string())) +
+           "; rollsense train " + in + " -o " + shell_quote((out / "model.rsm").string());
+}
+
 namespace {
 // A shard's resume: the folder's shard (run-info.csv) against --shard.
 Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shard) {

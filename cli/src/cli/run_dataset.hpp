@@ -1,6 +1,7 @@
 // What `rollsense run` adds around a run's dataset: the run configuration
 // that --resume compares (rollsense/run_config.hpp), the exact command that
-// resumes an interrupted run, the trials a dataset holds, and the removal of an output folder that a
+// resumes an interrupted run (or analyses a recording whose analysis failed),
+// the trials a dataset holds, and the removal of an output folder that a
 // run created and failed before filling.
 #pragma once
 
@@ -38,6 +39,11 @@ std::string resume_command(const std::string& script, const std::filesystem::pat
 
 // The trials the manifest of the dataset in `dir` lists (0: none, or it cannot be read).
 std::size_t trials_listed(const std::filesystem::path& dir);
+
+// The commands that redo what rs.analyse makes from `dataset` (evaluation, report,
+// model), into `out`: "rollsense report DATASET; rollsense train DATASET -o OUT/model.rsm",
+// each word quoted for the shell.
+std::string analysis_commands(const std::filesystem::path& dataset, const std::filesystem::path& out);
 
 // --out checked before the run starts, so a refusal writes nothing. A new or
 // empty folder is fine, and so is one holding a dataset (manifest.csv or
