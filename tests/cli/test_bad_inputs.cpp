@@ -1,6 +1,7 @@
 // Bad input named once, with its place and the way out (review s8): a
 // --plugin-path that is no folder, a damaged plugin file that would shadow an
-// installed one, a trial file the manifest lists but trials/ lacks.
+// installed one, a file the loader refuses (dlopen's reason alone), a trial
+// file the manifest lists but trials/ lacks.
 #include <catch2/catch.hpp>
 
 #include "cli_helpers.hpp"
@@ -71,6 +72,28 @@ TEST_CASE("a damaged plugin file that shadows an installed one is named once by 
     CHECK(count_of(evaluate.output, classifier.string() + " is not used: truncated: ") == 1);
     CHECK(count_of(evaluate.output, "Plugin 'bagged_trees' comes from ") == 1);
     CHECK(count_of(evaluate.output, "mock_actuator") == 0);  // not used here: not mentioned
+}
+
+// Review (cli item 3): a file dlopen refused was listed with Boost.DLL's wording around
+// dlerror()'s text and an errno message unrelated to it ("... : Bad file descriptor").
+TEST_CASE("rollsense plugins lists a file the loader refuses with dlopen's reason alone and the way out") {
+    TempDir dir("rollsense-cli-plugin-refused");
+    const fs::path needs = dir / "librollsense_needs_dependency.so", text = dir / "librollsense_text.so";
+    fs::copy_file(ROLLSENSE_TEST_MISSING_DEPENDENCY, needs);
+    write_file(text, "this is text, not a library\n");
+    const auto r = run_rollsense("plugins --plugin-path " + shell_quoted(dir.path()));
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(count_of(r.output, "FAILED " + needs.string() + "\n      cannot be loaded: librollsense_test_dependency.so: "
+                             "cannot open shared object file: No such file or directory (a library it needs: `ldd " +
+                             needs.string() + "` shows which is missing; install it or add its folder to "
+                             "LD_LIBRARY_PATH)\n") == 1);
+    CHECK(count_of(r.output, "FAILED " + text.string() + "\n      cannot be loaded: " + text.string() +
+                             ": file too short (rebuild or reinstall it, or remove it from the search path)\n") == 1);
+    for (const char* noise : {"boost::dll", "dlerror", "Bad file descriptor", "Success"}) {
+        INFO(noise);
+        CHECK(r.output.find(noise) == std::string::npos);
+    }
 }
 
 // Item 4: "points at missing file" named neither the manifest's line nor a way out.

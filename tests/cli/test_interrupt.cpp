@@ -66,6 +66,9 @@ TEST_CASE("Ctrl-C during rs.analyse's optimisation ends the run as interrupted")
     CHECK(r.output.find("interrupted by Ctrl-C or a SIGTERM/SIGHUP") != std::string::npos);
     CHECK(r.output.find("did not stop within") == std::string::npos);  // not the watchdog's last resort
     CHECK(fs::exists(dir / "run" / "run-info.csv"));  // the run ended the ordinary way
+    // Stopped, not failed: a resume runs the analysis again and can finish it.
+    CHECK(r.output.find("continue with: rollsense run ") != std::string::npos);
+    CHECK(r.output.find("the analysis failed") == std::string::npos);
 }
 
 TEST_CASE("Ctrl-C during rollsense evaluate ends it as interrupted") {

@@ -1,4 +1,5 @@
 // rollsense run SCRIPT: run a roll procedure on a robot profile.
+#include <algorithm>
 #include <cstdio>
 #include <system_error>
 #include <ctime>
@@ -11,6 +12,7 @@
 #include "cli/run_dataset.hpp"
 #include "live/live_view.hpp"
 #include "analysis/lua/script_settings.hpp"
+#include "analysis/lua/unfinished_analysis.hpp"
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
@@ -205,22 +207,35 @@ int run(const std::vector<std::string>& argv) {
         summary = session.run();
     }  // the dataset's folder lock is released here
     if (view) view->finished(summary);
+    // The trials the dataset held before this run and still holds. The kernel counts those the script skipped
+    // (rs.has_trial); a resume that stopped before its script reached them (a device that failed at activation)
+    // leaves them on disk all the same.
+    const std::size_t listed = o.resume ? trials_listed(o.out_dir) : 0;
+    const std::size_t already = std::max(summary.trials_skipped, listed - std::min(listed, summary.trials_saved));
     // The error first, once; then the summary, where the results are and the way on.
     if (!summary.status.ok()) log_error("rollsense", summary.status.error().describe());
     std::fprintf(stderr, "%s: %zu trials saved, %zu already on disk; %.1f s robot time in %.2f s wall\n",
                  summary.status.ok() ? "done" : (summary.cancelled ? "cancelled" : "failed"), summary.trials_saved,
-                 summary.trials_skipped, summary.run_time_s, summary.wall_time_s);
+                 already, summary.run_time_s, summary.wall_time_s);
     if (summary.control_timing && summary.control_timing->periods > 0)
         std::fprintf(stderr, "control loop: %s\n", summary.control_timing->describe().c_str());
     // A run that failed before its first trial leaves no empty folder behind.
-    const bool removed = !summary.status.ok() && !out_existed && summary.trials_saved == 0 &&
-                         summary.trials_skipped == 0 && remove_empty_dataset(o.out_dir);
+    const bool removed = !summary.status.ok() && !out_existed && summary.trials_saved + already == 0 &&
+                         remove_empty_dataset(o.out_dir);
     // Not for a run refused before it wrote anything (another run's dataset, --out a file).
-    const bool wrote = summary.trials_saved + summary.trials_skipped > 0 || folder_state(o.out_dir) != out_before;
+    const bool wrote = summary.trials_saved + already > 0 || folder_state(o.out_dir) != out_before;
     if (!removed && wrote && std::filesystem::exists(o.out_dir, ec))
         std::fprintf(stderr, "results: %s\n", o.out_dir.c_str());
-    // However it stopped (Ctrl-C, a script error, a device), the saved trials stay: the way on.
-    if (!summary.status.ok() && summary.trials_saved + summary.trials_skipped > 0)
+    if (summary.status.ok() || summary.trials_saved + already == 0) return exit_code_for(summary.status.code());
+    // However it stopped, the saved trials stay: the way on. After an analysis that failed of itself, a resume would
+    // only run it again on the same trials; one stopped (Ctrl-C, --time-limit) or cut short by the disk can go on.
+    const auto analysed = runtime::lua_api::unfinished_analysis();
+    if (analysed && !summary.cancelled && summary.status.code() != ErrorCode::io_error)
+        std::fprintf(stderr, "the analysis failed, not the recording: the %zu trials of %s are on disk (--resume "
+                             "would run the same analysis on them again)\nanalyse them with: %s (options such as "
+                             "--folds, --classifier: their --help)\n",
+                     trials_listed(*analysed), analysed->c_str(), analysis_commands(*analysed, o.out_dir).c_str());
+    else
         std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     return exit_code_for(summary.status.code());
 }

@@ -8,6 +8,7 @@
 #include "rollsense/atomic_file.hpp"
 #include "rollsense/checksum.hpp"
 #include "rollsense/csv.hpp"
+#include "rollsense/dataset.hpp"
 #include "rollsense/dataset_files.hpp"
 
 namespace rollsense::cli {
@@ -52,6 +53,18 @@ std::string resume_command(const std::string& script, const fs::path& out,
     std::string line = "rollsense run " + shell_quote(script) + " --out " + shell_quote(out.string()) + " --resume";
     for (const auto& [option, value] : options) line += " " + option + " " + shell_quote(value);
     return line;
+}
+
+std::size_t trials_listed(const fs::path& dir) {
+    auto dataset = DatasetReader::open(dir, DatasetReader::MissingTrialFile::keep_listed);
+    return dataset ? dataset->trials().size() : 0;
+}
+
+std::string analysis_commands(const fs::path& dataset, const fs::path& out) {
+    const std::string in = shell_quote(dataset.string());
+    const bool beside = dataset.lexically_normal() == out.lexically_normal();  // report's default: DATASET/report.html
+    return "rollsense report " + in + (beside ? "" : " -o " + shell_quote((out / "report.html").string())) +
+           "; rollsense train " + in + " -o " + shell_quote((out / "model.rsm").string());
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // What `rollsense run` adds around a run's dataset: the run configuration
 // that --resume compares (rollsense/run_config.hpp), the exact command that
-// resumes an interrupted run, and the removal of an output folder that a
+// resumes an interrupted run (or analyses a recording whose analysis failed),
+// the trials a dataset holds, and the removal of an output folder that a
 // run created and failed before filling.
 #pragma once
 
@@ -35,6 +36,14 @@ std::string shell_quote(const std::string& text);
 // trials, as given ({"--profile", "etroll"}, {"--set", "runs=2"}, ...).
 std::string resume_command(const std::string& script, const std::filesystem::path& out,
                            const std::vector<std::pair<std::string, std::string>>& options);
+
+// The trials the manifest of the dataset in `dir` lists (0: none, or it cannot be read).
+std::size_t trials_listed(const std::filesystem::path& dir);
+
+// The commands that redo what rs.analyse makes from `dataset` (evaluation, report,
+// model), into `out`: "rollsense report DATASET; rollsense train DATASET -o OUT/model.rsm",
+// each word quoted for the shell.
+std::string analysis_commands(const std::filesystem::path& dataset, const std::filesystem::path& out);
 
 // --out checked before the run starts, so a refusal writes nothing. A new or
 // empty folder is fine, and so is one holding a dataset (manifest.csv or

@@ -16,6 +16,7 @@
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 #include "analysis/lua/prediction_observer.hpp"
+#include "analysis/lua/unfinished_analysis.hpp"
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
 #include "analysis/report/report.hpp"
@@ -39,6 +40,12 @@ ParamSet params_from(lua_State* L, int table) {
     if (!raw) raise_status(L, raw.status());
     for (auto& [k, v] : *raw) out.set(k, v);
     return out;
+}
+
+// The dataset of the rs.analyse under way (unfinished_analysis()): set when it starts, cleared when it returns.
+std::optional<std::filesystem::path>& analysis_under_way() {
+    static std::optional<std::filesystem::path> dataset;
+    return dataset;
 }
 
 // Long C++ work does not count against the script's no-wait watchdog.
@@ -95,6 +102,20 @@ int l_analyse(lua_State* L) {
                                           "prefixes", "prefix_repeats", "series_amplitude", "cv", "group_by",
                                           "block"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
+    // dataset = DIR analyses a dataset recorded earlier (outputs still go to --out);
+    // tag = "NAME" names the outputs evaluation-NAME.txt/.json and report-NAME.html,
+    // so that one script can write several analyses side by side.
+    const std::string dataset = opt_field_string(L, opts, "dataset", "");
+    const std::filesystem::path dataset_dir = dataset.empty() ? s.output_dir() : std::filesystem::path(dataset);
+    if (const auto& shard = s.options().shard; shard && dataset.empty())
+        return luaL_error(L, "rs.analyse: this run is shard %s and holds only its part of the trials; analyse the "
+                             "merged dataset instead (rollsense merge, docs/cluster.md): skip the analysis when "
+                             "rs.shard() returns n > 1", shard->text().c_str());
+    analysis_under_way() = dataset_dir;  // from here on, a failure is the analysis's, not the recording's
+    const std::string tag = opt_field_string(L, opts, "tag", "");
+    if (tag.find('/') != std::string::npos || (!tag.empty() && tag[0] == '.'))
+        return luaL_error(L, "rs.analyse: tag '%s' must be a plain name (no '/', no leading '.')", tag.c_str());
+    const std::string suffix = tag.empty() ? "" : "-" + tag;
     // The model's name is checked before anything is written.
     const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
     check(L, Session::check_output_name(model_name, "rs.analyse: model"));
@@ -103,20 +124,6 @@ int l_analyse(lua_State* L) {
             return luaL_error(L, "rs.analyse: model '%s' cannot be written: rs.analyse writes %s itself; choose another "
                                  "name (e.g. model.rsm)", own, own);
     check(L, s.flush_dataset());
-
-    // dataset = DIR analyses a dataset recorded earlier (outputs still go to --out);
-    // tag = "NAME" names the outputs evaluation-NAME.txt/.json and report-NAME.html,
-    // so that one script can write several analyses side by side.
-    const std::string dataset = opt_field_string(L, opts, "dataset", "");
-    const std::string tag = opt_field_string(L, opts, "tag", "");
-    if (tag.find('/') != std::string::npos || (!tag.empty() && tag[0] == '.'))
-        return luaL_error(L, "rs.analyse: tag '%s' must be a plain name (no '/', no leading '.')", tag.c_str());
-    const std::string suffix = tag.empty() ? "" : "-" + tag;
-    const std::filesystem::path dataset_dir = dataset.empty() ? s.output_dir() : std::filesystem::path(dataset);
-    if (const auto& shard = s.options().shard; shard && dataset.empty())
-        return luaL_error(L, "rs.analyse: this run is shard %s and holds only its part of the trials; analyse the "
-                             "merged dataset instead (rollsense merge, docs/cluster.md): skip the analysis when "
-                             "rs.shard() returns n > 1", shard->text().c_str());
 
     learn::PipelineRequest request;
     request.input = dataset_dir;
@@ -269,6 +276,7 @@ int l_analyse(lua_State* L) {
     }
     lua_pushstring(L, page->c_str());
     lua_setfield(L, -2, "report");
+    analysis_under_way().reset();
     return 1;
 }
 
@@ -432,6 +440,7 @@ void register_learn(lua_State* L) {
     lua_pop(L, 1);
     static const luaL_Reg fns[] = {{"classifier", l_classifier}, {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
+    analysis_under_way().reset();  // a new session
     // Features from memory: every trial this session's recorder makes durable
     // goes through a RecordedFeatures, which rs.analyse reads (its upvalue). The
     // recorder's observer owns it, and the recorder outlives the Lua state.
@@ -450,5 +459,6 @@ const ExtraRegistration registration{&register_learn};
 }  // namespace
 
 void set_prediction_observer(PredictionObserver observer) { prediction_observer() = std::move(observer); }
+std::optional<std::filesystem::path> unfinished_analysis() { return analysis_under_way(); }
 
 }  // namespace rollsense::runtime::lua_api

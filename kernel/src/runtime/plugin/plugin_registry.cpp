@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <dlfcn.h>
 #include <elf.h>
 
 #include <boost/dll/runtime_symbol_info.hpp>
@@ -67,48 +68,41 @@ std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::
 PluginCandidate PluginRegistry::load_file(const fs::path& file) {
     PluginCandidate c;
     c.path = file;
-    if (c.failure = truncation(file); !c.failure.empty()) return c;
+    const auto fail = [&c](std::string why) { c.failure = std::move(why); return c; };
+    if (auto cut = truncation(file); !cut.empty()) return fail(cut);
     boost::dll::shared_library lib;
-    try {
-        // The throwing overload: the error_code one loses dlerror()'s text.
-        lib.load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local);
-    } catch (const std::exception& e) {
-        c.failure = std::string("cannot be loaded: ") + e.what();
-        return c;
+    boost::dll::fs::error_code ec;  // not the throwing load: its what() adds an errno text unrelated to dlerror()'s
+    lib.load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
+    if (ec) {  // dlopen's own reason; about a library this one needs, it names that library, not this file
+        const char* why = ::dlerror();
+        return fail("cannot be loaded: " + (why ? std::string(why) : ec.message()) +
+                    (why && !std::string_view(why).starts_with(file.string())
+                         ? " (a library it needs: `ldd " + file.string() + "` shows which is missing; install it "
+                           "or add its folder to LD_LIBRARY_PATH)"
+                         : " (rebuild or reinstall it, or remove it from the search path)"));
     }
-    if (!lib.has(kPluginManifestSymbol)) {
-        c.failure = std::string("not a rollsense plugin: missing symbol '") + kPluginManifestSymbol +
-                    "' (a plugin defines it with ROLLSENSE_PLUGIN(...))";
-        return c;
-    }
+    if (!lib.has(kPluginManifestSymbol))
+        return fail(std::string("not a rollsense plugin: missing symbol '") + kPluginManifestSymbol +
+                    "' (a plugin defines it with ROLLSENSE_PLUGIN(...))");
     const PluginManifest* m = nullptr;
     try {
         m = lib.get_alias<PluginManifestFn>(kPluginManifestSymbol)();
     } catch (const std::exception& e) {
-        c.failure = std::string("its manifest function failed: ") + e.what();
-        return c;
+        return fail(std::string("its manifest function failed: ") + e.what());
     }
-    if (!m || m->magic != kPluginMagic) {
-        c.failure = "not a rollsense plugin: the manifest symbol does not point at a rollsense manifest";
-        return c;
-    }
-    if (m->abi_version != kPluginAbiVersion) {
-        c.failure = "ABI mismatch: built for plugin ABI " + std::to_string(m->abi_version) + ", this rollsense has " +
-                    std::to_string(kPluginAbiVersion) + " (rebuild the plugin against this SDK)";
-        return c;
-    }
-    if (!m->compiler_tag || std::strcmp(m->compiler_tag, ROLLSENSE_COMPILER_TAG) != 0) {
-        c.failure = std::string("ABI mismatch: built with compiler '") + (m->compiler_tag ? m->compiler_tag : "?") +
-                    "', this rollsense with '" + ROLLSENSE_COMPILER_TAG + "' (rebuild the plugin)";
-        return c;
-    }
+    if (!m || m->magic != kPluginMagic)
+        return fail("not a rollsense plugin: the manifest symbol does not point at a rollsense manifest");
+    if (m->abi_version != kPluginAbiVersion)
+        return fail("ABI mismatch: built for plugin ABI " + std::to_string(m->abi_version) + ", this rollsense has " +
+                    std::to_string(kPluginAbiVersion) + " (rebuild the plugin against this SDK)");
+    if (!m->compiler_tag || std::strcmp(m->compiler_tag, ROLLSENSE_COMPILER_TAG) != 0)
+        return fail(std::string("ABI mismatch: built with compiler '") + (m->compiler_tag ? m->compiler_tag : "?") +
+                    "', this rollsense with '" + ROLLSENSE_COMPILER_TAG + "' (rebuild the plugin)");
     const bool factory_ok = (m->kind == PluginKind::sensor && m->create_sensor) ||
                             (m->kind == PluginKind::actuator && m->create_actuator) ||
                             (m->kind == PluginKind::classifier && m->create_classifier);
-    if (!m->name || !*m->name || !factory_ok || !m->destroy || !m->schema) {
-        c.failure = "malformed manifest: missing name, factory for its kind, destroy or schema";
-        return c;
-    }
+    if (!m->name || !*m->name || !factory_ok || !m->destroy || !m->schema)
+        return fail("malformed manifest: missing name, factory for its kind, destroy or schema");
     c.library = std::make_shared<LoadedLibrary>(std::move(lib), m, file);
     return c;
 }

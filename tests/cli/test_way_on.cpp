@@ -1,0 +1,85 @@
+// The way on that `rollsense run` prints after a failure is one that helps:
+// a run whose analysis failed after recording every trial is pointed at the
+// commands that analyse the trials on disk (a --resume would run the same
+// analysis on the same trials again); a resume that failed before its script
+// reached the trials on disk counts them and still offers to resume.
+#include <catch2/catch.hpp>
+
+#include "cli_helpers.hpp"
+
+namespace {
+using namespace rollsense::testing;
+namespace fs = std::filesystem;
+
+const std::string kPaper = shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua");
+// Four trials (2 objects x 1 speed x 2 runs): too few for the script's 5-fold analysis.
+const std::string kFour = " --set runs=2 --set objects=C1,P2 --set speeds=10 --seed 5 --no-progress";
+
+std::size_t manifest_rows(const fs::path& dataset) { return count_of(read_file(dataset / "manifest.csv"), "\n") - 1; }
+}  // namespace
+
+// Review (cli item 1): the failed analysis printed `continue with: ... --resume`,
+// which recorded nothing and failed the same way again.
+TEST_CASE("a run whose analysis fails after its trials are recorded points at the analysis commands, not --resume") {
+    TempDir dir("rollsense-cli-way-on");
+    const auto out = dir / "out";
+    const auto failed = run_rollsense("run " + kPaper + kFour + " --out " + shell_quoted(out));
+    INFO(failed.output);
+    REQUIRE(failed.status == 1);
+    CHECK(count_of(failed.output, "5 folds need at least 5 rows") == 1);
+    CHECK(failed.output.find("failed: 4 trials saved, 0 already on disk") != std::string::npos);
+    CHECK(failed.output.find("continue with:") == std::string::npos);
+    CHECK(failed.output.find("the analysis failed, not the recording: the 4 trials of " + out.string() +
+                             " are on disk (--resume would run the same analysis on them again)") != std::string::npos);
+    const std::string commands = "analyse them with: rollsense report " + out.string() + "; rollsense train " +
+                                 out.string() + " -o " + (out / "model.rsm").string() + " (";
+    CHECK(failed.output.find(commands) != std::string::npos);
+    REQUIRE(manifest_rows(out) == 4);
+
+    // What the message says: a resume runs the same analysis on the same trials and fails again ...
+    const auto resumed = run_rollsense("run " + kPaper + kFour + " -q --resume --out " + shell_quoted(out));
+    INFO(resumed.output);
+    CHECK(resumed.status == 1);
+    CHECK(count_of(resumed.output, "5 folds need at least 5 rows") == 1);
+    CHECK(resumed.output.find("failed: 0 trials saved, 4 already on disk") != std::string::npos);
+    CHECK(resumed.output.find("continue with:") == std::string::npos);
+    // ... and the printed commands, with an option that fits the dataset, analyse it.
+    const auto report = run_rollsense("report " + shell_quoted(out) + " --folds 2 --repeats 2");
+    INFO(report.output);
+    CHECK(report.status == 0);
+    CHECK(fs::exists(out / "report.html"));
+    CHECK(fs::exists(out / "evaluation.json"));
+    const auto train = run_rollsense("train " + shell_quoted(out) + " -o " + shell_quoted(out / "model.rsm"));
+    INFO(train.output);
+    CHECK(train.status == 0);
+    CHECK(fs::exists(out / "model.rsm"));
+}
+
+// Review (cli item 2): the summary said "0 already on disk" of a dataset that held
+// every trial, and no way on was printed: the count was of the trials the script
+// skipped, and this run failed before its script started.
+TEST_CASE("a resume that fails before its script reaches the trials on disk counts them and offers to resume") {
+    TempDir dir("rollsense-cli-way-on-resume");
+    const std::string small = " --set runs=2 --set objects=C1,P2 --set speeds=10 --set analyse=false --seed 5 --no-progress";
+    REQUIRE(run_rollsense("run " + kPaper + small + " -q --out " + shell_quoted(dir / "src")).status == 0);
+    const std::string replay = "run " + kPaper + small + " --profile replay --set dataset=" + shell_quoted(dir / "src") +
+                               " --out " + shell_quoted(dir / "rep");
+    REQUIRE(run_rollsense(replay + " -q").status == 0);
+    REQUIRE(manifest_rows(dir / "rep") == 4);
+    fs::rename(dir / "src", dir / "moved");  // the replayed dataset is gone: the replay plugin cannot be configured
+
+    const auto failed = run_rollsense(replay + " --resume");
+    INFO(failed.output);
+    CHECK(failed.status == 3);
+    CHECK(failed.output.find("failed: 0 trials saved, 4 already on disk") != std::string::npos);
+    CHECK(failed.output.find("results: " + (dir / "rep").string()) != std::string::npos);
+    CHECK(failed.output.find("continue with: rollsense run ") != std::string::npos);
+    CHECK(failed.output.find("the analysis failed") == std::string::npos);
+    CHECK(manifest_rows(dir / "rep") == 4);
+
+    fs::rename(dir / "moved", dir / "src");  // put back, the printed resume finishes the run
+    const auto again = run_rollsense(replay + " --resume");
+    INFO(again.output);
+    CHECK(again.status == 0);
+    CHECK(again.output.find("done: 0 trials saved, 4 already on disk") != std::string::npos);
+}
