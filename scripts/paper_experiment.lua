@@ -35,6 +35,9 @@ local function list(text)
   return out
 end
 
+-- The analysis at the end reads three channels: a profile it cannot read stops the run here, not after it.
+if rs.setting("analyse") then rs.identification_channels() end
+
 local runs = rs.setting("runs")
 local objects = list(rs.setting("objects"))
 local speeds = list(rs.setting("speeds"))

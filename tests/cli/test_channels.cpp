@@ -17,27 +17,45 @@ std::string two_sensor_profile(const std::string& more) {
            more + "return p\n";
 }
 
-CommandRun record(const fs::path& dir, const std::string& profile_text) {
+CommandRun record(const fs::path& dir, const std::string& profile_text, const std::string& more = "") {
     write_file(dir / "two.lua", profile_text);
     return run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua") +
                          " --profile " + shell_quoted(dir / "two.lua") +
-                         " --set runs=3 --set objects=C1,P1 --set speeds=10 --no-progress -q --out " + shell_quoted(dir / "run"));
+                         " --set runs=3 --set objects=C1,P1 --set speeds=10 --no-progress -q --out " +
+                         shell_quoted(dir / "run") + more);
 }
 
 }  // namespace
 
 TEST_CASE("two sensors and no identification_channels: the analysis lists the channels instead of guessing") {
     TempDir dir("rollsense-cli-channels-unnamed");
+    // The stock script asks before its first trial (rs.identification_channels): it used to record every trial
+    // and stop only in rs.analyse at its end, where --resume repeated the failure.
     const auto r = record(dir.path(), two_sensor_profile(""));
     INFO(r.output);
-    CHECK(r.status != 0);  // rs.analyse at the script's end stops
-    CHECK_THAT(r.output, Catch::Contains("6 sensor channels (extra_ch1, extra_ch2, extra_ch3, tactile_ch1, tactile_ch2, "
-                                         "tactile_ch3)") &&
-                             Catch::Contains("identification_channels"));
+    CHECK(r.status == 3);  // the profile's mistake
+    CHECK_THAT(r.output, Catch::Contains("two.lua: ") &&
+                             Catch::Contains("6 sensor channels (extra_ch1, extra_ch2, extra_ch3, tactile_ch1, "
+                                             "tactile_ch2, tactile_ch3)") &&
+                             Catch::Contains("identification_channels") && Catch::Contains("0 trials saved"));
+    CHECK_FALSE(fs::exists(dir / "run" / "trials"));
+    // Recorded without the analysis, the dataset says the same to the analysis commands.
+    const auto kept = record(dir.path(), two_sensor_profile(""), " --set analyse=false");
+    REQUIRE(kept.status == 0);
     CHECK_THAT(read_file(dir / "run" / "dataset-info.csv"), Catch::Contains("\nchannel_units,1 1 1 1 1 1\n"));
     const auto f = run_rollsense("features " + shell_quoted(dir / "run") + " -o " + shell_quoted(dir / "f.csv"));
     CHECK(f.status != 0);
     CHECK_THAT(f.output, Catch::Contains("does not say which three"));
+}
+
+TEST_CASE("identification_channels naming no channel stops the stock run before its first trial") {
+    TempDir dir("rollsense-cli-channels-wrong");
+    const auto r = record(dir.path(), two_sensor_profile("p.identification_channels = { 'tactile_ch1', 'tactile_ch2', 'zz' }\n"));
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("paper_experiment.lua:") && Catch::Contains("two.lua: ") &&
+                             Catch::Contains("identification_channels names 'zz', which is not one of its sensor channels"));
+    CHECK_FALSE(fs::exists(dir / "run" / "trials"));
 }
 
 TEST_CASE("the profile's identification_channels reach dataset-info.csv and the analysis reads those three") {

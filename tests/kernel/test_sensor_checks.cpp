@@ -71,3 +71,25 @@ TEST_CASE("channel names that give one column twice are refused at configure tim
     // Distinct names are fine.
     CHECK(robot_with(dir, "tactile = { plugin = \"test_faulty_sensor\", params = { names = \"x,y\" } },").ok());
 }
+
+TEST_CASE("a channel name that would not stay one CSV column, or that a recorded joint's column takes, is refused",
+          "[robot][review]") {
+    kt::TempDir dir;
+    // Each of these recorded a dataset whose dataset-info.csv rollsense then refused, or a header with an empty
+    // column: an empty name, a space (dataset-info.csv lists channels space-separated), a quote.
+    for (const char* names : {"x,,y", "x,p 2,y", "x,p\\\"3,y"}) {
+        auto r = robot_with(dir, std::string("tactile = { plugin = \"test_faulty_sensor\", params = { names = \"") +
+                                     names + "\" } },");
+        INFO(names);
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().code == ErrorCode::plugin_error);
+        CHECK_THAT(r.error().message, Catch::Contains("devices.tactile (plugin 'test_faulty_sensor')") &&
+                                          Catch::Contains("free of spaces, commas and quotes"));
+    }
+    // The test hand records joint 'finger': a channel of that name gave the header time,finger,b,c,finger,valid.
+    auto joint = robot_with(dir, "tactile = { plugin = \"test_faulty_sensor\", params = { names = \"finger,b\" } },");
+    REQUIRE_FALSE(joint.ok());
+    CHECK(joint.error().code == ErrorCode::invalid_argument);
+    CHECK_THAT(joint.error().message, Catch::Contains("p.lua: record_joints names 'finger'") &&
+                                          Catch::Contains("taken by a channel"));
+}

@@ -60,12 +60,13 @@ struct PluginManifest {
 using PluginManifestFn = const PluginManifest*();
 
 namespace detail {
+template <class Base, class T>  // interface Base's factory: nullptr for a class of another kind
+Base* make() { if constexpr (std::is_base_of_v<Base, T>) return new T(); else return nullptr; }
 template <class T>
-Sensor* make_sensor() { if constexpr (std::is_base_of_v<Sensor, T>) return new T(); else return nullptr; }
-template <class T>
-Actuator* make_actuator() { if constexpr (std::is_base_of_v<Actuator, T>) return new T(); else return nullptr; }
-template <class T>
-Classifier* make_classifier() { if constexpr (std::is_base_of_v<Classifier, T>) return new T(); else return nullptr; }
+constexpr bool of_kind(PluginKind k) {
+    return k == PluginKind::sensor     ? std::is_base_of_v<Sensor, T>
+           : k == PluginKind::actuator ? std::is_base_of_v<Actuator, T> : std::is_base_of_v<Classifier, T>;
+}
 template <class T>
 void destroy(Component* c) noexcept { delete static_cast<T*>(c); }
 }  // namespace detail
@@ -75,23 +76,22 @@ void destroy(Component* c) noexcept { delete static_cast<T*>(c); }
 // KIND is one of: sensor, actuator, classifier. SCHEMA_FN is a function
 // `rollsense::ParamSchema fn()` listing the plugin's parameters.
 #define ROLLSENSE_PLUGIN(CLASS, KIND, NAME, VERSION, DESCRIPTION, SCHEMA_FN)                                  \
-    static_assert(std::is_base_of_v<::rollsense::Component, CLASS>, "plugin class must derive from a kind"); \
+    static_assert(::rollsense::detail::of_kind<CLASS>(::rollsense::PluginKind::KIND),                        \
+                  "the plugin class must derive from its KIND's interface: Sensor, Actuator or Classifier");    \
     namespace {                                                                                             \
     const ::rollsense::PluginManifest* rollsense_manifest_impl() {                                          \
-        constexpr auto kind = ::rollsense::PluginKind::KIND;                                                \
         static const ::rollsense::PluginManifest manifest{                                                  \
             ::rollsense::kPluginMagic,                                                                      \
             ::rollsense::kPluginAbiVersion,                                                                 \
             ROLLSENSE_COMPILER_TAG,                                                                         \
             NAME,                                                                                           \
-            kind,                                                                                           \
+            ::rollsense::PluginKind::KIND,                                                                  \
             VERSION,                                                                                        \
             DESCRIPTION,                                                                                    \
             &SCHEMA_FN,                                                                                     \
-            kind == ::rollsense::PluginKind::sensor ? &::rollsense::detail::make_sensor<CLASS> : nullptr,   \
-            kind == ::rollsense::PluginKind::actuator ? &::rollsense::detail::make_actuator<CLASS> : nullptr, \
-            kind == ::rollsense::PluginKind::classifier ? &::rollsense::detail::make_classifier<CLASS>      \
-                                                        : nullptr,                                          \
+            &::rollsense::detail::make<::rollsense::Sensor, CLASS>,                                         \
+            &::rollsense::detail::make<::rollsense::Actuator, CLASS>,                                       \
+            &::rollsense::detail::make<::rollsense::Classifier, CLASS>,                                     \
             &::rollsense::detail::destroy<CLASS>,                                                           \
         };                                                                                                  \
         return &manifest;                                                                                   \

@@ -365,6 +365,31 @@ int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
     return 1;
 }
 
+// The channels the identification reads in this run's recording: the profile's
+// identification_channels among the robot's channel columns (as a dataset of it names them).
+Result<std::array<std::size_t, features::kChannels>> recording_channels(Session& s) {
+    DatasetInfo live;
+    live.channels = s.robot().channel_columns();
+    live.identification_channels = s.profile().identification_channels;
+    return features::identification_channels(live, "the recording of profile '" + s.profile().name + "'");
+}
+
+// rs.identification_channels() → the three channel columns the identification
+// reads, in crossing order. A script that analyses at its end calls it before
+// its first trial, so a profile the analysis cannot read stops the run there.
+int l_identification_channels(lua_State* L) {
+    Session& s = Session::of(L);
+    auto columns = recording_channels(s);
+    if (!columns)  // the profile's mistake, reported as its others are (exit 3)
+        raise_status(L, {ErrorCode::parse_error, s.profile().path.string() + ": " + columns.error().message});
+    lua_createtable(L, static_cast<int>(features::kChannels), 0);
+    for (std::size_t c = 0; c < features::kChannels; ++c) {
+        lua_pushstring(L, s.robot().channel_columns()[(*columns)[c]].c_str());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(c + 1));
+    }
+    return 1;
+}
+
 // clf:identify() → prediction table, or nil and the rejection reason when the
 // recording has no clean peaks (e.g. the object did not cross all three sensors)
 // or, for a series model, when the series rule refuses it.
@@ -373,11 +398,7 @@ int l_identify(lua_State* L) {
     Session& s = Session::of(L);
     const auto& data = s.recorded();
     if (data.samples() == 0) return luaL_error(L, "identify: nothing recorded (rs.record_start/stop first)");
-    // The channels a dataset of this profile would name (features::identification_channels).
-    DatasetInfo live;
-    live.channels = s.robot().channel_columns();
-    live.identification_channels = s.profile().identification_channels;
-    auto columns = features::identification_channels(live, "the recording of profile '" + s.profile().name + "'");
+    auto columns = recording_channels(s);
     check(L, Status(columns.status()).with_context("identify"));
     if (clf->input() == ClassifierInput::series) return identify_series(L, *clf, data, *columns);
     const features::IdentificationInput in = features::identification_input(data, *columns);
@@ -438,7 +459,8 @@ void register_learn(lua_State* L) {
     lua_pushcfunction(L, l_classifier_gc);
     lua_setfield(L, -2, "__gc");
     lua_pop(L, 1);
-    static const luaL_Reg fns[] = {{"classifier", l_classifier}, {nullptr, nullptr}};
+    static const luaL_Reg fns[] = {
+        {"classifier", l_classifier}, {"identification_channels", l_identification_channels}, {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
     analysis_under_way().reset();  // a new session
     // Features from memory: every trial this session's recorder makes durable

@@ -128,16 +128,10 @@ bool l_wait_arrived(lua_State* L) {
     return wait_arrival(L, {&j}, timeout, tolerance, "joint '" + j.name + "' to arrive");
 }
 
-int l_position(lua_State* L) {
-    lua_pushnumber(L, check_joint(L, 1).state.position);
-    return 1;
-}
-int l_velocity(lua_State* L) {
-    lua_pushnumber(L, check_joint(L, 1).state.velocity);
-    return 1;
-}
-int l_current(lua_State* L) {
-    lua_pushnumber(L, check_joint(L, 1).state.current);
+// j:position(), j:velocity(), j:current(): the last state read.
+template <double JointState::*field>
+int l_state_number(lua_State* L) {
+    lua_pushnumber(L, check_joint(L, 1).state.*field);
     return 1;
 }
 int l_moving(lua_State* L) {
@@ -215,9 +209,11 @@ void register_joints(lua_State* L) {
                                        {"wait", waiting<l_wait_arrived, finish_wait>},
                                        {"push", l_goal<ControlMode::current, &JointCommand::current>},
                                        {"spin", l_goal<ControlMode::velocity, &JointCommand::velocity>},
-                                       {"hold", l_hold},         {"torque", l_torque},     {"position", l_position},
-                                       {"velocity", l_velocity}, {"current", l_current},   {"moving", l_moving},
-                                       {"name", l_name},         {"state", l_state},       {"limits", l_limits},
+                                       {"position", l_state_number<&JointState::position>},
+                                       {"velocity", l_state_number<&JointState::velocity>},
+                                       {"current", l_state_number<&JointState::current>},
+                                       {"hold", l_hold},     {"torque", l_torque}, {"moving", l_moving},
+                                       {"name", l_name},     {"state", l_state},   {"limits", l_limits},
                                        {nullptr, nullptr}};
     luaL_newmetatable(L, kJointMeta);
     protect_metatable(L);

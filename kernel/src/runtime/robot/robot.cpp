@@ -98,15 +98,20 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         }
     }
 
-    // Channel columns: a lone sensor's channel names; several sensors are prefixed. One column per name.
+    // A trial file's column: one name each, kept whole by CSV headers and dataset-info.csv's space-separated lists.
+    const auto unusable_column = [&r](const std::string& c) {
+        return c.empty() || c.find_first_of(",\" \t\r\n") != std::string::npos || c == "time" || c == "valid" ||
+               std::ranges::count(r->channel_columns_, c) || std::ranges::count(r->recorded_joints_, c);
+    };
+    // Channel columns: a lone sensor's channel names; several sensors are prefixed.
     for (auto& s : r->sensors_) {
         for (const auto& ch : s.handle->plugin().channels()) {
             const std::string column = r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name;
-            const auto& taken = r->channel_columns_;
-            if (column == "time" || column == "valid" || std::count(taken.begin(), taken.end(), column))
+            if (unusable_column(column))
                 return Error{ErrorCode::plugin_error, file + ": devices." + s.handle->instance() + " (plugin '" +
-                                 s.handle->plugin_name() + "'): the channel column '" + column + "' is taken; channel "
-                                 "names must be unique and not 'time' or 'valid' (with several sensors: <device>_<channel>)"};
+                                 s.handle->plugin_name() + "'): the channel column '" + column + "' is taken or "
+                                 "not a column name; channel names must be unique, not 'time' or 'valid', and free of spaces, "
+                                 "commas and quotes (with several sensors: <device>_<channel>)"};
             r->channel_columns_.push_back(column);
             r->channel_units_.push_back(ch.unit);
         }
@@ -168,9 +173,11 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                                           r->joint_names() + ")"};
     for (const auto& name : profile.record_joints) {
         auto* j = r->find_joint(name);
-        if (!j)
-            return Error{ErrorCode::invalid_argument, file + ": record_joints names '" + name +
-                                                          "', which is not a joint (joints: " + r->joint_names() + ")"};
+        if (!j || unusable_column(name))
+            return Error{ErrorCode::invalid_argument,
+                         file + ": record_joints names '" + name + "', which is " +
+                             (j ? "no usable column (taken by a channel, listed twice, or with a space, comma or quote)"
+                                : "not a joint (joints: " + r->joint_names() + ")")};
         r->recorded_joints_.push_back(name);
         r->recorded_joint_index_.push_back(static_cast<std::size_t>(j - r->joints_.data()));
     }
