@@ -214,3 +214,25 @@ TEST_CASE("a dynamixel profile the plugin refuses is named once by file and para
         CHECK(count_of(r.output, profile) == 1);
     }
 }
+
+// Review (plugin author) item 5: `plugins --check` passed a schema that contradicts itself.
+TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter twice or a default its range refuses") {
+    const auto fault = [](const char* which) {
+        return run_rollsense("plugins --check --plugin-path " + shell_quoted(std::string(ROLLSENSE_TEST_BAD_SCHEMA_DIR) + which));
+    };
+    const auto out_of_range = fault("default");
+    INFO(out_of_range.output);
+    CHECK(out_of_range.status == 3);
+    CHECK(count_of(out_of_range.output, "SCHEMA FAILED: a default its own declaration refuses: key 'gain': 5 is outside "
+                                        "the allowed range [0, 1] (fix the plugin's schema function)\n") == 1);
+    const auto twice = fault("twice");
+    INFO(twice.output);
+    CHECK(twice.status == 3);
+    CHECK(count_of(twice.output, "SCHEMA FAILED: parameter 'gain' is declared twice") == 1);
+    // Without --check the listing goes on (exit 0); the shipped plugins' schemas have no such mistake.
+    CHECK(run_rollsense("plugins --plugin-path " + shell_quoted(std::string(ROLLSENSE_TEST_BAD_SCHEMA_DIR) + "twice")).status == 0);
+    const auto shipped = run_rollsense("plugins --check");
+    INFO(shipped.output);
+    CHECK(shipped.status == 0);
+    CHECK(shipped.output.find("SCHEMA FAILED") == std::string::npos);
+}

@@ -1,6 +1,8 @@
 // rollsense plugins: every candidate plugin file, its manifest and parameters,
 // or the exact reason it did not load.
+#include <algorithm>
 #include <cstdio>
+#include <map>
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
@@ -25,7 +27,9 @@ options:
   --plugin-path DIR   search here first (repeatable)
   --profile NAME      also search the profile's plugin_path
   --params            show each plugin's parameters (type, default, range, doc)
-  --check             exit with 3 if any candidate failed to load)";
+  --check             exit with 3 if any candidate failed to load or its
+                      parameter schema contradicts itself (a parameter
+                      declared twice, a default outside its own range))";
 
 void print_schema(const ParamSchema& schema) {
     for (const auto& p : schema) {
@@ -37,6 +41,24 @@ void print_schema(const ParamSchema& schema) {
         std::printf("      %-22s %-16s = %s%s%s\n          %s\n", p.name.c_str(), std::string(to_string(p.type)).c_str(),
                     def.c_str(), range.c_str(), p.unit.empty() ? "" : (" " + p.unit).c_str(), p.doc.c_str());
     }
+}
+
+// A schema's own mistakes, which loading does not catch: a parameter declared
+// twice, or a default its own range or choices refuse (used silently, while
+// the same value in a profile is refused). Empty if none.
+std::string schema_problem(const ParamSchema& schema) {
+    ParamSchema with_default;
+    std::map<std::string, ParamValue> defaults;
+    for (const auto& p : schema) {
+        if (std::count_if(schema.begin(), schema.end(), [&](const ParamSpec& q) { return q.name == p.name; }) > 1)
+            return "parameter '" + p.name + "' is declared twice";
+        if (p.default_value) {
+            with_default.push_back(p);
+            defaults[p.name] = *p.default_value;
+        }
+    }
+    const auto checked = validate_params(with_default, defaults, "a default its own declaration refuses");
+    return checked ? std::string() : checked.error().message;
 }
 
 int run(const std::vector<std::string>& argv) {
@@ -70,12 +92,13 @@ int run(const std::vector<std::string>& argv) {
         const auto& m = c.library->manifest();
         std::printf("  %-10s %-16s %-8s %s\n      %s\n", std::string(to_string(m.kind)).c_str(), m.name, m.version,
                     c.path.c_str(), m.description);
-        if (args.flag("--params")) {
-            auto schema = runtime::PluginRegistry::schema_of(*c.library);
-            if (schema)
-                print_schema(*schema);
-            else
-                std::printf("      (schema unavailable: %s)\n", schema.error().message.c_str());
+        const auto schema = runtime::PluginRegistry::schema_of(*c.library);
+        const std::string problem = schema ? schema_problem(*schema) : schema.error().message;
+        if (!problem.empty()) {
+            ++failed;
+            std::printf("      SCHEMA FAILED: %s (fix the plugin's schema function)\n", problem.c_str());
+        } else if (args.flag("--params")) {
+            print_schema(*schema);
         }
     }
     std::printf("\nbuilt-in controllers:");
