@@ -60,8 +60,10 @@ struct PluginManifest {
 using PluginManifestFn = const PluginManifest*();
 
 namespace detail {
-template <class Base, class T>  // interface Base's factory: nullptr for a class of another kind
+template <class Base, class T>
 Base* make() { if constexpr (std::is_base_of_v<Base, T>) return new T(); else return nullptr; }
+template <class Base, class T>  // interface Base's factory: nullptr for a class of another kind
+constexpr Base* (*factory)() = std::is_base_of_v<Base, T> ? &make<Base, T> : nullptr;
 template <class T>
 constexpr bool of_kind(PluginKind k) {
     return k == PluginKind::sensor     ? std::is_base_of_v<Sensor, T>
@@ -89,9 +91,9 @@ void destroy(Component* c) noexcept { delete static_cast<T*>(c); }
             VERSION,                                                                                        \
             DESCRIPTION,                                                                                    \
             &SCHEMA_FN,                                                                                     \
-            &::rollsense::detail::make<::rollsense::Sensor, CLASS>,                                         \
-            &::rollsense::detail::make<::rollsense::Actuator, CLASS>,                                       \
-            &::rollsense::detail::make<::rollsense::Classifier, CLASS>,                                     \
+            ::rollsense::detail::factory<::rollsense::Sensor, CLASS>,                                          \
+            ::rollsense::detail::factory<::rollsense::Actuator, CLASS>,                                        \
+            ::rollsense::detail::factory<::rollsense::Classifier, CLASS>,                                      \
             &::rollsense::detail::destroy<CLASS>,                                                           \
         };                                                                                                  \
         return &manifest;                                                                                   \

@@ -200,7 +200,8 @@ Result<ParamSet> validate_params(const ParamSchema& schema, const std::map<std::
             return Error{ErrorCode::invalid_argument, where + ": key '" + key + "' must be " +
                                                           with_article(to_string(spec->type)) + ", got " +
                                                           with_article(value_type_name(value)) + " (" +
-                                                          format_param_value(value) + ")"};
+                                                          format_param_value(value) + ")" +
+                                                          (spec->type == ParamType::string ? "; quote it to give it as text" : "")};
         std::optional<std::string> range_error;
         if (auto* d = std::get_if<double>(&*coerced)) range_error = check_range(*spec, *d);
         if (auto* i = std::get_if<std::int64_t>(&*coerced)) range_error = check_range(*spec, static_cast<double>(*i));
