@@ -158,7 +158,7 @@ Status input_holds_trials(const std::filesystem::path& input, const std::string&
     if (!input.empty() && std::filesystem::is_directory(input, ec)) return {};
     return {ErrorCode::invalid_argument,
             needs + " the recorded trials, but " +
-                (input.empty() ? std::string("the input was not given")
+                (input.empty() ? std::string("the input is not a dataset folder (none was given)")
                                : "the input '" + input.string() + "' is not a dataset folder") +
                 " (a features CSV holds only the 13 features of each trial): pass the dataset folder it was made from"};
 }
