@@ -77,6 +77,11 @@ local function with(extra)
   return t
 end
 
+-- "+- 1.2" after a percentage, or no spread with one repetition (accuracy_sd is nil then).
+local function spread(sd)
+  return sd and string.format("+- %.1f", 100 * sd) or "(one repetition: no spread)"
+end
+
 -- Both methods on the same trials and folds, and before the roll ends.
 local both = rs.analyse(with{
   classifiers = { "bagged_trees", "minirocket" },
@@ -84,15 +89,15 @@ local both = rs.analyse(with{
   prefix_repeats = rs.setting("prefix_repeats"),
 })
 for _, c in ipairs(both.classifiers) do
-  rs.log(string.format("%-14s %5.1f %% +- %.1f  (%d trials, the same %d-fold partitions)", c.name,
-    100 * c.accuracy, 100 * c.accuracy_sd, both.clean, 5))
+  rs.log(string.format("%-14s %5.1f %% %s  (%d trials, the same %d-fold partitions)", c.name,
+    100 * c.accuracy, spread(c.accuracy_sd), both.clean, 5))
 end
 
 -- MiniRocket on every trial its own (series) rule accepts, the paper's refused ones included.
 local all = rs.analyse(with{ classifiers = { "minirocket" }, trials = "all", tag = "all-trials",
                              model = "model-minirocket.rsm" })
-rs.log(string.format("minirocket on all trials it accepts: %d of %d, accuracy %.1f %% +- %.1f (%s)",
-  all.clean, all.trials, 100 * all.accuracy, 100 * all.accuracy_sd, all.evaluation))
+rs.log(string.format("minirocket on all trials it accepts: %d of %d, accuracy %.1f %% %s (%s)",
+  all.clean, all.trials, 100 * all.accuracy, spread(all.accuracy_sd), all.evaluation))
 local mr = all.classifiers[1]
 if mr.paper_refused then
   rs.log(string.format("  of them %d are trials the paper's peak rule refuses: %d identified right out of fold (%.1f %%, "

@@ -53,8 +53,8 @@ const std::vector<std::string> kLearnOptions = {"--folds",      "--repeats",    
                                                 "--classifier", "--set",         "--plugin-path", "-o",
                                                 "--output",     "--trials",      "--series-amplitude",
                                                 "--cv",         "--group-by",    "--block"};
-// Options of the input step that only the pipeline (evaluate, report) honours.
-const std::vector<std::string> kPipelineOnly = {"--trials", "--series-amplitude", "--cv", "--group-by", "--block"};
+// Grouped and blocked CV: evaluate and report only (train fits one model, no CV).
+const std::vector<std::string> kCvSchemeOptions = {"--cv", "--group-by", "--block"};
 }  // namespace
 
 // Options that set the optimiser: given without --optimize they would be
@@ -161,6 +161,7 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     if (!result) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, result.error().describe().c_str());
         if (failed == learn::PipelineStage::classifiers) return classifier_setup_exit(result.error().code);
+        if (failed == learn::PipelineStage::request) return kExitUsage;  // e.g. a features CSV for a series classifier
         return exit_code_for(result.error().code,
                              failed == learn::PipelineStage::evaluation ? kExitFailure : kExitConfig);
     }
@@ -168,23 +169,33 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     return kExitOk;
 }
 
-// Rows (from a dataset or a features file) and a plugin-backed factory for one
-// classifier (rollsense train).
+// Rows (from a dataset or a features file), the one prepared classifier and
+// the input step's options (--trials, --series-amplitude) for rollsense train:
+// everything that does not go together is refused before the rows are read.
 int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
-            std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory) {
-    for (const auto& o : kPipelineOnly)
+            std::vector<features::FeatureRow>& rows, learn::PreparedClassifier& classifier,
+            learn::InputOptions& inputs) {
+    for (const auto& o : kCvSchemeOptions)
         if (!args.option(o).empty())
             throw UsageError(o + " applies to 'rollsense evaluate' and 'rollsense report' only; " + command +
-                             " trains on the paper's clean trials");
+                             " fits one model on every selected trial, without cross-validation");
     const auto specs = classifier_specs(s);
     if (specs.size() != 1)
         throw UsageError(std::string(command) + " takes one classifier, got '" + s.classifier + "'");
+    inputs = input_options_from_args(args);
     // The plugin and its parameters first, before minutes of extraction.
     auto prepared = learn::prepare_classifiers(registry, specs);
     if (!prepared) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, prepared.error().describe().c_str());
         return classifier_setup_exit(prepared.error().code);
     }
+    classifier = prepared->front();
+    for (const Status& st : {learn::check_input_holds_trials(s.input, *prepared, false),
+                             learn::check_final_fit(classifier, s.options)})
+        if (!st) {
+            std::fprintf(stderr, "rollsense %s: %s\n", command, st.error().describe().c_str());
+            return kExitUsage;
+        }
     auto loaded = learn::load_feature_rows(s.input, feature_settings_from_args(args));
     if (!loaded) {
         std::fprintf(stderr, "rollsense %s: %s\n", command, loaded.error().describe().c_str());
@@ -193,7 +204,6 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
     rows = std::move(loaded).value();
     warn_unreadable_trials(rows);
     std::printf("%s\n", learn::summarize_rejections(rows).c_str());
-    factory = prepared->front().factory;
     return kExitOk;
 }
 

@@ -8,6 +8,7 @@
 #include "cli/log_setup.hpp"
 #include "cli/output_paths.hpp"
 #include "cli/paths.hpp"
+#include "rollsense/dataset.hpp"
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
@@ -38,13 +39,23 @@ hyperparameters, and the run's provenance. Opens in any browser without a
 network; prints well. A short summary is printed on the terminal.
 With several classifiers (--classifier a,b) the page compares them side by
 side on the same folds. evaluation.txt and evaluation.json (docs/
-evaluation-json.md) are written beside the report.
+evaluation-json.md) are written beside the report: report.html ->
+evaluation.txt/.json, report-NAME.html -> evaluation-NAME.txt/.json, any other
+PAGE.html -> PAGE-evaluation.txt/.json.
+
+A recorded run's folder already holds its own evaluation (rs.analyse wrote
+report.html and evaluation.txt/.json): report refuses to replace any of these
+files, before any work. Write the new report beside them under another name
+(-o DATASET/report-NAME.html), or replace them with --force. The seed
+defaults to the one the dataset was recorded with, as rs.analyse used it.
 
 options:
   -o, --output FILE   report file (default: DATASET/report.html)
+  --force             replace an existing report and its evaluation files
   --folds K           k of the k-fold CV (5)
   --repeats R         repetitions of the CV with different partitions (10)
-  --seed S            partition and optimiser seed (1)
+  --seed S            partition and optimiser seed (default: the seed the
+                      dataset was recorded with; 1 for a dataset without one)
   --cv LIST, --group-by COLUMN, --block N
                       grouped and blocked CV beside random k-fold, shown in
                       the accuracy table (as 'rollsense evaluate --help' says)
@@ -61,12 +72,22 @@ options:
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'
 
-exit codes: 0 ok, 1 the evaluation failed, 2 bad command line,
+exit codes: 0 ok, 1 the evaluation failed, 2 bad command line (or the
+            report would replace existing files without --force),
             3 DATASET or a plugin is wrong, 5 the report could not be written)";
+
+// The report's files that exist already, by name ("report.html, evaluation.txt").
+std::string existing(const std::vector<std::filesystem::path>& files) {
+    std::string names;
+    std::error_code ec;
+    for (const auto& f : files)
+        if (std::filesystem::exists(f, ec)) names += (names.empty() ? "" : ", ") + f.filename().string();
+    return names;
+}
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested"}, {});
+    LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--force"}, {});
     setup_logging(args);
     std::error_code ec;
     if (!std::filesystem::is_directory(s.input, ec)) {
@@ -80,9 +101,22 @@ int run(const std::vector<std::string>& argv) {
     in.dataset_dir = s.input;
     in.output = args.option("--output", "-o");
     const auto page = report::report_path(in);
-    const auto evaluation = learn::evaluation_files(page.parent_path() / "evaluation.txt");
+    const auto evaluation = report::evaluation_files_of(page);
     if (int rc = check_output_files("report", s.input, {page, evaluation.text, evaluation.json}); rc != kExitOk)
         return rc;
+    // Losing nothing: a run's own evaluation (or an earlier report) is replaced only when asked.
+    if (const auto there = existing({page, evaluation.text, evaluation.json}); !there.empty() && !args.flag("--force")) {
+        const auto folder = page.parent_path().empty() ? std::filesystem::path(".") : page.parent_path();
+        std::fprintf(stderr,
+                     "rollsense report: %s already holds %s (the recording run's own evaluation or an earlier "
+                     "report); this report would replace them: write it beside them with -o %s (its "
+                     "evaluation-NAME.txt/.json beside it), or replace them with --force\n",
+                     folder.string().c_str(), there.c_str(), (folder / "report-NAME.html").string().c_str());
+        return kExitUsage;
+    }
+    // The seed the run's rs.analyse evaluated with, unless --seed says otherwise.
+    if (args.option("--seed").empty())
+        if (auto ds = DatasetReader::open(s.input); ds && ds->info().seed != 0) s.options.seed = ds->info().seed;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
     if (int rc = run_learning_pipeline("report", args, s, registry, result); rc != kExitOk) return rc;

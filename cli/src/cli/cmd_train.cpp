@@ -10,6 +10,7 @@
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
+#include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 
 namespace rollsense::cli {
@@ -19,7 +20,8 @@ LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string
                                  const std::vector<std::string>& not_taken);  // cmd_evaluate.cpp
 void require_optimize(const Args& args, const std::vector<std::string>& options);  // cmd_evaluate.cpp
 int prepare(const char* command, const Args& args, const LearnSetup& s, runtime::PluginRegistry& registry,
-            std::vector<features::FeatureRow>& rows, learn::ClassifierFactory& factory);
+            std::vector<features::FeatureRow>& rows, learn::PreparedClassifier& classifier,
+            learn::InputOptions& inputs);  // cmd_evaluate.cpp
 
 namespace {
 
@@ -30,6 +32,12 @@ features CSV) and save its model. With --optimize the parameters are chosen
 first by the paper's protocol (Bayesian optimisation, 5-fold CV on one fixed
 partition); run 'rollsense evaluate --optimize' for an honest figure of that.
 
+A classifier that takes the prepared series (minirocket) is trained on the
+dataset's three sensor channels prepared by the series rule
+(docs/series-preparation.md), on the trials 'rollsense evaluate' would use:
+the same model rs.analyse saves with the same options. It needs a dataset
+folder (a features CSV has no series) and takes no --optimize.
+
 options:
   -o, --output MODEL  model file to write (required)
   --classifier NAME   classifier plugin ({default_classifier})
@@ -37,6 +45,13 @@ options:
   --optimize          choose the parameters by Bayesian optimisation
   --evaluations N     with --optimize: optimiser evaluations (30)
   --folds K, --seed S with --optimize: partition of the optimiser's CV (5, 1)
+  --trials SET        clean (default): the paper's clean trials, with a
+                      series classifier only those the series rule accepts
+                      too; all: every trial the series rule accepts (series
+                      classifiers only), as 'rollsense evaluate --help' says
+  --series-amplitude MODE
+                      series rule amplitude: global_scale or z_per_channel
+                      (default: docs/series-preparation.md)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features' when INPUT is a dataset)";
 
@@ -51,10 +66,12 @@ int run(const std::vector<std::string>& argv) {
     if (int rc = check_output_files("train", s.input, {out}); rc != kExitOk) return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     std::vector<features::FeatureRow> rows;
-    learn::ClassifierFactory factory;
-    if (int rc = prepare("train", args, s, registry, rows, factory); rc != kExitOk) return rc;
+    learn::PreparedClassifier classifier;
+    learn::InputOptions inputs;
+    if (int rc = prepare("train", args, s, registry, rows, classifier, inputs); rc != kExitOk) return rc;
     learn::EvaluationOptions o = s.options;
-    if (o.optimize) {
+    const auto& factory = classifier.factory;
+    if (o.optimize) {  // a feature classifier (prepare refused tuning a series one)
         // The space the classifier declares for this data, so the progress
         // lines name exactly the searched parameters.
         const FeatureTable table = features::to_feature_table(rows);
@@ -68,7 +85,7 @@ int run(const std::vector<std::string>& argv) {
                          learn::describe_params(p, space).c_str());
         };
     }
-    auto model = learn::fit_final(rows, factory, o);
+    auto model = learn::fit_final_prepared(rows, s.input, classifier, o, inputs);
     if (!model) {
         std::fprintf(stderr, "rollsense train: %s\n", model.error().describe().c_str());
         return exit_code_for(model.error().code);

@@ -370,11 +370,22 @@ std::string format_confusion(const ConfusionMatrix& m) {
     return out;
 }
 
+// " ± 0.9 (sd)" after a mean in percent (without a label: " ± 0.9"), or
+// " (one repetition: no spread)".
+std::string spread(double sd, const char* label = "sd") {
+    if (!has_spread(sd)) return std::string(" (") + no_spread_text + ")";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " ± %.1f", 100.0 * sd);
+    return label ? buf + std::string(" (") + label + ")" : std::string(buf);
+}
+
 std::string figure(double m, double sd, const Interval& w, std::size_t k, std::size_t n) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%.1f %% ± %.1f (sd)   pooled %zu / %zu, 95 %% Wilson [%.1f, %.1f] %%", 100.0 * m,
-                  100.0 * sd, k, n, 100.0 * w.low, 100.0 * w.high);
-    return buf;
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * m);
+    std::string out = buf + spread(sd);
+    std::snprintf(buf, sizeof buf, "   pooled %zu / %zu, 95 %% Wilson [%.1f, %.1f] %%", k, n, 100.0 * w.low,
+                  100.0 * w.high);
+    return out + buf;
 }
 
 }  // namespace
@@ -476,14 +487,12 @@ std::string format_evaluation(const Evaluation& ev) {
                   static_cast<unsigned long long>(ev.plan.seeds.back()));
     out += buf;
     for (const auto& c : ev.classifiers) {
-        std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %% ± %.1f (sd over repetitions)%s\n", w, c.name.c_str(),
-                      100.0 * c.baseline.mean, 100.0 * c.baseline.sd,
-                      ev.input.find('+') != std::string::npos ? ("   input: " + c.input).c_str() : "");
-        out += buf;
+        std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %%", w, c.name.c_str(), 100.0 * c.baseline.mean);
+        out += buf + spread(c.baseline.sd, "sd over repetitions") +
+               (ev.input.find('+') != std::string::npos ? "   input: " + c.input : std::string()) + "\n";
         for (const auto& s : c.scheme_cv) {
-            std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %% ± %.1f %s\n", w, "", 100.0 * s.cv.mean,
-                          100.0 * s.cv.sd, s.scheme.describe().c_str());
-            out += buf;
+            std::snprintf(buf, sizeof buf, "  %-*s  %5.1f %%", w, "", 100.0 * s.cv.mean);
+            out += buf + spread(s.cv.sd, nullptr) + " " + s.scheme.describe() + "\n";
         }
     }
     out += selection_line(ev);

@@ -58,7 +58,7 @@ double mean(std::span<const double> v) {
 }
 
 double standard_deviation(std::span<const double> v) {
-    if (v.size() < 2) return 0.0;
+    if (v.size() < 2) return std::numeric_limits<double>::quiet_NaN();
     const double m = mean(v);
     double s = 0.0;
     for (double x : v) s += (x - m) * (x - m);

@@ -2,6 +2,7 @@
 // and the Wilson score interval for a pooled proportion.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -40,8 +41,13 @@ struct Interval {
 Interval wilson_interval(std::size_t successes, std::size_t n, double z = 1.96);
 
 double mean(std::span<const double> v);
-// Sample standard deviation (n − 1); 0 for fewer than two values.
+// Sample standard deviation (n − 1). Of fewer than two values it does not
+// exist: NaN, which evaluation.json writes as null and every rendering shows
+// as no_spread_text() instead of a "± sd" (one repetition has no spread).
 double standard_deviation(std::span<const double> v);
+inline bool has_spread(double sd) noexcept { return !std::isnan(sd); }
+// What the text and the report say in place of "± sd" when !has_spread(sd).
+inline constexpr const char* no_spread_text = "one repetition: no spread";
 
 // Two classifiers scored on the same folds: the per-fold differences a − b and
 // two paired t statistics on them (df = n − 1). `t` is the textbook paired t;

@@ -151,6 +151,29 @@ Result<SeriesVerdicts> prepare_all_series(const std::filesystem::path& dataset_d
 
 }  // namespace
 
+namespace {
+// `needs` ("X needs", "Y need") the recorded trials: `input` must be a dataset folder.
+Status input_holds_trials(const std::filesystem::path& input, const std::string& needs) {
+    std::error_code ec;
+    if (!input.empty() && std::filesystem::is_directory(input, ec)) return {};
+    return {ErrorCode::invalid_argument,
+            needs + " the recorded trials, but " +
+                (input.empty() ? std::string("the input is not a dataset folder (none was given)")
+                               : "the input '" + input.string() + "' is not a dataset folder") +
+                " (a features CSV holds only the 13 features of each trial): pass the dataset folder it was made from"};
+}
+}  // namespace
+
+Status check_input_holds_trials(const std::filesystem::path& input, const std::vector<PreparedClassifier>& classifiers,
+                                bool prefixes) {
+    for (const auto& c : classifiers)
+        if (c.input == ClassifierInput::series)
+            return input_holds_trials(input, "classifier '" + c.spec.name + "' takes the prepared series (input() = "
+                                             "series) and needs");
+    if (prefixes) return input_holds_trials(input, "the prefix curves (--prefixes) need");
+    return {};
+}
+
 Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& rows,
                                       const std::filesystem::path& dataset_dir,
                                       const std::vector<ClassifierInput>& kinds, const InputOptions& options) {
@@ -165,12 +188,7 @@ Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& r
                      "list only series classifiers"};
     std::optional<SeriesVerdicts> sv;
     if (need_series) {
-        std::error_code ec;
-        if (dataset_dir.empty() || !std::filesystem::is_directory(dataset_dir, ec))
-            return Error{ErrorCode::invalid_argument,
-                         "a series classifier (input() = series) needs the recorded trials, but the input '" +
-                             dataset_dir.string() +
-                             "' is not a dataset folder (a features CSV has no series): pass the dataset folder"};
+        if (auto st = input_holds_trials(dataset_dir, "a series classifier (input() = series) needs"); !st) return st.error();
         auto v = prepare_all_series(dataset_dir, options);
         if (!v) return v.error();
         sv = std::move(v).value();
@@ -264,6 +282,14 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
     return evaluate_tables(rows, *input, requests, options);
 }
 
+Status check_final_fit(const PreparedClassifier& classifier, const EvaluationOptions& options) {
+    if (classifier.input == ClassifierInput::series && options.optimize)
+        return {ErrorCode::unsupported, "classifier '" + classifier.spec.name +
+                                            "': tuning the deployed model is implemented for feature "
+                                            "classifiers only; train it with its preset (no optimize)"};
+    return {};
+}
+
 Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& rows,
                                       const std::filesystem::path& dataset_dir, const PreparedClassifier& classifier,
                                       const EvaluationOptions& options, const InputOptions& inputs) {
@@ -271,14 +297,11 @@ Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& r
     o.params = classifier.spec.params;
     if (classifier.input == ClassifierInput::features && inputs.trials == TrialSelection::paper_clean)
         return fit_final(rows, classifier.factory, o);  // the paper's model, exactly as before
+    if (auto st = check_final_fit(classifier, o); !st) return st.error();
     auto input = make_input_tables(rows, dataset_dir, {classifier.input}, inputs);
     if (!input) return input.error();
     const FeatureTable& table = input->tables.front();
     if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no trials to train on"};
-    if (o.optimize)
-        return Error{ErrorCode::unsupported, "classifier '" + classifier.spec.name +
-                                                 "': tuning the deployed model is implemented for feature "
-                                                 "classifiers only; train it with its preset (no optimize)"};
     auto model = train_classifier(table, classifier.factory, o.params);
     if (!model) return model.error();
     FinalModel out;
@@ -313,15 +336,16 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     auto prepared = prepare_classifiers(registry, request.classifiers);
     if (!prepared) return fail(PipelineStage::classifiers, prepared.error());
     out.classifiers = std::move(prepared).value();
+    if (auto st = check_input_holds_trials(request.input, out.classifiers, request.prefixes.has_value()); !st)
+        return fail(PipelineStage::request, st.error());
     for (auto& c : out.classifiers) c.factory = stoppable(std::move(c.factory), request.options.stop);
     auto rows = load_feature_rows(request.input, request.features, 0, request.options.stop, request.recorded);
     if (!rows) return fail(PipelineStage::rows, rows.error());
     out.rows = std::move(rows).value();
     if (on_rows)
         if (auto st = on_rows(out.rows); !st) return fail(PipelineStage::rows, st.error());
-    std::error_code ec;
-    const auto dataset_dir =
-        std::filesystem::is_directory(request.input, ec) ? request.input : std::filesystem::path{};
+    // A features CSV passes as itself: what needs the trials was refused above, naming it.
+    const auto& dataset_dir = request.input;
     auto ev = evaluate_prepared(out.rows, dataset_dir, out.classifiers, request.options, request.inputs);
     if (!ev) return fail(PipelineStage::evaluation, ev.error());
     out.evaluation = std::move(ev).value();

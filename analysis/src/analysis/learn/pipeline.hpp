@@ -85,11 +85,18 @@ struct InputOptions {
 // (features::identification_channels), by column name.
 Result<std::vector<std::string>> series_channels(const DatasetInfo& info, const std::string& dataset);
 
+// What the input step can do with `input` (a dataset folder or a features
+// CSV), checked before any work: a series classifier and the prefix curves
+// need the recorded trials, which a features CSV does not hold. The error
+// names the input and the classifier (invalid_argument: a bad combination).
+Status check_input_holds_trials(const std::filesystem::path& input, const std::vector<PreparedClassifier>& classifiers,
+                                bool prefixes);
+
 // The input step for the classifiers' kinds: one table per kind present
 // (features first), the same trials in the same order. `dataset_dir` is the
-// dataset folder (empty when rows came from a features CSV, which has no
-// series to prepare: asking for series then is an error saying so). Trials
-// left out carry every reason (peak rule and series rule).
+// input the rows came from (a features CSV, or empty, has no series to
+// prepare: asking for series then is an error naming it). Trials left out
+// carry every reason (peak rule and series rule).
 Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& rows,
                                       const std::filesystem::path& dataset_dir,
                                       const std::vector<ClassifierInput>& kinds, const InputOptions& options);
@@ -100,8 +107,14 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
                                      const std::vector<PreparedClassifier>& classifiers,
                                      const EvaluationOptions& options, const InputOptions& input = {});
 
+// Whether fit_final_prepared can fit `classifier` with `options`, known
+// before any work (tuning is implemented for feature classifiers only).
+Status check_final_fit(const PreparedClassifier& classifier, const EvaluationOptions& options);
+
 // The model to deploy for one prepared classifier, trained on every trial the
-// input step selects (features: fit_final's rules, with options.optimize).
+// input step selects (features: fit_final's rules, with options.optimize;
+// series: the trials' prepared series, as the evaluation prepares them). One
+// home for `rollsense train` and rs.analyse's model, so both fit the same one.
 Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& rows,
                                       const std::filesystem::path& dataset_dir, const PreparedClassifier& classifier,
                                       const EvaluationOptions& options, const InputOptions& input = {});
@@ -124,8 +137,10 @@ struct PipelineResult {
 };
 
 // Where the pipeline stopped, so that commands can tell a wrong input or
-// plugin (configuration) from an evaluation that failed.
-enum class PipelineStage { classifiers, rows, evaluation };
+// plugin (configuration) from an evaluation that failed. `request`: the
+// request's parts do not go together (check_input_holds_trials), found
+// before any work.
+enum class PipelineStage { classifiers, request, rows, evaluation };
 
 // The whole pipeline. `on_rows` runs once the rows are read (print the
 // rejection summary, write features.csv); its error stops the pipeline.

@@ -94,10 +94,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
     if (auto st = check_fractions(options.fractions); !st) return st.error();
     if (classifiers.size() != ev.classifiers.size())
         return Error{ErrorCode::invalid_argument, "prefixes: the classifiers are not the evaluation's"};
-    std::error_code ec;
-    if (dataset_dir.empty() || !std::filesystem::is_directory(dataset_dir, ec))
-        return Error{ErrorCode::invalid_argument, "prefixes need the recorded trials, but '" + dataset_dir.string() +
-                                                      "' is not a dataset folder (a features CSV has no prefixes)"};
+    if (auto st = check_input_holds_trials(dataset_dir, {}, true); !st) return st.error();
     auto opened = open_series_dataset(dataset_dir);
     if (!opened) return opened.error();
     const DatasetReader& ds = opened->reader;

@@ -93,6 +93,13 @@ std::vector<learn::ClassifierSpec> classifier_specs_from(lua_State* L, int opts,
 //             cv="random"|"grouped,blocked", group_by=COLUMN, block=N (grouped/blocked CV beside
 //             random k-fold: learn/cv_scheme.hpp) }
 //             → summary table
+// accuracy_sd of the table on top: nil with one repetition (no spread, learn::has_spread).
+void set_sd(lua_State* L, double sd) {
+    if (!learn::has_spread(sd)) return;
+    lua_pushnumber(L, sd);
+    lua_setfield(L, -2, "accuracy_sd");
+}
+
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox()};
@@ -221,8 +228,7 @@ int l_analyse(lua_State* L) {
     lua_setfield(L, -2, "clean");
     lua_pushnumber(L, report->baseline.mean);
     lua_setfield(L, -2, "accuracy");
-    lua_pushnumber(L, report->baseline.sd);
-    lua_setfield(L, -2, "accuracy_sd");
+    set_sd(L, report->baseline.sd);
     lua_pushnumber(L, report->baseline.wilson.low);
     lua_setfield(L, -2, "interval_low");
     lua_pushnumber(L, report->baseline.wilson.high);
@@ -240,8 +246,7 @@ int l_analyse(lua_State* L) {
         lua_setfield(L, -2, "id");
         lua_pushnumber(L, sc.cv.mean);
         lua_setfield(L, -2, "accuracy");
-        lua_pushnumber(L, sc.cv.sd);
-        lua_setfield(L, -2, "accuracy_sd");
+        set_sd(L, sc.cv.sd);
         lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
     }
     lua_setfield(L, -2, "cv");
@@ -254,8 +259,7 @@ int l_analyse(lua_State* L) {
         lua_setfield(L, -2, "name");
         lua_pushnumber(L, c.baseline.mean);
         lua_setfield(L, -2, "accuracy");
-        lua_pushnumber(L, c.baseline.sd);
-        lua_setfield(L, -2, "accuracy_sd");
+        set_sd(L, c.baseline.sd);
         // With trials = "all": how it did on the trials the paper's peak rule refuses.
         if (const auto k = learn::paper_refused_first_repeat(evaluation, c); k.total > 0) {
             lua_pushinteger(L, static_cast<lua_Integer>(k.total));

@@ -31,7 +31,7 @@ std::string accuracy_rows(const learn::Evaluation& ev) {
     for (const auto& c : ev.classifiers) {
         const auto& b = c.baseline;
         h += "<tr>" + td(c.name) + td(params_text(c.params)) +
-             td(fixed(100.0 * b.mean, 1) + " \u00b1 " + fixed(100.0 * b.sd, 1) + "\u00a0%", true) +
+             td(mean_sd(b.mean, b.sd), true) +
              td(std::to_string(b.correct) + " of " + std::to_string(b.total), true) +
              td("[" + fixed(100.0 * b.wilson.low, 1) + ", " + fixed(100.0 * b.wilson.high, 1) + "]\u00a0%", true) +
              "</tr>\n";

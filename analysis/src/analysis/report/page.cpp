@@ -74,6 +74,14 @@ std::filesystem::path report_path(const ReportInputs& in) {
     return in.output.empty() ? in.dataset_dir / "report.html" : in.output;
 }
 
+learn::EvaluationFiles evaluation_files_of(const std::filesystem::path& page) {
+    const std::string stem = page.stem().string();
+    const std::string name = stem == "report"             ? std::string("evaluation")
+                             : stem.rfind("report-", 0) == 0 ? "evaluation" + stem.substr(6)
+                                                             : stem + "-evaluation";
+    return {page.parent_path() / (name + ".txt"), page.parent_path() / (name + ".json")};
+}
+
 Result<std::string> render_report(const ReportInputs& in) {
     auto dataset = DatasetReader::open(in.dataset_dir);
     if (!dataset) return dataset.error();
@@ -92,8 +100,7 @@ Result<std::string> render_report(const ReportInputs& in) {
     body += "<p class=\"lead\">Dataset <code>" + escape_xml(in.dataset_dir.string()) + "</code>, " +
             std::to_string(ev.trials) + " trials, " + std::to_string(ev.clean) + " clean. Figures and analyses of " +
             "the E-TRoll paper computed for this data.</p>\n";
-    body += "<p class=\"headline\" id=\"headline\">Accuracy " + fixed(100.0 * b.mean, 1) + " \u00b1 " +
-            fixed(100.0 * b.sd, 1) + "\u00a0% (" + escape_xml(ev.name) + ", " + std::to_string(b.repeats) +
+    body += "<p class=\"headline\" id=\"headline\">Accuracy " + mean_sd(b.mean, b.sd) + " (" + escape_xml(ev.name) + ", " + std::to_string(b.repeats) +
             " \u00d7 " + std::to_string(b.folds) + "-fold CV), 95\u00a0% interval " + fixed(100.0 * b.wilson.low, 1) +
             "\u2013" + fixed(100.0 * b.wilson.high, 1) + "\u00a0%; the paper: 90.5\u00a0%.</p>\n</header>\n";
     body += "<nav><ol><li><a href=\"#sec-accuracy\">Accuracy</a></li>" +

@@ -13,6 +13,7 @@
 #include "rollsense/status.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/paper_analysis.hpp"
+#include "analysis/learn/pipeline.hpp"
 
 namespace rollsense::report {
 
@@ -45,5 +46,11 @@ Result<std::filesystem::path> write_report(const ReportInputs& inputs);
 std::string text_summary(const ReportInputs& inputs);
 
 std::filesystem::path report_path(const ReportInputs& inputs);
+
+// The evaluation.txt and evaluation.json that go with a report page, beside
+// it: report.html → evaluation.txt/.json, report-NAME.html → evaluation-NAME.*
+// (rs.analyse's tag), any other PAGE.html → PAGE-evaluation.*. A report
+// written under another name never replaces another report's evaluation.
+learn::EvaluationFiles evaluation_files_of(const std::filesystem::path& page);
 
 }  // namespace rollsense::report

@@ -20,6 +20,14 @@ std::string pct(double fraction) {
     return buf;
 }
 
+// " +- 0.9" after a percentage, or " (one repetition: no spread)".
+std::string pm(double sd) {
+    if (!learn::has_spread(sd)) return std::string(" (") + learn::no_spread_text + ")";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, " +- %.1f", 100.0 * sd);
+    return buf;
+}
+
 }  // namespace
 
 std::string text_summary(const ReportInputs& in) {
@@ -31,13 +39,13 @@ std::string text_summary(const ReportInputs& in) {
     out += buf;
     out += "  " + learn::summarize_rejections(in.rows) + "\n";
     std::snprintf(buf, sizeof buf,
-                  "  accuracy %s +- %.1f (%s, %d x %d-fold CV), 95 %% interval %.1f-%.1f %%; paper 90.5 %%\n",
-                  pct(b.mean).c_str(), 100.0 * b.sd, ev.name.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
+                  "  accuracy %s%s (%s, %d x %d-fold CV), 95 %% interval %.1f-%.1f %%; paper 90.5 %%\n",
+                  pct(b.mean).c_str(), pm(b.sd).c_str(), ev.name.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
                   100.0 * b.wilson.high);
     out += buf;
     for (const auto& s : ev.scheme_cv) {
-        std::snprintf(buf, sizeof buf, "  %s: %s +- %.1f (%d x %d-fold, groups held out whole)\n",
-                      s.scheme.describe().c_str(), pct(s.cv.mean).c_str(), 100.0 * s.cv.sd, s.cv.repeats, s.cv.folds);
+        std::snprintf(buf, sizeof buf, "  %s: %s%s (%d x %d-fold, groups held out whole)\n",
+                      s.scheme.describe().c_str(), pct(s.cv.mean).c_str(), pm(s.cv.sd).c_str(), s.cv.repeats, s.cv.folds);
         out += buf;
     }
     if (ev.tuned) {
@@ -46,15 +54,15 @@ std::string text_summary(const ReportInputs& in) {
         out += buf;
     }
     if (ev.nested) {
-        std::snprintf(buf, sizeof buf, "  tuned, nested CV (honest): %s +- %.1f\n", pct(ev.nested->mean).c_str(),
-                      100.0 * ev.nested->sd);
+        std::snprintf(buf, sizeof buf, "  tuned, nested CV (honest): %s%s\n", pct(ev.nested->mean).c_str(),
+                      pm(ev.nested->sd).c_str());
         out += buf;
     }
     // Further classifiers of a comparison: their figure and the paired difference to the first.
     for (std::size_t i = 1; i < in.evaluation.classifiers.size(); ++i) {
         const auto& c = in.evaluation.classifiers[i];
-        std::snprintf(buf, sizeof buf, "  compared: %s %s +- %.1f", c.name.c_str(), pct(c.baseline.mean).c_str(),
-                      100.0 * c.baseline.sd);
+        std::snprintf(buf, sizeof buf, "  compared: %s %s%s", c.name.c_str(), pct(c.baseline.mean).c_str(),
+                      pm(c.baseline.sd).c_str());
         out += buf;
         for (const auto& p : in.evaluation.paired)
             if (p.a == 0 && p.b == i) {

@@ -27,11 +27,12 @@ std::string interval(const learn::Interval& i) {
     return "[" + fixed(100.0 * i.low, 1) + ", " + fixed(100.0 * i.high, 1) + "]\u00a0%";
 }
 
+}  // namespace
+
 std::string mean_sd(double mean, double sd) {
+    if (!learn::has_spread(sd)) return fixed(100.0 * mean, 1) + "\u00a0% (" + learn::no_spread_text + ")";
     return fixed(100.0 * mean, 1) + " \u00b1 " + fixed(100.0 * sd, 1) + "\u00a0%";
 }
-
-}  // namespace
 
 std::string format_param(const ParamValue& value) {
     return std::visit(

@@ -28,5 +28,8 @@ std::string protocol_table(const learn::EvaluationReport& report);
 std::string key_value_table(const KeyValues& entries);
 
 std::string format_param(const ParamValue& value);
+// "74.9 ± 0.9 %" (fractions in, percent out), or with one repetition
+// "74.9 % (one repetition: no spread)" (learn::has_spread).
+std::string mean_sd(double mean, double sd);
 
 }  // namespace rollsense::report
