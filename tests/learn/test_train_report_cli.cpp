@@ -125,7 +125,7 @@ TEST_CASE("a features CSV where the recorded trials are needed is refused first 
     const auto csv = dir / "f.csv";
     auto r = run_rollsense("features " + (dir / "dataset").string() + " -o " + csv.string());
     REQUIRE(r.status == 0);
-    for (const std::string command :
+    for (const std::string& command :
          {"evaluate " + csv.string() + " --prefixes --set learners=3",
           "evaluate " + csv.string() + " --classifier minirocket",
           "evaluate " + csv.string() + " --classifier bagged_trees,minirocket",

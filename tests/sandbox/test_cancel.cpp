@@ -9,10 +9,13 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
+#include <thread>
 
 #include "rollsense/last_resort.hpp"
 
+#include "analysis/lua/slice_guard.hpp"
 #include "limited_child.hpp"
 
 using namespace rollsense;
@@ -223,4 +226,54 @@ local x <close> = setmetatable({}, { __close = function() end })
 )");
     INFO(r.text);
     CHECK(r.text == "ok");
+}
+
+// Review (sandbox) item 1: one C function the hook never interrupts, e.g.
+// table.move over 2^62 slots, ran past --slice-limit-ms and --time-limit for
+// ever, with no control period meanwhile; only Ctrl-C ended it. The watchdog
+// now ends a slice that outlasts the slice limit plus its grace.
+namespace {
+sandbox_test::ChildResult run_with_watchdog(kt::TempDir& dir, const std::string& script, lua_CFunction extra = nullptr) {
+    auto o = kt::options_for(dir, script);
+    o.sandbox.max_slice_ms = 100;
+    o.sandbox.cancel_grace_ms = 300;
+    return sandbox_test::run_limited(sandbox_test::kTwoGiB, 60, [&] {
+        runtime::Session session(o);
+        if (auto s = session.prepare(); !s.ok()) return s.message();
+        if (extra) {
+            lua_State* L = session.sandbox().state();
+            lua_rawgeti(L, LUA_REGISTRYINDEX, session.sandbox().env_ref());
+            lua_pushcfunction(L, extra);
+            lua_setfield(L, -2, "long_work");
+            lua_pop(L, 1);
+        }
+        const auto s = session.run().status;
+        return s.ok() ? std::string("ok") : s.message();
+    });
+}
+// Long C++ work done for the script, out of its slice as rs.analyse's is.
+int l_long_work(lua_State* L) {
+    runtime::lua_api::SliceGuard guard{runtime::Session::of(L).sandbox()};
+    std::this_thread::sleep_for(std::chrono::milliseconds(900));
+    return 0;
+}
+}  // namespace
+
+TEST_CASE("a script stuck in one C call past the slice limit is ended by the watchdog, the hand made safe",
+          "[sandbox][watchdog]") {
+    kt::TempDir dir;
+    auto r = run_with_watchdog(dir, "table.move({}, 1, 1 << 62, 1, {})\n");
+    INFO(r.text);
+    REQUIRE(r.exited);  // not killed by the alarm: it used to run for centuries
+    const auto info = kt::read_file(dir / "out" / "run-info.csv");
+    CHECK_THAT(info, Catch::Contains("ms in one call no hook reaches") && Catch::Contains("past --slice-limit-ms") &&
+                         Catch::Contains("the watchdog made the hand safe"));
+}
+
+TEST_CASE("long C++ work a binding does for the script (SliceGuard) is not ended by the watchdog", "[sandbox][watchdog]") {
+    kt::TempDir dir;
+    auto r = run_with_watchdog(dir, "long_work()\nlong_work()\n", l_long_work);
+    INFO(r.text);
+    REQUIRE(r.exited);
+    CHECK(r.text == "ok");  // 1.8 s of work against a 100 ms slice limit and 300 ms grace
 }

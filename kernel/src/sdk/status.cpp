@@ -34,14 +34,9 @@ Status Status::with_context(std::string_view context) && {
     return std::move(*this);
 }
 
-std::string_view to_string(LifecycleState state) noexcept {
-    switch (state) {
-        case LifecycleState::unconfigured: return "unconfigured";
-        case LifecycleState::inactive: return "inactive";
-        case LifecycleState::active: return "active";
-        case LifecycleState::error: return "error";
-    }
-    return "?";
+std::string_view to_string(LifecycleState state) noexcept {  // in the enum's order (component.hpp)
+    constexpr std::string_view names[] = {"unconfigured", "inactive", "active", "error"};
+    return static_cast<std::size_t>(state) < std::size(names) ? names[static_cast<std::size_t>(state)] : "?";
 }
 
 std::string_view to_string(ControlMode mode) noexcept {

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "rollsense/log.hpp"
+#include "analysis/lua/slice_guard.hpp"
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/prefix_evaluation.hpp"
 #include "runtime/lua/api_internal.hpp"
@@ -67,8 +68,10 @@ int l_prefix_models(lua_State* L) {
         if (!amp) raise_status(L, Status(amp.error()).with_context("rs.prefix_models"));
         inputs.series.amplitude = *amp;
     }
-    auto trained = learn::train_prefix_models(dataset, prepared->front(), inputs, fractions);
-    s.sandbox().start_slice();  // long C++ work does not count against the no-wait watchdog
+    auto trained = [&] {
+        SliceGuard guard{s.sandbox()};
+        return learn::train_prefix_models(dataset, prepared->front(), inputs, fractions);
+    }();
     check(L, trained.status());
 
     lua_newtable(L);

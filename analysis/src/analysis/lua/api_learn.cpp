@@ -16,6 +16,7 @@
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 #include "analysis/lua/prediction_observer.hpp"
+#include "analysis/lua/slice_guard.hpp"
 #include "analysis/lua/unfinished_analysis.hpp"
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
@@ -48,11 +49,6 @@ std::optional<std::filesystem::path>& analysis_under_way() {
     return dataset;
 }
 
-// Long C++ work does not count against the script's no-wait watchdog.
-struct SliceGuard {
-    Sandbox& sandbox;
-    ~SliceGuard() { sandbox.start_slice(); }
-};
 
 // The classifier list of rs.analyse: `classifiers = {"a", "b:learners=10"}`
 // or the single `classifier = "a"`; entries as on the command line.

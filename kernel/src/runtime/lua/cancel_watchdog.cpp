@@ -43,13 +43,19 @@ void CancelWatchdog::watch() {
             last_resort_("interrupted three times: the watchdog made the hand safe and ended the run");
             return;
         }
+        const std::int64_t t = now_ms(), in_lua = sandbox_.in_lua_since_ms();
+        // One call the hook cannot interrupt (table.move over 2^62 slots) outlasting the slice limit: no
+        // control period runs meanwhile, and neither the slice limit nor the time budget ever fires.
+        if (in_lua != 0 && static_cast<double>(t - in_lua) > sandbox_.limits().max_slice_ms + grace_ms_) {
+            last_resort_("the script spent " + std::to_string(t - in_lua) + " ms in one call no hook reaches (a C function "
+                         "on a huge input?), past --slice-limit-ms: the watchdog made the hand safe and ended the run");
+            return;
+        }
         if (!sandbox_.cancelled() && !interrupt_.load()) {
             cancel_seen = 0;  // cleared (cleanup runs on a fresh cancel)
             continue;
         }
-        const std::int64_t t = now_ms();
         if (cancel_seen == 0) cancel_seen = t;
-        const std::int64_t in_lua = sandbox_.in_lua_since_ms();
         if (in_lua == 0) continue;  // the scheduler has control: the cancel is being acted on
         if (static_cast<double>(t - std::max(cancel_seen, in_lua)) > grace_ms_) {
             last_resort_("the script did not stop within " + std::to_string(static_cast<long>(grace_ms_)) +
