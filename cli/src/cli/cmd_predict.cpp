@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,10 @@ sample rate than the training dataset's, a feature outside the range seen in
 training, or a recorded object that is not a class of the model. The model file
 holds none of these, so they come from the training run's dataset-info.csv and
 features.csv, looked for beside MODEL (a stock run's output folder) or in
---training DIR; what cannot be checked is said once on stderr.
+--training DIR; what cannot be checked is said once on stderr. The training
+data's classes (its features.csv's clean trials) must be the model's: a
+--training DIR of other classes is the wrong dataset (exit 2); MODEL's folder of
+other classes is not used.
 
 options:
   --classifier NAME  the plugin that reads MODEL; default: the one the model
@@ -54,8 +58,9 @@ options:
                      bagged_trees)
   --json             print a JSON array, one object per trial:
                      {trial_id, object, class, scores, reason, warnings}
-  --training DIR     folder with the training run's dataset-info.csv and
-                     features.csv (default: MODEL's folder)
+  --training DIR     the training run's dataset folder, with its
+                     dataset-info.csv and features.csv (default: MODEL's
+                     folder); a folder that is not a dataset is refused
   --plugin-path DIR  search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features')";
 
@@ -72,6 +77,7 @@ struct TrainingDescription {
     std::optional<DatasetInfo> info;  // dataset-info.csv
     // Per feature, min and max over the clean training trials (features.csv).
     std::optional<std::array<std::pair<double, double>, features::kFeatureCount>> range;
+    std::set<std::string> classes;     // the objects of its clean trials (features.csv): the model's classes
     std::vector<std::string> missing;  // what could not be found, for the note on stderr
 };
 
@@ -145,6 +151,7 @@ TrainingDescription describe_training(const fs::path& dir) {
             for (const auto& row : *rows) {
                 if (!row.clean) continue;
                 any = true;
+                t.classes.insert(row.object);
                 for (std::size_t f = 0; f < features::kFeatureCount; ++f) {
                     r[f].first = std::min(r[f].first, row.values[f]);
                     r[f].second = std::max(r[f].second, row.values[f]);
@@ -165,6 +172,16 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
     std::string out;
     for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
     return out;
+}
+
+// The model's classes are the objects of the training run's clean trials: a
+// folder whose features.csv has others holds another dataset, and its channels
+// and feature ranges would blame every trial. What differs, or nothing.
+std::optional<std::string> other_classes(const TrainingDescription& t, const std::vector<std::string>& model_classes) {
+    const std::set<std::string> model(model_classes.begin(), model_classes.end());
+    if (t.classes.empty() || t.classes == model) return std::nullopt;
+    return "its clean trials are of " + join({t.classes.begin(), t.classes.end()}, ", ") + ", the model's classes " +
+           join(model_classes, ", ");
 }
 
 // Warnings that hold for every trial of the input: channels and sample rate.
@@ -363,15 +380,28 @@ int run(const std::vector<std::string>& argv) {
     }
     auto clf = (*factory)(ParamSet{});
     if (!clf) return fail(clf.error(), kExitConfig);
-    if (auto st = (*clf)->load(model); !st) return fail(Status(st).with_context("classifier '" + plugin + "'").error(), kExitConfig);
+    if (auto st = (*clf)->load(model); !st) return fail(st.error(), kExitConfig);  // the error names the plugin
     const auto classes = (*clf)->class_names();
 
     auto input = open_input(pos[1]);
     if (!input) return fail(input.error(), kExitConfig);
 
-    const fs::path training_dir = args.option("--training").empty() ? fs::absolute(model).parent_path()
-                                                                     : fs::path(args.option("--training"));
-    const TrainingDescription training = describe_training(training_dir);
+    const auto named_training = args.options("--training");  // an existing folder (Args)
+    const fs::path training_dir = named_training.empty() ? fs::absolute(model).parent_path()
+                                                         : fs::path(named_training.back());
+    TrainingDescription training = describe_training(training_dir);
+    if (!named_training.empty() && !training.info)
+        throw UsageError("--training " + training_dir.string() + " is not a dataset folder (" +
+                         training.missing.front() +
+                         "): give the output folder of the run the model was trained on, or leave the option out");
+    if (auto other = other_classes(training, classes)) {
+        if (!named_training.empty())
+            throw UsageError("--training " + training_dir.string() + " is not the dataset " + model.string() +
+                             " was trained on: " + *other + "; give that run's output folder");
+        training = TrainingDescription{};  // MODEL's folder: not the training data, so nothing is checked against it
+        training.dir = training_dir;
+        training.missing.push_back("it holds another dataset (" + *other + ")");
+    }
     if (!training.missing.empty())
         std::fprintf(stderr, "rollsense predict: not checked against the training data, in %s: %s\n",
                      training_dir.c_str(), join(training.missing, "; ").c_str());
