@@ -47,10 +47,10 @@ sample rate than the training dataset's, a feature outside the range seen in
 training, or a recorded object that is not a class of the model. The model file
 holds none of these, so they come from the training run's dataset-info.csv and
 features.csv, looked for beside MODEL (a stock run's output folder) or in
---training DIR; what cannot be checked is said once on stderr. The training
-data's classes (its features.csv's clean trials) must be the model's: a
---training DIR of other classes is the wrong dataset (exit 2); MODEL's folder of
-other classes is not used.
+--training DIR; what cannot be checked is said once on stderr. The objects of
+the training data's clean trials (features.csv) must be the model's classes (a
+series model's are among its trials' objects): a --training DIR of other
+objects is the wrong dataset (exit 2); MODEL's folder of others is not used.
 
 options:
   --classifier NAME  the plugin that reads MODEL; default: the one the model
@@ -77,7 +77,9 @@ struct TrainingDescription {
     std::optional<DatasetInfo> info;  // dataset-info.csv
     // Per feature, min and max over the clean training trials (features.csv).
     std::optional<std::array<std::pair<double, double>, features::kFeatureCount>> range;
-    std::set<std::string> classes;     // the objects of its clean trials (features.csv): the model's classes
+    // The objects of its trials and of its clean trials (features.csv): a
+    // feature model's classes are the latter, a series model's among the former.
+    std::set<std::string> objects, clean_objects;
     std::vector<std::string> missing;  // what could not be found, for the note on stderr
 };
 
@@ -149,9 +151,10 @@ TrainingDescription describe_training(const fs::path& dir) {
             r.fill({INFINITY, -INFINITY});
             bool any = false;
             for (const auto& row : *rows) {
+                t.objects.insert(row.object);
                 if (!row.clean) continue;
                 any = true;
-                t.classes.insert(row.object);
+                t.clean_objects.insert(row.object);
                 for (std::size_t f = 0; f < features::kFeatureCount; ++f) {
                     r[f].first = std::min(r[f].first, row.values[f]);
                     r[f].second = std::max(r[f].second, row.values[f]);
@@ -174,14 +177,20 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
     return out;
 }
 
-// The model's classes are the objects of the training run's clean trials: a
-// folder whose features.csv has others holds another dataset, and its channels
-// and feature ranges would blame every trial. What differs, or nothing.
-std::optional<std::string> other_classes(const TrainingDescription& t, const std::vector<std::string>& model_classes) {
+// A feature model's classes are the objects of the training run's clean trials
+// (a series model's, objects it recorded: the series rule is not the peaks'): a
+// folder whose features.csv says otherwise holds another dataset, and its
+// channels and feature ranges would blame every trial. What differs, or nothing.
+std::optional<std::string> other_classes(const TrainingDescription& t, const std::vector<std::string>& model_classes,
+                                         ClassifierInput input) {
     const std::set<std::string> model(model_classes.begin(), model_classes.end());
-    if (t.classes.empty() || t.classes == model) return std::nullopt;
-    return "its clean trials are of " + join({t.classes.begin(), t.classes.end()}, ", ") + ", the model's classes " +
-           join(model_classes, ", ");
+    const auto& trained = input == ClassifierInput::features ? t.clean_objects : t.objects;
+    const bool same = input == ClassifierInput::features ? trained == model
+                                                         : std::includes(trained.begin(), trained.end(), model.begin(),
+                                                                         model.end());
+    if (trained.empty() || same) return std::nullopt;
+    return std::string(input == ClassifierInput::features ? "its clean trials are of " : "its trials are of ") +
+           join({trained.begin(), trained.end()}, ", ") + ", the model's classes " + join(model_classes, ", ");
 }
 
 // Warnings that hold for every trial of the input: channels and sample rate.
@@ -394,7 +403,7 @@ int run(const std::vector<std::string>& argv) {
         throw UsageError("--training " + training_dir.string() + " is not a dataset folder (" +
                          training.missing.front() +
                          "): give the output folder of the run the model was trained on, or leave the option out");
-    if (auto other = other_classes(training, classes)) {
+    if (auto other = other_classes(training, classes, (*clf)->input())) {
         if (!named_training.empty())
             throw UsageError("--training " + training_dir.string() + " is not the dataset " + model.string() +
                              " was trained on: " + *other + "; give that run's output folder");
