@@ -197,7 +197,7 @@ TEST_CASE("predict refuses a --training folder that is missing, not a dataset or
     const auto empty = run_rollsense("predict " + model + " " + trial + " --training " + shell_quoted(dir / "empty"));
     INFO(empty.output);
     CHECK(empty.status == 2);
-    CHECK(empty.output.find("--training " + (dir / "empty").string() + " is not a dataset folder (no dataset-info.csv") !=
+    CHECK(empty.output.find("--training " + (dir / "empty").string() + " is not a dataset folder (it has no dataset-info.csv)") !=
           std::string::npos);
 
     // Another run, of two of the nine objects: its clean trials are not the model's classes.

@@ -401,7 +401,8 @@ int run(const std::vector<std::string>& argv) {
     TrainingDescription training = describe_training(training_dir);
     if (!named_training.empty() && !training.info)
         throw UsageError("--training " + training_dir.string() + " is not a dataset folder (" +
-                         training.missing.front() +
+                         (fs::exists(training_dir / "dataset-info.csv") ? training.missing.front()
+                                                                        : std::string("it has no dataset-info.csv")) +
                          "): give the output folder of the run the model was trained on, or leave the option out");
     if (auto other = other_classes(training, classes, (*clf)->input())) {
         if (!named_training.empty())
