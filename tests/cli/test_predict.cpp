@@ -178,3 +178,49 @@ TEST_CASE("predict's errors name the model, the plugin and the way out") {
     CHECK(empty.output.find("empty.rsm: the model file is empty") != std::string::npos);
     CHECK(empty.output.find("--classifier") == std::string::npos);
 }
+
+// Review: `--training nosuch` exited 0 with only "not checked ... no
+// dataset-info.csv"; `--training` of another dataset blamed every trial
+// ("channel set differs", "F1 outside the training range").
+TEST_CASE("predict refuses a --training folder that is missing, not a dataset or another dataset (2)") {
+    const fs::path run = fixture();
+    TempDir dir("rollsense-cli-predict");
+    const std::string model = shell_quoted(run / "trained.rsm");
+    const std::string trial = shell_quoted(run / "trials" / "C1-v10-r001.csv");
+
+    const auto nosuch = run_rollsense("predict " + model + " " + trial + " --training " + shell_quoted(dir / "nosuch"));
+    INFO(nosuch.output);
+    CHECK(nosuch.status == 2);
+    CHECK(nosuch.output.find("--training " + (dir / "nosuch").string() + ": no such folder") != std::string::npos);
+
+    fs::create_directories(dir / "empty");
+    const auto empty = run_rollsense("predict " + model + " " + trial + " --training " + shell_quoted(dir / "empty"));
+    INFO(empty.output);
+    CHECK(empty.status == 2);
+    CHECK(empty.output.find("--training " + (dir / "empty").string() + " is not a dataset folder (it has no dataset-info.csv)") !=
+          std::string::npos);
+
+    // Another run, of two of the nine objects: its clean trials are not the model's classes.
+    const fs::path other = dir / "other";
+    const auto rec = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua") +
+                                   " --set runs=1 --set objects=C1,P1 --set analyse=false --seed 12 --no-progress -q --out " +
+                                   shell_quoted(other));
+    REQUIRE(rec.status == 0);
+    REQUIRE(run_rollsense("features " + shell_quoted(other) + " -o " + shell_quoted(other / "features.csv")).status == 0);
+    const auto wrong = run_rollsense("predict " + model + " " + trial + " --training " + shell_quoted(other));
+    INFO(wrong.output);
+    CHECK(wrong.status == 2);
+    CHECK(wrong.output.find("--training " + other.string() + " is not the dataset " + (run / "trained.rsm").string() +
+                            " was trained on: its clean trials are of C1, P1, the model's classes C1, C2, ") !=
+          std::string::npos);
+    CHECK(wrong.output.find("outside the training range") == std::string::npos);
+
+    // A model beside another dataset (its default --training): that dataset is not used to blame the trials.
+    fs::copy_file(run / "trained.rsm", other / "model.rsm");
+    const auto beside = run_rollsense("predict " + shell_quoted(other / "model.rsm") + " " + trial);
+    INFO(beside.output);
+    CHECK(beside.status == 0);
+    CHECK(beside.output.find("not checked against the training data, in " + other.string() +
+                             ": it holds another dataset (its clean trials are of C1, P1") != std::string::npos);
+    CHECK(beside.output.find("warning") == std::string::npos);
+}

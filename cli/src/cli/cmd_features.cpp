@@ -2,6 +2,8 @@
 // clean/rejected decision and its reason, as a CSV for MATLAB and pandas.
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <utility>
 
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
@@ -26,16 +28,17 @@ readtable(FILE); pandas: pd.read_csv(FILE).
 
 options (defaults reproduce the paper):
   -o, --output FILE        the features CSV to write (required)
-  --smoothing-factor F     MATLAB SmoothingFactor (0.05)
-  --window W               fixed Gaussian window in samples instead of MATLAB's heuristic
+  --smoothing-factor F     MATLAB SmoothingFactor, in [0, 1] (0.05)
+  --window W               fixed Gaussian window in samples (a whole number from 1 to 10000)
+                           instead of MATLAB's heuristic
   --window-scope S         per_channel (default) or shared (one window from the 3-channel matrix)
-  --peak-fraction P        a peak ends below this fraction of its maximum (0.05)
-  --min-amplitude A        a valid peak's maximum must exceed this (0.01)
+  --peak-fraction P        a peak ends below this fraction of its maximum, in (0, 1) (0.05)
+  --min-amplitude A        a valid peak's maximum must exceed this, a number >= 0 (0.01)
   --allow-incomplete       accept peaks cut off by the start or end of the recording
   --half-width RULE        outermost (default) or contiguous 50 % crossings
   --time-base B            samples (default) or timestamps
   --interpolate            sub-sample interpolation of the 5 % and 50 % crossings
-  --threads N              extraction threads (0 = all cores; results do not depend on it))";
+  --threads N              extraction threads, 0 to 4096 (0 = all cores; results do not depend on it))";
 
 double number_option(const Args& args, std::string_view name, double fallback) {
     const std::string v = args.option(name);
@@ -50,13 +53,22 @@ double number_option(const Args& args, std::string_view name, double fallback) {
     }
 }
 
+// The option that sets each number feature_settings_from checks.
+constexpr std::pair<std::string_view, std::string_view> kSettingOptions[] = {
+    {"smoothing_factor", "--smoothing-factor"},
+    {"smoothing_window", "--window"},
+    {"peak_fraction", "--peak-fraction"},
+    {"min_amplitude", "--min-amplitude"},
+};
+
 }  // namespace
 
-// Shared with evaluate and train: the feature settings from the command line.
+// Shared with evaluate, train, report and predict: the feature settings from the command line.
 features::FeatureSettings feature_settings_from_args(const Args& args) {
     features::FeatureSettings s;
     s.smoothing_factor = number_option(args, "--smoothing-factor", s.smoothing_factor);
-    s.smoothing_window = static_cast<int>(number_option(args, "--window", s.smoothing_window));
+    // Left out = MATLAB's heuristic (smoothing_window 0), so a given window is at least 1.
+    s.smoothing_window = static_cast<int>(args.unsigned_option("--window", 0, 1, features::kMaxSmoothingWindow));
     s.peak_fraction = number_option(args, "--peak-fraction", s.peak_fraction);
     s.min_amplitude = number_option(args, "--min-amplitude", s.min_amplitude);
     s.require_complete_peak = !args.flag("--allow-incomplete");
@@ -74,7 +86,13 @@ features::FeatureSettings feature_settings_from_args(const Args& args) {
         s.time_base = v == "timestamps" ? features::TimeBase::timestamps : features::TimeBase::samples;
     }
     auto checked = features::feature_settings_from(features::to_params(s));
-    if (!checked) throw UsageError(checked.error().message);
+    if (!checked) {
+        // The check names the setting first: say the option instead.
+        std::string message = checked.error().message;
+        for (const auto& [setting, option] : kSettingOptions)
+            if (message.rfind(setting, 0) == 0) message = std::string(option) + message.substr(setting.size());
+        throw UsageError(message);
+    }
     return s;
 }
 
@@ -105,7 +123,7 @@ int run(const std::vector<std::string>& argv) {
     const std::string out = args.option("--output", "-o");
     if (out.empty()) throw UsageError("-o FILE is required: where to write the features CSV");
     const auto settings = feature_settings_from_args(args);
-    const auto threads = static_cast<unsigned>(number_option(args, "--threads", 0));
+    const auto threads = static_cast<unsigned>(args.unsigned_option("--threads", 0, 0, 4096));
     if (int rc = check_output_files("features", pos[0], {out}); rc != kExitOk) return rc;
 
     std::error_code ec;

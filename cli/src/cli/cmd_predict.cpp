@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,10 @@ sample rate than the training dataset's, a feature outside the range seen in
 training, or a recorded object that is not a class of the model. The model file
 holds none of these, so they come from the training run's dataset-info.csv and
 features.csv, looked for beside MODEL (a stock run's output folder) or in
---training DIR; what cannot be checked is said once on stderr.
+--training DIR; what cannot be checked is said once on stderr. The objects of
+the training data's clean trials (features.csv) must be the model's classes (a
+series model's are among its trials' objects): a --training DIR of other
+objects is the wrong dataset (exit 2); MODEL's folder of others is not used.
 
 options:
   --classifier NAME  the plugin that reads MODEL; default: the one the model
@@ -54,8 +58,9 @@ options:
                      bagged_trees)
   --json             print a JSON array, one object per trial:
                      {trial_id, object, class, scores, reason, warnings}
-  --training DIR     folder with the training run's dataset-info.csv and
-                     features.csv (default: MODEL's folder)
+  --training DIR     the training run's dataset folder, with its
+                     dataset-info.csv and features.csv (default: MODEL's
+                     folder); a folder that is not a dataset is refused
   --plugin-path DIR  search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features')";
 
@@ -72,6 +77,9 @@ struct TrainingDescription {
     std::optional<DatasetInfo> info;  // dataset-info.csv
     // Per feature, min and max over the clean training trials (features.csv).
     std::optional<std::array<std::pair<double, double>, features::kFeatureCount>> range;
+    // The objects of its trials and of its clean trials (features.csv): a
+    // feature model's classes are the latter, a series model's among the former.
+    std::set<std::string> objects, clean_objects;
     std::vector<std::string> missing;  // what could not be found, for the note on stderr
 };
 
@@ -143,8 +151,10 @@ TrainingDescription describe_training(const fs::path& dir) {
             r.fill({INFINITY, -INFINITY});
             bool any = false;
             for (const auto& row : *rows) {
+                t.objects.insert(row.object);
                 if (!row.clean) continue;
                 any = true;
+                t.clean_objects.insert(row.object);
                 for (std::size_t f = 0; f < features::kFeatureCount; ++f) {
                     r[f].first = std::min(r[f].first, row.values[f]);
                     r[f].second = std::max(r[f].second, row.values[f]);
@@ -165,6 +175,22 @@ std::string join(const std::vector<std::string>& v, const char* sep) {
     std::string out;
     for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
     return out;
+}
+
+// A feature model's classes are the objects of the training run's clean trials
+// (a series model's, objects it recorded: the series rule is not the peaks'): a
+// folder whose features.csv says otherwise holds another dataset, and its
+// channels and feature ranges would blame every trial. What differs, or nothing.
+std::optional<std::string> other_classes(const TrainingDescription& t, const std::vector<std::string>& model_classes,
+                                         ClassifierInput input) {
+    const std::set<std::string> model(model_classes.begin(), model_classes.end());
+    const auto& trained = input == ClassifierInput::features ? t.clean_objects : t.objects;
+    const bool same = input == ClassifierInput::features ? trained == model
+                                                         : std::includes(trained.begin(), trained.end(), model.begin(),
+                                                                         model.end());
+    if (trained.empty() || same) return std::nullopt;
+    return std::string(input == ClassifierInput::features ? "its clean trials are of " : "its trials are of ") +
+           join({trained.begin(), trained.end()}, ", ") + ", the model's classes " + join(model_classes, ", ");
 }
 
 // Warnings that hold for every trial of the input: channels and sample rate.
@@ -363,15 +389,29 @@ int run(const std::vector<std::string>& argv) {
     }
     auto clf = (*factory)(ParamSet{});
     if (!clf) return fail(clf.error(), kExitConfig);
-    if (auto st = (*clf)->load(model); !st) return fail(Status(st).with_context("classifier '" + plugin + "'").error(), kExitConfig);
+    if (auto st = (*clf)->load(model); !st) return fail(st.error(), kExitConfig);  // the error names the plugin
     const auto classes = (*clf)->class_names();
 
     auto input = open_input(pos[1]);
     if (!input) return fail(input.error(), kExitConfig);
 
-    const fs::path training_dir = args.option("--training").empty() ? fs::absolute(model).parent_path()
-                                                                     : fs::path(args.option("--training"));
-    const TrainingDescription training = describe_training(training_dir);
+    const auto named_training = args.options("--training");  // an existing folder (Args)
+    const fs::path training_dir = named_training.empty() ? fs::absolute(model).parent_path()
+                                                         : fs::path(named_training.back());
+    TrainingDescription training = describe_training(training_dir);
+    if (!named_training.empty() && !training.info)
+        throw UsageError("--training " + training_dir.string() + " is not a dataset folder (" +
+                         (fs::exists(training_dir / "dataset-info.csv") ? training.missing.front()
+                                                                        : std::string("it has no dataset-info.csv")) +
+                         "): give the output folder of the run the model was trained on, or leave the option out");
+    if (auto other = other_classes(training, classes, (*clf)->input())) {
+        if (!named_training.empty())
+            throw UsageError("--training " + training_dir.string() + " is not the dataset " + model.string() +
+                             " was trained on: " + *other + "; give that run's output folder");
+        training = TrainingDescription{};  // MODEL's folder: not the training data, so nothing is checked against it
+        training.dir = training_dir;
+        training.missing.push_back("it holds another dataset (" + *other + ")");
+    }
     if (!training.missing.empty())
         std::fprintf(stderr, "rollsense predict: not checked against the training data, in %s: %s\n",
                      training_dir.c_str(), join(training.missing, "; ").c_str());

@@ -26,7 +26,7 @@ bool split_equals(const std::string& arg, std::string_view name, std::string* va
 // Options whose every value names a folder that must exist, checked here, where
 // every command parses them: a mistyped folder would otherwise be searched,
 // found empty, and the run would go on with what the other folders hold.
-constexpr std::string_view kFolderOptions[] = {"--plugin-path"};
+constexpr std::string_view kFolderOptions[] = {"--plugin-path", "--training"};
 
 void check_folder(std::string_view option, const std::string& value) {
     std::error_code ec;

@@ -64,7 +64,7 @@ public:
     // Value of "--name VALUE" or "--name=VALUE"; empty if absent. Throws
     // UsageError if the option is present without a value.
     std::string option(std::string_view name, std::string_view short_name = {}) const;
-    // Every occurrence. A folder option (--plugin-path) is checked here for every
+    // Every occurrence. A folder option (--plugin-path, --training) is checked here for every
     // command: a value that is not an existing folder throws UsageError naming both.
     std::vector<std::string> options(std::string_view name) const;
     bool flag(std::string_view name) const;

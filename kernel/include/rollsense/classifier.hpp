@@ -51,7 +51,7 @@ using SearchSpace = std::vector<SearchDimension>;
 struct Prediction {
     int label = -1;
     std::string class_name;
-    std::vector<double> scores;  // one per class, summing to 1 (posterior estimate)
+    std::vector<double> scores;  // one per class, >= 0, summing to 1 (posterior estimate); the label's is the highest
 };
 
 class ROLLSENSE_API Classifier : public Component {

@@ -1,11 +1,13 @@
 // A classifier plugin as someone outside this repository might write it, whose
-// parameter `mode` chooses what its predictions get wrong, so that tests see
-// every command refuse them (a plugin error naming it) instead of writing them
-// into evaluation.json or printing them. mode 0 predicts honestly: the class of
-// the nearest training mean of the first feature, with scores summing to 1.
+// parameter `mode` chooses what its predictions get wrong, or where it throws,
+// so that tests see every command refuse them (a plugin error naming it)
+// instead of writing them into evaluation.json, printing them or ending with an
+// "unexpected error". mode 0 predicts honestly: the class of the nearest
+// training mean of the first feature, with scores summing to 1.
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <stdexcept>
 
 #include "rollsense/plugin.hpp"
 
@@ -14,7 +16,10 @@ using namespace rollsense;
 
 ParamSchema odd_scores_schema() {
     return {param_int("mode", std::int64_t{0},
-                      "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99; 4 a wrong class name", 0, 4)};
+                      "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99; 4 a wrong class "
+                      "name; 5 a score of 7; 6 a negative score; 7 the highest score not the label's; 8 throws in "
+                      "predict; 9 throws in train; 10 throws in load",
+                      0, 10)};
 }
 
 class OddScores final : public Classifier {
@@ -24,6 +29,7 @@ public:
         return {};
     }
     Status train(const FeatureTable& data) override {
+        if (mode_ == 9) throw std::runtime_error("boom in train");
         classes_ = data.class_names;
         means_.assign(classes_.size(), 0.0);
         std::vector<double> counts(classes_.size(), 0.0);
@@ -48,6 +54,13 @@ public:
         if (mode_ == 2) p.scores = {0.0, 1.0};
         if (mode_ == 3) p.label = 99;
         if (mode_ == 4) p.class_name = "not-a-class";
+        if (mode_ == 5) p.scores[best] = 7.0;
+        if (mode_ == 6) {
+            p.scores[best] = 1.5;
+            p.scores[(best + 1) % p.scores.size()] = -0.5;
+        }
+        if (mode_ == 7) std::swap(p.scores[best], p.scores[(best + 1) % p.scores.size()]);
+        if (mode_ == 8) throw std::runtime_error("boom in predict");
         return p;
     }
     std::vector<std::string> class_names() const override { return classes_; }
@@ -63,6 +76,7 @@ public:
         double mean = 0;
         if (!(in >> name >> key >> mode_) || name != "rollsense-test-odd-scores")
             return {ErrorCode::parse_error, file.string() + ": not a test_odd_scores model"};
+        if (mode_ == 10) throw std::runtime_error("boom in load");
         classes_.clear();
         means_.clear();
         while (in >> name >> mean) {

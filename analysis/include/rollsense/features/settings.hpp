@@ -38,7 +38,15 @@ struct FeatureSettings {
     bool operator==(const FeatureSettings&) const = default;
 };
 
+// The longest fixed window (samples): longer than any recording, and an int
+// whatever the platform.
+inline constexpr int kMaxSmoothingWindow = 10000;
+
 // The settings as a parameter schema (for profiles, Lua and the CLI) and back.
+// feature_settings_from is the one check of the values: smoothing_factor in
+// [0, 1], smoothing_window in [0, kMaxSmoothingWindow], peak_fraction in (0, 1),
+// min_amplitude finite and >= 0 (NaN refused); the error names the setting
+// first ("peak_fraction must be ...").
 ParamSchema feature_settings_schema();
 Result<FeatureSettings> feature_settings_from(const ParamSet& params);
 ParamSet to_params(const FeatureSettings& settings);

@@ -1,5 +1,9 @@
 #include "rollsense/features/settings.hpp"
 
+#include <cmath>
+
+#include "rollsense/csv.hpp"
+
 namespace rollsense::features {
 
 std::string_view to_string(WindowScope scope) noexcept {
@@ -16,7 +20,8 @@ ParamSchema feature_settings_schema() {
         param_number("smoothing_factor", d.smoothing_factor,
                      "MATLAB smoothdata 'SmoothingFactor' (window chosen from each series' spectrum)", 0.0, 1.0),
         param_int("smoothing_window", d.smoothing_window,
-                  "fixed Gaussian window in samples; 0 = derive it from the data like MATLAB", 0, 10000, "samples"),
+                  "fixed Gaussian window in samples; 0 = derive it from the data like MATLAB", 0, kMaxSmoothingWindow,
+                  "samples"),
         param_string("window_scope", std::string(to_string(d.window_scope)),
                      "compute the window per channel or once from the 3-channel matrix", {"per_channel", "shared"}),
         param_number("peak_fraction", d.peak_fraction, "a peak extends while the reading is >= this fraction of its max",
@@ -34,11 +39,26 @@ ParamSchema feature_settings_schema() {
     };
 }
 
+namespace {
+Error refused(const char* setting, const char* range, double value) {
+    return {ErrorCode::invalid_argument,
+            std::string(setting) + " must be " + range + ", got " + csv::format_number(value)};
+}
+}  // namespace
+
 Result<FeatureSettings> feature_settings_from(const ParamSet& p) {
     try {
         FeatureSettings s;
         if (p.has("smoothing_factor")) s.smoothing_factor = p.get_number("smoothing_factor");
-        if (p.has("smoothing_window")) s.smoothing_window = static_cast<int>(p.get_int("smoothing_window"));
+        if (p.has("smoothing_window")) {
+            const auto w = p.get_int("smoothing_window");
+            if (w < 0 || w > kMaxSmoothingWindow)
+                return Error{ErrorCode::invalid_argument, "smoothing_window must be a whole number of samples from 0 "
+                                                          "(MATLAB's heuristic) to " +
+                                                              std::to_string(kMaxSmoothingWindow) + ", got " +
+                                                              std::to_string(w)};
+            s.smoothing_window = static_cast<int>(w);
+        }
         if (p.has("window_scope"))
             s.window_scope = p.get_string("window_scope") == "shared" ? WindowScope::shared : WindowScope::per_channel;
         if (p.has("peak_fraction")) s.peak_fraction = p.get_number("peak_fraction");
@@ -50,10 +70,14 @@ Result<FeatureSettings> feature_settings_from(const ParamSet& p) {
         if (p.has("time_base"))
             s.time_base = p.get_string("time_base") == "timestamps" ? TimeBase::timestamps : TimeBase::samples;
         if (p.has("interpolate_crossings")) s.interpolate_crossings = p.get_bool("interpolate_crossings");
-        if (s.smoothing_factor < 0.0 || s.smoothing_factor > 1.0)
-            return Error{ErrorCode::invalid_argument, "smoothing_factor must be within [0, 1]"};
-        if (s.peak_fraction <= 0.0 || s.peak_fraction >= 1.0)
-            return Error{ErrorCode::invalid_argument, "peak_fraction must be within (0, 1)"};
+        // Written so that NaN fails every check: it would compare false with
+        // every reading and reject (or keep) every peak.
+        if (!(s.smoothing_factor >= 0.0 && s.smoothing_factor <= 1.0))
+            return refused("smoothing_factor", "a number within [0, 1]", s.smoothing_factor);
+        if (!(s.peak_fraction > 0.0 && s.peak_fraction < 1.0))
+            return refused("peak_fraction", "a number within (0, 1)", s.peak_fraction);
+        if (!(s.min_amplitude >= 0.0 && std::isfinite(s.min_amplitude)))
+            return refused("min_amplitude", "a finite number >= 0", s.min_amplitude);
         return s;
     } catch (const StatusError& e) {
         return e.status();

@@ -1,8 +1,23 @@
 #include "analysis/learn/checked_classifier.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
+
+#include "rollsense/csv.hpp"
 
 namespace rollsense::learn {
+
+namespace {
+
+// How far a plugin's scores may be from a distribution through rounding: a
+// plugin computing in single precision still passes; a score of 7, or scores
+// summing to 0.9, do not.
+constexpr double kScoreTolerance = 1e-6;
+
+using csv::format_number;
+
+}  // namespace
 
 Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who) {
     const std::size_t classes = class_names.size();
@@ -10,17 +25,34 @@ Status check_prediction(const Prediction& p, const std::vector<std::string>& cla
     if (p.label < 0 || static_cast<std::size_t>(p.label) >= classes)
         return {ErrorCode::plugin_error,
                 who + " predicted label " + std::to_string(p.label) + " outside its " + n + " classes"};
-    if (p.class_name != class_names[static_cast<std::size_t>(p.label)])
+    const auto label = static_cast<std::size_t>(p.label);
+    if (p.class_name != class_names[label])
         return {ErrorCode::plugin_error, who + " named its label " + std::to_string(p.label) + " '" + p.class_name +
-                                             "', which is class '" + class_names[static_cast<std::size_t>(p.label)] + "'"};
+                                             "', which is class '" + class_names[label] + "'"};
     if (p.scores.size() != classes)
         return {ErrorCode::plugin_error, who + " returned " + std::to_string(p.scores.size()) + " scores for " + n +
                                              " classes; a prediction has one score per class, in class order"};
-    for (std::size_t c = 0; c < classes; ++c)
+    double sum = 0.0;
+    for (std::size_t c = 0; c < classes; ++c) {
         if (!std::isfinite(p.scores[c]))
             return {ErrorCode::plugin_error, who + " returned a score that is not a finite number (" +
                                                  std::to_string(p.scores[c]) + ") for class " + std::to_string(c + 1) +
                                                  " of " + n};
+        if (p.scores[c] < 0.0)
+            return {ErrorCode::plugin_error, who + " returned a negative score (" + format_number(p.scores[c]) +
+                                                 ") for class '" + class_names[c] +
+                                                 "'; scores are a distribution over the classes"};
+        sum += p.scores[c];
+    }
+    if (std::abs(sum - 1.0) > kScoreTolerance)
+        return {ErrorCode::plugin_error, who + " returned scores summing to " + format_number(sum) +
+                                             "; scores are a distribution over the classes, summing to 1"};
+    const auto top = static_cast<std::size_t>(std::max_element(p.scores.begin(), p.scores.end()) - p.scores.begin());
+    if (p.scores[label] < p.scores[top] - kScoreTolerance)
+        return {ErrorCode::plugin_error, who + " predicted '" + class_names[label] + "' (score " +
+                                             format_number(p.scores[label]) + ") but scored '" + class_names[top] +
+                                             "' highest (" + format_number(p.scores[top]) +
+                                             "); the predicted class is the one with the highest score"};
     return {};
 }
 
@@ -34,21 +66,46 @@ public:
     SearchSpace search_space(std::size_t rows, std::size_t cols) const override {
         return inner_->search_space(rows, cols);
     }
-    Status train(const FeatureTable& data) override { return counted(inner_->train(data)); }
-    Status load(const std::filesystem::path& file) override { return counted(inner_->load(file)); }
+    Status train(const FeatureTable& data) override {
+        return counted(guarded("training", [&] { return inner_->train(data); }));
+    }
+    // A model file is read only here: its errors name the plugin that read it.
+    Status load(const std::filesystem::path& file) override {
+        return counted(guarded("loading " + file.string(),
+                               [&] { return Status(inner_->load(file)).with_context(who_); }));
+    }
     Result<Prediction> predict(std::span<const double> features) const override {
-        auto p = inner_->predict(features);
+        auto p = guarded("prediction", [&] { return inner_->predict(features); });
         if (!p) return p;
         if (auto s = check_prediction(*p, classes_, who_); !s) return s;
         return p;
     }
     std::vector<std::string> class_names() const override { return inner_->class_names(); }
-    Status save(const std::filesystem::path& file) const override { return inner_->save(file); }
+    Status save(const std::filesystem::path& file) const override {
+        return guarded("saving " + file.string(), [&] { return inner_->save(file); });
+    }
     Result<ValueMap> invoke(const std::string& verb, const ValueMap& args) override {
-        return inner_->invoke(verb, args);
+        return guarded("'" + verb + "'", [&] { return inner_->invoke(verb, args); });
     }
 
 private:
+    // The one place a call into the plugin is made: an exception it throws
+    // (written outside this repository, it may) becomes a plugin error naming
+    // it, with the exception's text, instead of ending the command as an
+    // "unexpected error" or a thread with std::terminate.
+    template <class Call>
+    auto guarded(const std::string& during, Call&& call) const -> decltype(call()) {
+        try {
+            return call();
+        } catch (const StatusError& e) {
+            return Status(e.status()).with_context(who_ + " during " + during).error();
+        } catch (const std::exception& e) {
+            return Error{ErrorCode::plugin_error, who_ + " threw during " + during + ": " + e.what()};
+        } catch (...) {
+            return Error{ErrorCode::plugin_error, who_ + " threw during " + during + " (not a std::exception)"};
+        }
+    }
+
     // The classes predictions are checked against, once the model exists.
     Status counted(Status s) {
         if (s) classes_ = inner_->class_names();

@@ -1,10 +1,11 @@
-// What a classifier returns, checked before anything uses it. A plugin is
-// written outside this repository; its prediction indexes the confusion matrix
-// (label) and fills evaluation.json, `rollsense predict` and live
-// identification (scores, class name), so a label outside its classes or named
-// as another, a score count other than its class count or a score that is not
-// a finite number is a plugin error naming the plugin, never a wrong figure or
-// a null in a file.
+// What a classifier returns, checked before anything uses it, and what it
+// throws caught. A plugin is written outside this repository; its prediction
+// indexes the confusion matrix (label) and fills evaluation.json, `rollsense
+// predict` and live identification (scores, class name), so a label outside
+// its classes or named as another, scores that are not a distribution over the
+// classes (one per class, finite, >= 0, summing to 1) or whose highest is not
+// the label's, and an exception from any call, are a plugin error naming the
+// plugin, never a wrong figure, a null in a file or an "unexpected error".
 #pragma once
 
 #include <string>
@@ -14,12 +15,15 @@
 namespace rollsense::learn {
 
 // The classes predictions are expected of: a label in [0, class_names.size())
-// named class_names[label], one finite score per class; `who` names the
-// classifier in the error.
+// named class_names[label], one finite score >= 0 per class, the scores summing
+// to 1 and the label's the highest (both within 1e-6, for rounding); `who`
+// names the classifier in the error.
 Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who);
 
 // `inner` behind check_prediction on every predict (classes: its class_names()
-// once trained or loaded). Everything else is passed through.
+// once trained or loaded); an exception from train, load, predict, save or
+// invoke is returned as a plugin error naming `who` with the exception's text,
+// and load's errors name `who`. Everything else is passed through.
 ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who);
 
 }  // namespace rollsense::learn

@@ -1,7 +1,5 @@
 #include "analysis/learn/cross_validation.hpp"
 
-#include <exception>
-
 #include "analysis/learn/checked_classifier.hpp"
 #include "analysis/learn/folds.hpp"
 
@@ -29,13 +27,7 @@ Result<ClassifierPtr> train_classifier(const FeatureTable& table, const Classifi
     auto made = factory(params);
     if (!made) return made.error();
     ClassifierPtr c = std::move(made).value();
-    try {
-        if (auto s = c->train(table); !s) return s;
-    } catch (const StatusError& e) {
-        return e.status();
-    } catch (const std::exception& e) {
-        return Error{ErrorCode::plugin_error, std::string("classifier threw during training: ") + e.what()};
-    }
+    if (auto s = c->train(table); !s) return s;
     return c;
 }
 
@@ -43,19 +35,13 @@ Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureT
                                              std::span<const std::size_t> rows) {
     std::vector<Prediction> out;
     out.reserve(rows.size());
-    try {
-        for (std::size_t r : rows) {
-            auto p = c.predict(table.row(r));
-            if (!p) return p.error();
-            // Plugins are checked as they predict (checked_classifier); this
-            // guards the confusion matrix against any classifier.
-            if (auto s = check_prediction(*p, table.class_names, "classifier"); !s) return s.error();
-            out.push_back(std::move(p).value());
-        }
-    } catch (const StatusError& e) {
-        return e.status();
-    } catch (const std::exception& e) {
-        return Error{ErrorCode::plugin_error, std::string("classifier threw during prediction: ") + e.what()};
+    for (std::size_t r : rows) {
+        auto p = c.predict(table.row(r));
+        if (!p) return p.error();
+        // Plugins are checked as they predict (checked_classifier); this
+        // guards the confusion matrix against any classifier.
+        if (auto s = check_prediction(*p, table.class_names, "classifier"); !s) return s.error();
+        out.push_back(std::move(p).value());
     }
     return out;
 }

@@ -25,11 +25,11 @@ using ClassifierFactory = std::function<Result<ClassifierPtr>(const ParamSet& pa
 // The rows `rows` of `table`, keeping every class name (so labels stay valid).
 FeatureTable subset(const FeatureTable& table, std::span<const std::size_t> rows);
 
-// Train with exceptions from the classifier turned into errors.
+// Train. A plugin's exceptions are errors naming it (checked_classifier).
 Result<ClassifierPtr> train_classifier(const FeatureTable& table, const ClassifierFactory& factory,
                                        const ParamSet& params);
-// Predictions (label and per-class scores) for table rows `rows`; exceptions
-// and predictions check_prediction refuses turned into errors.
+// Predictions (label and per-class scores) for table rows `rows`; predictions
+// check_prediction refuses turned into errors.
 Result<std::vector<Prediction>> predict_rows(const Classifier& c, const FeatureTable& table,
                                              std::span<const std::size_t> rows);
 // Labels only, for table rows `rows`.

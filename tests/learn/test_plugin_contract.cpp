@@ -1,0 +1,100 @@
+// The classifier plugin contract, enforced in one place (checked_classifier)
+// whatever the command: scores are a distribution over the classes whose
+// highest is the predicted label (rollsense/classifier.hpp), and an exception
+// thrown from the plugin is a plugin error (exit 3) naming the plugin with the
+// exception's text. Through the program, with the test plugin test_odd_scores
+// (tests/learn/plugins), whose parameter `mode` chooses what goes wrong.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "cli_dataset.hpp"
+#include "run_command.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kPluginPath = std::string(" --plugin-path ") + ROLLSENSE_LEARN_TEST_PLUGIN_DIR;
+const std::string kPlugin = kPluginPath + " --classifier test_odd_scores";
+const std::string kNamed = "plugin error: classifier plugin 'test_odd_scores' ";
+
+rollsense::testing::CommandRun rollsense_cli(const std::string& args) { return rollsense::testing::run_rollsense(args); }
+
+// evaluate with `mode` must stop with exit 3 saying `says` after the plugin's name, writing nothing.
+void check_evaluate_refuses(const fs::path& dir, const std::string& mode, const std::string& says) {
+    const auto out = dir / ("eval-mode" + mode + ".txt");
+    const auto r = rollsense_cli("evaluate " + (dir / "dataset").string() + " --folds 3 --repeats 1" + kPlugin +
+                                 " --set mode=" + mode + " -o " + out.string());
+    INFO(r.output);
+    CHECK(r.status == 3);
+    // evaluate puts the repetition and fold between "plugin error" and the plugin's own message.
+    CHECK_THAT(r.output, Catch::Contains("rollsense evaluate: plugin error: ") &&
+                             Catch::Contains("classifier plugin 'test_odd_scores' " + says));
+    CHECK_FALSE(fs::exists(out));
+    CHECK_FALSE(fs::exists(fs::path(out).replace_extension(".json")));
+}
+
+// train with `mode` (the test plugin keeps its mode in the model file, so
+// predict's load of it behaves as the mode says); the model's path.
+fs::path trained(const fs::path& dir, const std::string& mode) {
+    const auto model = dir / ("mode" + mode + ".model");
+    const auto r = rollsense_cli("train " + (dir / "dataset").string() + kPlugin + " --set mode=" + mode + " -o " +
+                                 model.string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    return model;
+}
+
+void check_predict_refuses(const fs::path& dir, const fs::path& model, const std::string& says) {
+    const auto r = rollsense_cli("predict " + model.string() + " " + (dir / "dataset").string() + kPluginPath);
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("rollsense predict: " + kNamed + says));
+    CHECK_THAT(r.output, !Catch::Contains("unexpected error"));
+}
+
+}  // namespace
+
+// Review: a plugin returning scores [0, 7, 0] got "P1 7.000" printed by predict
+// (exit 0) and its scores written to evaluation.json.
+TEST_CASE("scores that are not a distribution with the label highest stop evaluate and predict, naming the plugin",
+          "[learn][cli][plugin]") {
+    const auto dir = rollsense::testing::make_dataset();
+    const struct {
+        const char* mode;
+        const char* says;
+    } cases[] = {{"5", "returned scores summing to 7; scores are a distribution over the classes, summing to 1"},
+                 {"6", "returned a negative score (-0.5) for class '"},
+                 {"7", "predicted 'C1' (score 0) but scored 'P1' highest (1); the predicted class is the one with the highest score"}};
+    for (const auto& c : cases) {
+        INFO("mode " << c.mode);
+        check_evaluate_refuses(dir, c.mode, c.says);
+        check_predict_refuses(dir, trained(dir, c.mode), c.says);
+    }
+    fs::remove_all(dir);
+}
+
+// Review: predict said "rollsense predict: unexpected error: boom in predict"
+// (exit 1); evaluate "classifier threw during prediction" without the plugin's
+// name; train "classifier threw during training: boom in train", no name.
+TEST_CASE("a classifier plugin that throws is a plugin error naming it with the exception's text in every command",
+          "[learn][cli][plugin]") {
+    const auto dir = rollsense::testing::make_dataset();
+    const std::string d = (dir / "dataset").string();
+    check_evaluate_refuses(dir, "8", "threw during prediction: boom in predict");
+    check_evaluate_refuses(dir, "9", "threw during training: boom in train");
+    check_predict_refuses(dir, trained(dir, "8"), "threw during prediction: boom in predict");
+
+    const auto model = dir / "mode9.model";
+    auto r = rollsense_cli("train " + d + kPlugin + " --set mode=9 -o " + model.string());
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains(kNamed + "threw during training: boom in train"));
+    CHECK_FALSE(fs::exists(model));
+
+    const auto throws_on_load = trained(dir, "10");
+    check_predict_refuses(dir, throws_on_load,
+                          "threw during loading " + throws_on_load.string() + ": boom in load");
+    fs::remove_all(dir);
+}
