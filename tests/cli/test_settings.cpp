@@ -74,6 +74,25 @@ TEST_CASE("run SCRIPT --help lists the settings of the script and its modules wi
     }
 }
 
+// Review (sandbox) item 8: the settings probe ran under the default limits, and its error came after the usage text.
+TEST_CASE("run SCRIPT --help reads the settings under the run's --slice-limit-ms and --memory-limit-mb") {
+    TempDir dir("rollsense-settings-limits");
+    write_file(dir / "loop.lua", "local n = 0\nwhile true do n = n + 1 end\n");
+    const auto loop = run_rollsense("run " + shell_quoted(dir / "loop.lua") + " --help --slice-limit-ms 200");
+    INFO(loop.output);
+    CHECK(loop.status != 0);
+    CHECK(loop.output.find("past --slice-limit-ms 200") != std::string::npos);  // was: past 5000, after 5 s
+    CHECK(loop.output.find("usage: rollsense run") == std::string::npos);
+    write_file(dir / "greedy.lua", "local t = {}\nfor i = 1, 1e9 do t[i] = { i, i, i } end\n");
+    const auto greedy = run_rollsense("run " + shell_quoted(dir / "greedy.lua") + " --help --memory-limit-mb 16");
+    INFO(greedy.output);
+    CHECK(greedy.status != 0);
+    CHECK(greedy.output.find("greedy.lua: not enough memory: its top reached its memory cap (16 MB") != std::string::npos);
+    CHECK(greedy.output.find("raise it with --memory-limit-mb MB") != std::string::npos);
+    CHECK(greedy.output.find("usage: rollsense run") == std::string::npos);
+    CHECK(run_rollsense("run " + kPaper + " --help --slice-limit-ms 0").status == 2);  // a bad limit: the command line
+}
+
 TEST_CASE("unknown keys, unknown objects and out-of-range values are errors before the first trial, naming the valid ones") {
     TempDir dir("rollsense-settings");
     struct Case {

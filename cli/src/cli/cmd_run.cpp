@@ -80,19 +80,30 @@ std::string default_out(const std::filesystem::path& script) {
     return "runs/" + script.stem().string() + "-" + stamp;
 }
 
-// `rollsense run SCRIPT --help`: the command's options, then the script's settings.
-int print_script_help(const std::vector<std::string>& positionals) {
+// --slice-limit-ms and --memory-limit-mb; ranges: a zero budget would silently switch a protection off.
+runtime::SandboxLimits sandbox_limits_of(const Args& args) {
+    runtime::SandboxLimits limits;
+    limits.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));
+    limits.memory_bytes = args.unsigned_option("--memory-limit-mb", 256, 1, 1u << 20) * 1024 * 1024;
+    return limits;
+}
+
+// `rollsense run SCRIPT --help`: the command's options, then the script's settings
+// (found by running the script's top under the run's limits).
+int print_script_help(const std::vector<std::string>& positionals, const Args& args) {
+    // The script's error alone, not after the whole usage text.
+    std::optional<Result<std::vector<script_settings::Declaration>>> declared;
+    if (positionals.size() == 1)
+        declared = script_settings::declared_by(resolve_script(positionals[0]), share_dir(), sandbox_limits_of(args));
+    if (declared && !*declared) throw StatusError(Status{declared->error()});
     std::printf("%s\n\nexit codes (rollsense --help):\n%s", kHelp, exit_code_table().c_str());
-    if (positionals.size() != 1) return kExitOk;
-    const auto script = resolve_script(positionals[0]);
-    auto declared = script_settings::declared_by(script, share_dir());
-    if (!declared) throw StatusError(Status{declared.error()});
-    if (declared->empty())
+    if (!declared) return kExitOk;
+    if ((*declared)->empty())
         std::printf("\n%s declares no settings (rs.settings); its --set keys are not checked before it runs\n",
                     positionals[0].c_str());
     else
         std::printf("\nsettings of %s (--set KEY=VALUE; default shown):\n%s", positionals[0].c_str(),
-                    script_settings::describe(*declared).c_str());
+                    script_settings::describe(**declared).c_str());
     return kExitOk;
 }
 
@@ -128,7 +139,7 @@ int run(const std::vector<std::string>& argv) {
                                              "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every",
                                              "--live-bind"};
     auto pos = args.positionals(valued);
-    if (args.wants_help()) return print_script_help(pos);
+    if (args.wants_help()) return print_script_help(pos, args);
     args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--shard", "--set", "--plugin-path", "--time-limit",
                          "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
                          "--verbose", "-q", "--quiet", "--live", "--live-bind"});
@@ -176,8 +187,7 @@ int run(const std::vector<std::string>& argv) {
         }
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
-    o.sandbox.max_slice_ms = static_cast<double>(args.unsigned_option("--slice-limit-ms", 5000, 1, 3'600'000));
-    o.sandbox.memory_bytes = args.unsigned_option("--memory-limit-mb", 256, 1, 1u << 20) * 1024 * 1024;
+    o.sandbox = sandbox_limits_of(args);
     o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
     o.progress = !args.flag("--no-progress");
     o.digital_lines = hal::gpio_digital_lines();

@@ -210,9 +210,10 @@ int probe_index(lua_State* L) {
 }  // namespace
 
 Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
-                                             const std::filesystem::path& share_dir) {
+                                             const std::filesystem::path& share_dir,
+                                             const runtime::SandboxLimits& limits) {
     std::vector<Declaration> found;
-    runtime::Sandbox sandbox(runtime::SandboxLimits{},
+    runtime::Sandbox sandbox(limits,
                              {script.parent_path().empty() ? std::filesystem::path(".") : script.parent_path(),
                               share_dir / "lua"});
     lua_State* L = sandbox.state();
@@ -230,9 +231,13 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
     sandbox.set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
     if (auto s = sandbox.load_file(script); !s.ok()) return s.error();
     sandbox.start_slice();
-    if (lua_pcall(L, 0, 0, 0) != LUA_OK && lua_touserdata(L, -1) != &kStop) {
+    if (const int rc = lua_pcall(L, 0, 0, 0); rc != LUA_OK && lua_touserdata(L, -1) != &kStop) {
         const char* msg = lua_tostring(L, -1);
-        return Error{ErrorCode::invalid_argument, std::string(msg ? msg : "(error object is not a string)")};
+        std::string text = msg ? msg : "(error object is not a string)";
+        if (rc == LUA_ERRMEM)  // no place comes with it: the script, the cap, the way out
+            text = script.string() + ": " + text + ": its top reached " + sandbox.memory_cap() +
+                   " while its settings were read; raise it with --memory-limit-mb MB";
+        return Error{ErrorCode::invalid_argument, text};
     }
     std::sort(found.begin(), found.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
     return found;

@@ -23,6 +23,7 @@
 
 #include "rollsense/object_catalogue.hpp"
 #include "rollsense/params.hpp"
+#include "runtime/lua/sandbox.hpp"
 
 namespace rollsense::script_settings {
 
@@ -56,7 +57,9 @@ std::string describe(const std::vector<Declaration>& declarations);
 // with a stand-in rollsense module that records rs.settings declarations
 // and stops at the first other rs.* call (that is where trials could begin).
 // Its modules (require) load as in a run, so theirs are included.
+// Under the run's limits (`limits`: --slice-limit-ms, --memory-limit-mb).
 Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
-                                             const std::filesystem::path& share_dir);
+                                             const std::filesystem::path& share_dir,
+                                             const runtime::SandboxLimits& limits);
 
 }  // namespace rollsense::script_settings
