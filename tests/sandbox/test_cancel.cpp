@@ -265,6 +265,7 @@ TEST_CASE("a script stuck in one C call past the slice limit is ended by the wat
     auto r = run_with_watchdog(dir, "table.move({}, 1, 1 << 62, 1, {})\n");
     INFO(r.text);
     REQUIRE(r.exited);  // not killed by the alarm: it used to run for centuries
+    CHECK(r.code == 1);  // the script's failure (a limit violation), as the hook's slice limit: not 130
     const auto info = kt::read_file(dir / "out" / "run-info.csv");
     CHECK_THAT(info, Catch::Contains("ms in one call no hook reaches") && Catch::Contains("past --slice-limit-ms") &&
                          Catch::Contains("the watchdog made the hand safe"));

@@ -40,15 +40,16 @@ void CancelWatchdog::watch() {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!wake_.wait_for(lock, kPoll, [this] { return stop_; })) {
         if (interrupts_received() >= 3) {
-            last_resort_("interrupted three times: the watchdog made the hand safe and ended the run");
+            last_resort_("interrupted three times: the watchdog made the hand safe and ended the run",
+                         ErrorCode::cancelled);
             return;
         }
         const std::int64_t t = now_ms(), in_lua = sandbox_.in_lua_since_ms();
-        // One call the hook cannot interrupt (table.move over 2^62 slots) outlasting the slice limit: no
-        // control period runs meanwhile, and neither the slice limit nor the time budget ever fires.
+        // One call no hook interrupts (table.move over 2^62 slots), past the slice limit: nothing else ends it.
         if (in_lua != 0 && static_cast<double>(t - in_lua) > sandbox_.limits().max_slice_ms + grace_ms_) {
             last_resort_("the script spent " + std::to_string(t - in_lua) + " ms in one call no hook reaches (a C function "
-                         "on a huge input?), past --slice-limit-ms: the watchdog made the hand safe and ended the run");
+                         "on a huge input?), past --slice-limit-ms: the watchdog made the hand safe and ended the run",
+                         ErrorCode::limit_violation);
             return;
         }
         if (!sandbox_.cancelled() && !interrupt_.load()) {
@@ -60,7 +61,7 @@ void CancelWatchdog::watch() {
         if (static_cast<double>(t - std::max(cancel_seen, in_lua)) > grace_ms_) {
             last_resort_("the script did not stop within " + std::to_string(static_cast<long>(grace_ms_)) +
                          " ms of being cancelled (stuck where no hook runs): the watchdog made the hand safe and "
-                         "ended the run");
+                         "ended the run", ErrorCode::cancelled);
             return;
         }
     }

@@ -154,7 +154,7 @@ RunSummary Session::run() {
         progress_ = std::make_unique<Progress>(options_.progress);
         try {
             CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
-                                    [this, wall_start](const std::string& why) { last_resort(why, wall_start); });
+                                    [this, wall_start](const std::string& why, ErrorCode code) { last_resort(why, code, wall_start); });
             s = run_main_chunk();
             run_cleanup();
         } catch (const std::bad_alloc&) {  // in the kernel's own work: the last resort needs no heap,
@@ -194,7 +194,7 @@ RunSummary Session::run() {
 // a healthy call ends within the devices' timeouts, so the lock is awaited up to
 // kDeviceWait; one stuck in C code never lets go, and the prepared last resort
 // (whole packets, no lock) goes out instead. Held until the exit; no other wait: no deadlock.
-void Session::last_resort(const std::string& why, double wall_start) {
+void Session::last_resort(const std::string& why, ErrorCode code, double wall_start) {
     constexpr auto kDeviceWait = std::chrono::seconds(1);
     log_error("kernel", why);
     std::string how = why;
@@ -211,10 +211,10 @@ void Session::last_resort(const std::string& why, double wall_start) {
     }
     if (recorder_ && recorder_->has_dataset()) {
         (void)recorder_->flush();
-        write_run_info(Status(ErrorCode::cancelled, how), wall_start);
+        write_run_info(Status(code, how), wall_start);
     }
     std::fflush(stderr);
-    std::_Exit(130);
+    std::_Exit(code == ErrorCode::cancelled ? 130 : 1);  // a limit the script passed is its failure, as in the hook
 }
 
 void Session::write_run_info(const Status& s, double wall_start) {

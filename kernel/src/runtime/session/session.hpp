@@ -148,7 +148,7 @@ private:
     void write_run_info(const Status& status, double wall_start);
     // The cancel watchdog's way out (its own thread): safe state (the prepared
     // last resort if the script's thread holds the devices), run-info, exit 130.
-    [[noreturn]] void last_resort(const std::string& why, double wall_start);
+    [[noreturn]] void last_resort(const std::string& why, ErrorCode code, double wall_start);
     double wall_start_ = 0.0;  // of the current run(), for run-info on the way out
 
     // Declared in the order they depend on each other: the scheduler (whose
