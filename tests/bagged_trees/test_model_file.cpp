@@ -8,6 +8,8 @@
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 #include "toy_data.hpp"
 
+#include "temp_dir.hpp"
+
 using namespace rollsense;
 using namespace rollsense::bagged_trees;
 namespace fs = std::filesystem;
@@ -15,8 +17,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path temp_file(const std::string& name) {
-    const auto dir = fs::temp_directory_path() / ("rollsense-test-bt-" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    static const rollsense::testing::TempDir dir("rollsense-test-bt");  // removed when the test process ends
     return dir / name;
 }
 

@@ -21,6 +21,8 @@
 #include "synthetic_dataset.hpp"
 
 namespace fs = std::filesystem;
+#include "temp_dir.hpp"
+
 using namespace rollsense;
 using namespace rollsense::report;
 
@@ -44,10 +46,10 @@ struct Rendered {
 };
 
 const Rendered& rendered() {
+    static const rollsense::testing::TempDir folder("rollsense-test-report");  // removed when the test process ends
     static const Rendered r = [] {
         Rendered out;
-        out.root = fs::temp_directory_path() / ("rollsense-test-report-" + std::to_string(::getpid()));
-        fs::remove_all(out.root);
+        out.root = folder.path();
         test::write_synthetic_dataset(out.root / "dataset");
         auto dataset = DatasetReader::open(out.root / "dataset");
         REQUIRE(dataset.ok());
