@@ -259,3 +259,21 @@ TEST_CASE("JsonWriter: escapes, round-trip numbers, null for non-finite, misuse 
     CHECK_THROWS(bad2.key("x"));
     CHECK_THROWS(bad2.end_object());
 }
+
+// Review finding (live view): bytes that are not UTF-8 (a script's rs.status,
+// a device's error message) went into the JSON as they were, and a JSON text
+// must be UTF-8. Each maximal ill-formed subpart becomes one U+FFFD.
+TEST_CASE("json_quote: well-formed UTF-8 passes, ill-formed bytes become U+FFFD", "[learn][json]") {
+    const std::string fffd = "\xEF\xBF\xBD";
+    CHECK(json_quote("µ € 𝄞 ascii") == "\"µ € 𝄞 ascii\"");
+    CHECK(json_quote("a\xff\xfe") == "\"a" + fffd + fffd + "\"");
+    CHECK(json_quote("lab\xc3(") == "\"lab" + fffd + "(\"");                  // a lead byte without its trail
+    CHECK(json_quote("\xe2\x82") == "\"" + fffd + "\"");                      // truncated at the end: one U+FFFD
+    CHECK(json_quote("\xc0\xaf") == "\"" + fffd + fffd + "\"");               // overlong '/'
+    CHECK(json_quote("\xed\xa0\x80") == "\"" + fffd + fffd + fffd + "\"");    // a surrogate
+    CHECK(json_quote("\xf4\x90\x80\x80") == "\"" + fffd + fffd + fffd + fffd + "\"");  // above U+10FFFF
+    CHECK(json_quote("\xf0\x9f\x98") == "\"" + fffd + "\"");                  // 3 of 4 bytes
+    CHECK(json_quote("\x80x\"") == "\"" + fffd + "x\\\"\"");                  // a stray trail byte, then escapes
+    const Json j = JsonReader::parse("{\"s\":" + json_quote("ok \xff µ") + "}");
+    CHECK(j["s"].str() == "ok " + fffd + " µ");
+}

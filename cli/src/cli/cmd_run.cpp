@@ -205,7 +205,7 @@ int run(const std::vector<std::string>& argv) {
         auto started = live::LiveView::start(*live_options, o);
         if (!started) throw StatusError(Status{started.error()});
         view = std::move(*started);
-        std::fprintf(stderr, "live view: %s\n", view->url().c_str());
+        std::fprintf(stderr, "live view: %s\n", view->where().c_str());
     }
 
     std::error_code ec;

@@ -62,7 +62,7 @@ int run(const std::vector<std::string>& argv) {
                                           "--port N, or --port 0 for any free one");
     if (!server) throw StatusError(Status{server.error()});
     std::fprintf(stderr, "viewing %s (%zu trials): %s  (Ctrl-C ends)\n", pos[0].c_str(), shared->trials().size(),
-                 (*server)->url().c_str());
+                 (*server)->where().c_str());
     if (seconds > 0) {
         const timespec wait{static_cast<time_t>(seconds), static_cast<long>((seconds - static_cast<double>(
                                                                                  static_cast<time_t>(seconds))) * 1e9)};

@@ -9,11 +9,27 @@ namespace rollsense::live {
 
 namespace http = boost::beast::http;
 
+namespace {
+
+// Whether the request target has a form of RFC 9112 §3.2 the live view
+// takes: a path ("/x?q"), "*" for OPTIONS and "host:port" for CONNECT (the
+// last two only to be refused by their method). Beast lets any token through
+// as the target ("G ET/events" parses as method G, target ET/events): found
+// by fuzz_http_request.
+bool target_form_ok(http::verb method, std::string_view target) {
+    if (target.starts_with('/')) return true;
+    if (method == http::verb::options) return target == "*";
+    if (method == http::verb::connect) return !target.empty() && target.find_first_of("/?#") == std::string_view::npos;
+    return false;
+}
+
+}  // namespace
+
 ParsedRequest parse_request(std::string_view bytes) {
     ParsedRequest out;
     http::request_parser<http::empty_body> parser;
     parser.header_limit(static_cast<std::uint32_t>(kMaxHead));
-    parser.eager(false);  // stop after the head: a body is refused below, not parsed
+    parser.eager(false);  // stop after the head: a body is refused by the site, never parsed
     boost::beast::error_code ec;
     std::size_t used = 0;
     while (used < bytes.size() && !parser.is_header_done()) {
@@ -35,15 +51,8 @@ ParsedRequest parse_request(std::string_view bytes) {
         return out;
     }
     const auto& head = parser.get();
-    if (parser.content_length().value_or(0) > 0 || parser.chunked()) {
-        out.state = ParsedRequest::State::malformed;
-        out.error = "a request with a body (the live view is read-only)";
-        return out;
-    }
     std::string target(head.target());
-    // Only a path is ever served (origin form); Beast lets any token through
-    // as the target ("G ET/events" parses as method G, target ET/events).
-    if (target.empty() || target[0] != '/') {
+    if (!target_form_ok(head.method(), target)) {
         out.state = ParsedRequest::State::malformed;
         out.error = "the request target is not a path starting with '/'";
         return out;
@@ -53,6 +62,7 @@ ParsedRequest parse_request(std::string_view bytes) {
     if (auto q = target.find('?'); q != std::string::npos) target.resize(q);
     out.request.target = std::move(target);
     out.request.keep_alive = head.keep_alive();
+    out.request.has_body = parser.content_length().value_or(0) > 0 || parser.chunked();
     return out;
 }
 

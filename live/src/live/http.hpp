@@ -1,6 +1,7 @@
 // HTTP/1.1 for the live view: a request head parsed by Boost.Beast's parser
 // from the bytes a client sent, and responses written out. Only the head
-// matters: the view is read-only, so a request with a body is refused.
+// matters: the view is read-only, so a request with a body is refused (by the
+// site, after the method: a POST gets 405 whether or not it has a body).
 #pragma once
 
 #include <cstddef>
@@ -11,8 +12,9 @@ namespace rollsense::live {
 
 struct Request {
     std::string method;  // as sent, e.g. "GET"
-    std::string target;  // the path, without the query
+    std::string target;  // the path, without the query ("*" for OPTIONS *)
     bool keep_alive = false;
+    bool has_body = false;  // Content-Length above 0 or chunked
 };
 
 struct ParsedRequest {

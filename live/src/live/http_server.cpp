@@ -2,7 +2,9 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <linux/sockios.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -37,6 +39,47 @@ bool send_all(int fd, std::string_view data) {
     }
     return true;
 }
+
+// After a whole reply: the client gets to read it before the connection
+// goes. Closing with bytes of its request unread (a body refused with 405 or
+// 400, a request the 503 did not wait for) would reset the connection, and
+// the reset can overtake the reply. Waits up to `wait_ms` for the client to close.
+void close_after_reply(int fd, int wait_ms = HttpServer::kSendTimeoutMs) {
+    ::shutdown(fd, SHUT_WR);
+    const auto deadline = Steady::now() + std::chrono::milliseconds(wait_ms);
+    char buf[4096];
+    for (std::size_t drained = 0; drained < (1u << 20);) {
+        pollfd p{fd, POLLIN, 0};
+        if (::poll(&p, 1, remaining_ms(deadline)) <= 0) return;
+        const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
+        if (n <= 0) return;  // the client has closed: it has the reply
+        drained += static_cast<std::size_t>(n);
+    }
+}
+
+// Whether a stream's client has stopped reading. send() says nothing about
+// it until the socket buffers are full (megabytes on loopback: minutes of a
+// run's stream), so the stream watches what the client's end acknowledges:
+// bytes waiting in the send queue (SIOCOUTQ: unsent or unacknowledged) with
+// none of them acknowledged for kSendTimeoutMs mean its receive buffer is
+// full and stays so. The check costs one ioctl per pass of the stream loop.
+class ReadWatch {
+public:
+    void sent(std::size_t bytes) { expected_ += bytes; }
+    bool stalled(int fd) {
+        int waiting = 0;
+        if (::ioctl(fd, SIOCOUTQ, &waiting) != 0) return false;  // not TCP: send_all's timeout still holds
+        const auto now = Steady::now();
+        const auto queued = static_cast<std::size_t>(waiting);
+        if (queued == 0 || queued < expected_) progress_ = now;  // some were acknowledged
+        expected_ = queued;
+        return now - progress_ > std::chrono::milliseconds(HttpServer::kSendTimeoutMs);
+    }
+
+private:
+    std::size_t expected_ = 0;  // what would wait had nothing been acknowledged since the last check
+    Steady::time_point progress_ = Steady::now();
+};
 
 }  // namespace
 
@@ -92,9 +135,25 @@ HttpServer::~HttpServer() {
     ::close(listen_fd_);
 }
 
+// 0.0.0.0, ::, or another spelling of either.
+bool HttpServer::listens_everywhere() const {
+    in_addr a4{};
+    in6_addr a6{};
+    if (::inet_pton(AF_INET, address_.c_str(), &a4) == 1) return a4.s_addr == htonl(INADDR_ANY);
+    return ::inet_pton(AF_INET6, address_.c_str(), &a6) == 1 && IN6_IS_ADDR_UNSPECIFIED(&a6);
+}
+
+std::string HttpServer::where() const {
+    if (!listens_everywhere()) return url();
+    return url() + " (listening on every address of this machine: from another, use its name or address)";
+}
+
 std::string HttpServer::url() const {
-    const bool v6 = address_.find(':') != std::string::npos;
-    return "http://" + (v6 ? "[" + address_ + "]" : address_) + ":" + std::to_string(port_) + "/";
+    // Listening on every address, it is reached on this machine at its loopback one.
+    const bool v6_any = address_.find(':') != std::string::npos;
+    const std::string host = !listens_everywhere() ? address_ : v6_any ? "::1" : "127.0.0.1";
+    const bool v6 = host.find(':') != std::string::npos;
+    return "http://" + (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port_) + "/";
 }
 
 void HttpServer::accept_loop() {
@@ -110,7 +169,12 @@ void HttpServer::accept_loop() {
             return true;
         });
         if (active_ >= kMaxClients) {
-            (void)send_all(fd, http_response(503, "text/plain", "too many viewers of this run\n"));
+            (void)send_all(fd, http_response(503, "text/plain; charset=utf-8",
+                                             std::to_string(kMaxClients) +
+                                                 " viewers at once at most: close another viewer of this run "
+                                                 "and reload (a viewer that stops reading leaves within seconds)\n",
+                                             "Retry-After: 2\r\n"));
+            close_after_reply(fd, 100);  // briefly: the acceptor waits meanwhile
             ::close(fd);
             continue;
         }
@@ -144,24 +208,32 @@ void HttpServer::serve(int fd) {
         if (remaining_ms(deadline) == 0) return;  // too slow to ask: dropped without an answer
     }
     if (parsed.state == ParsedRequest::State::malformed) {
-        (void)send_all(fd, http_response(400, "text/plain; charset=utf-8", "malformed request: " + parsed.error + "\n"));
+        if (send_all(fd, http_response(400, "text/plain; charset=utf-8", "malformed request: " + parsed.error + "\n")))
+            close_after_reply(fd);
         return;
     }
     if (parsed.state != ParsedRequest::State::complete) return;
     Reply reply = site_(parsed.request);
     if (!reply.stream) {
-        (void)send_all(fd, reply.bytes);
-        ::shutdown(fd, SHUT_WR);
+        if (send_all(fd, reply.bytes)) close_after_reply(fd);
         return;
     }
     stream(fd);
 }
 
 void HttpServer::stream(int fd) {
+    // A small send buffer bounds what waits for a client (the kernel's own
+    // grows to megabytes), so one that reads nothing soon blocks send_all.
+    ::setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &kStreamSendBuffer, sizeof kStreamSendBuffer);
     if (!send_all(fd, sse_head())) return;
     auto batch = hub_->join();
     std::string out;
     auto last_sent = Steady::now();
+    ReadWatch watch;
+    const auto drop = [this] {
+        ++clients_dropped_;
+        log_info("live", "a viewer was dropped (too slow or gone)");
+    };
     for (;;) {
         out.clear();
         for (const auto& e : batch.events) out += e;
@@ -169,13 +241,11 @@ void HttpServer::stream(int fd) {
         // A comment now and then finds a client that went away without a word.
         if (out.empty() && Steady::now() - last_sent > std::chrono::seconds(5)) out = ": alive\n\n";
         if (!out.empty()) {
-            if (!send_all(fd, out)) {
-                ++clients_dropped_;
-                log_info("live", "a viewer was dropped (too slow or gone)");
-                return;
-            }
+            if (!send_all(fd, out)) return drop();
+            watch.sent(out.size());
             last_sent = Steady::now();
         }
+        if (watch.stalled(fd)) return drop();
         if ((batch.closed && batch.events.empty()) || stopping_) return;
         batch = hub_->take(batch.next, std::chrono::milliseconds(250));
         // A client that has closed its end leaves now, not at the next event

@@ -38,13 +38,18 @@ public:
     ~HttpServer();  // stops accepting, ends every client and waits for their threads
 
     std::uint16_t port() const { return port_; }
+    // Where to browse it on this machine (the loopback address when it listens on every address).
     std::string url() const;
+    // url(), and when it listens on every address (0.0.0.0, ::) a word that other machines reach it too.
+    std::string where() const;
+    bool listens_everywhere() const;
     std::uint64_t clients_dropped() const { return clients_dropped_; }  // too slow or gone
     int active_clients() const { return active_; }
 
     static constexpr int kMaxClients = 8;
     static constexpr int kRequestTimeoutMs = 5000;  // to send the request head
     static constexpr int kSendTimeoutMs = 2000;     // a client that takes no data this long is dropped
+    static constexpr int kStreamSendBuffer = 64 * 1024;  // SO_SNDBUF of an event stream (the kernel doubles it)
 
 private:
     HttpServer(int fd, std::string address, std::uint16_t port, Site site, EventHub* hub);

@@ -26,7 +26,7 @@ public:
     static Result<std::unique_ptr<LiveView>> start(const LiveOptions& live, runtime::SessionOptions& options);
     ~LiveView();  // unhooks rs.status and identification, ends the stream, stops the server
 
-    std::string url() const { return server_->url(); }
+    std::string where() const { return server_->where(); }  // the view's URL, for its line on stderr
     // The run's outcome, for the page (after Session::run).
     void finished(const runtime::RunSummary& summary);
     EventHub& hub() { return hub_; }  // what the page's clients read

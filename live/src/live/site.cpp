@@ -18,13 +18,18 @@ Reply not_found(const Request& r) {
                           {}, r.method == "HEAD")};
 }
 
-// The common part of both sites: the method check and the page. Empty when
-// the request is for something else.
+// The common part of both sites: the method check, the body check and the
+// page. Empty when the request is for something else. The method comes first:
+// any other method is refused as one (405), with a body or not.
 std::optional<Reply> common(const Request& r) {
     if (r.method != "GET" && r.method != "HEAD")
         return Reply{http_response(405, "text/plain; charset=utf-8",
                                    "method " + r.method + " not allowed: the live view is read-only (GET, HEAD)\n",
                                    "Allow: GET, HEAD\r\n")};
+    if (r.has_body)
+        return Reply{http_response(400, "text/plain; charset=utf-8",
+                                   "malformed request: a " + r.method + " with a body (the live view is read-only)\n",
+                                   {}, r.method == "HEAD")};
     const std::string path = r.target == "/" ? "/index.html" : r.target;
     for (const auto& a : page_assets())
         if (a.path == path) return Reply{http_response(200, a.content_type, a.content, {}, r.method == "HEAD")};

@@ -6,10 +6,56 @@
 
 namespace rollsense::learn {
 
+namespace {
+
+// The length of the well-formed UTF-8 sequence that `s` starts with (1 to 4
+// bytes), or minus the length of its maximal ill-formed subpart: the bytes
+// that one U+FFFD replaces (Unicode §3.9, "U+FFFD substitution of maximal
+// subparts": a stray byte, a truncated sequence, an overlong form, a
+// surrogate, a code point above U+10FFFF).
+int utf8_sequence(std::string_view s) {
+    const auto lead = static_cast<unsigned char>(s[0]);
+    if (lead < 0x80) return 1;
+    int trail = 0;
+    unsigned char low = 0x80, high = 0xBF;  // the range of the first trailing byte
+    if (lead >= 0xC2 && lead <= 0xDF) {
+        trail = 1;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+        trail = 2;
+        if (lead == 0xE0) low = 0xA0;   // not overlong
+        if (lead == 0xED) high = 0x9F;  // not a surrogate
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+        trail = 3;
+        if (lead == 0xF0) low = 0x90;   // not overlong
+        if (lead == 0xF4) high = 0x8F;  // at most U+10FFFF
+    } else {
+        return -1;
+    }
+    for (int k = 1; k <= trail; ++k) {
+        if (static_cast<std::size_t>(k) >= s.size()) return -k;
+        const auto c = static_cast<unsigned char>(s[static_cast<std::size_t>(k)]);
+        if (c < (k == 1 ? low : 0x80) || c > (k == 1 ? high : 0xBF)) return -k;
+    }
+    return trail + 1;
+}
+
+}  // namespace
+
 std::string json_quote(std::string_view text) {
     std::string out = "\"";
-    for (const char ch : text) {
+    for (std::size_t i = 0; i < text.size();) {
+        const char ch = text[i];
         const auto c = static_cast<unsigned char>(ch);
+        if (c >= 0x80) {  // JSON is UTF-8 (RFC 8259 §8.1): bytes that are not become U+FFFD
+            const int n = utf8_sequence(text.substr(i));
+            if (n > 0)
+                out.append(text.substr(i, static_cast<std::size_t>(n)));
+            else
+                out += "\xEF\xBF\xBD";
+            i += static_cast<std::size_t>(n > 0 ? n : -n);
+            continue;
+        }
+        ++i;
         switch (ch) {
             case '"': out += "\\\""; break;
             case '\\': out += "\\\\"; break;

@@ -3,7 +3,8 @@
 // on one line. Numbers are written with std::to_chars, the shortest text that
 // reads back to the same double; NaN and infinities, which JSON cannot hold,
 // become null. Strings are escaped (quotes, backslashes, control characters);
-// UTF-8 passes through unchanged.
+// well-formed UTF-8 passes through unchanged, ill-formed bytes become U+FFFD
+// (a JSON text is UTF-8), so any bytes a script or a device hands over make valid JSON.
 #pragma once
 
 #include <cstdint>
@@ -51,7 +52,7 @@ private:
     bool after_key_ = false;
 };
 
-// `text` as a JSON string literal, quotes included.
+// `text` as a JSON string literal, quotes included (ill-formed UTF-8 as U+FFFD).
 std::string json_quote(std::string_view text);
 
 }  // namespace rollsense::learn
