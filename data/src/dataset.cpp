@@ -10,6 +10,7 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset_files.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/shard.hpp"
 #include "rollsense/trial_id.hpp"
 
 namespace rollsense {
@@ -387,8 +388,8 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir, MissingTrialFile 
             return Error{ErrorCode::not_found,
                          (dir / "manifest.csv").string() + ":" + line + ": trial '" + t.info.id + "' is listed, but " +
                              (dir / t.file).string() + " is missing. Put the file back, " +
-                             (recorded ? "record it again in its place with 'rollsense run SCRIPT --out " +
-                                             dir.string() + " --resume', " : std::string()) +
+                             (recorded ? "record it again in its place with '" + resume_command(dir) + "', "
+                                      : std::string()) +
                              "or delete line " + line + " of manifest.csv to use the dataset without that trial"};
         }
     if (recorded) {
@@ -494,7 +495,10 @@ Result<TrialData> DatasetReader::load(const TrialRecord& record) const {
     if (record.samples != 0 && d.samples() != record.samples)
         return Error{ErrorCode::parse_error, (dir_ / record.file).string() + ": " + std::to_string(d.samples()) +
                                                  " samples, the manifest says " + std::to_string(record.samples) +
-                                                 " (a truncated file?)"};
+                                                 (d.samples() < record.samples
+                                                      ? " (a truncated file?)"
+                                                      : ": the file has more rows than the manifest lists (rows "
+                                                        "added to it, or the manifest edited?)")};
     return d;
 }
 

@@ -5,13 +5,18 @@
 namespace rollsense {
 
 Result<Shard> parse_shard(std::string_view text, std::string_view what) {
-    const std::string expected = std::string(what) + " expects K/N, this process's shard K of N, with whole numbers 0 <= K < N <= " +
+    const std::string expected = std::string(what) + " expects K/N, this process's shard K of N, with whole numbers 0 <= K < N and 2 <= N <= " +
                                  std::to_string(kMaxShards) + " (e.g. 0/4 ... 3/4), got '" + std::string(text) + "'";
     const auto slash = text.find('/');
     if (slash == std::string_view::npos) return Error{ErrorCode::invalid_argument, expected};
     auto k = csv::parse_unsigned(text.substr(0, slash), kMaxShards, std::string(what) + " K");
     auto n = csv::parse_unsigned(text.substr(slash + 1), kMaxShards, std::string(what) + " N");
     if (!k || !n || *n == 0) return Error{ErrorCode::invalid_argument, expected};
+    // One shard would be the whole run, yet analyse and merge as a part: refused
+    // rather than given a meaning of its own (rs.shard() says 0, 1 unsharded).
+    if (*n == 1)
+        return Error{ErrorCode::invalid_argument, std::string(what) + " " + std::string(text) +
+                                                      ": --shard K/N needs N >= 2; run without --shard for one process"};
     if (*k >= *n)
         return Error{ErrorCode::invalid_argument, std::string(what) + " " + std::string(text) + ": shard K = " +
                                                       std::to_string(*k) + " is not below N = " + std::to_string(*n) +
@@ -49,6 +54,14 @@ std::string ShardPlan::csv() const {
     csv::append_row(out, {"trial_id", "shard"});
     for (std::size_t i = 0; i < order_.size(); ++i) csv::append_row(out, {order_[i], std::to_string(shard_.owner(i))});
     return out;
+}
+
+std::string resume_command(const std::filesystem::path& dir) {
+    std::string shard;
+    if (auto info = csv::read_key_values(dir / "run-info.csv"))
+        for (const auto& [key, value] : *info)
+            if (key == "shard") shard = " --shard " + value;
+    return "rollsense run SCRIPT" + shard + " --out " + dir.string() + " --resume";
 }
 
 Result<std::vector<std::string>> read_shard_plan(const std::filesystem::path& dir, std::size_t count) {

@@ -39,7 +39,7 @@ const std::string* find_value(const KeyValues& entries, std::string_view key) {
 
 struct ShardDataset {
     fs::path dir;
-    DirectoryLock lock;  // no run writes into it while it is read
+    DirectoryLock lock;  // shared: no run writes into it while it is read, other merges may read it
     Shard shard;
     KeyValues run_info;
     std::vector<std::string> plan;
@@ -54,12 +54,20 @@ struct ShardDataset {
 
 Error refused(const std::string& message) { return Error{ErrorCode::invalid_argument, message}; }
 
+// `e`, about a file of the shard in `dir`, with the way out: the shard's run
+// resumed writes its plan again and records a trial that does not load again.
+Error with_repair(Error e, const fs::path& dir) {
+    e.message += "; repair the shard by resuming it, '" + resume_command(dir) +
+                 "' with the script and options of its run-info.csv, then merge again";
+    return e;
+}
+
 Result<ShardDataset> open_shard(const fs::path& dir) {
     ShardDataset s;
     s.dir = dir;
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return Error{ErrorCode::not_found, dir.string() + ": no such shard folder"};
-    auto lock = DirectoryLock::acquire(dir);
+    auto lock = DirectoryLock::acquire_to_read(dir);
     if (!lock) return lock.error();
     s.lock = std::move(lock).value();
     const fs::path run_info = dir / "run-info.csv";
@@ -80,7 +88,7 @@ Result<ShardDataset> open_shard(const fs::path& dir) {
         return refused(s.label() + " did not finish: its run-info.csv says status '" + status +
                        "'; finish it with the command line in that file plus --resume, then merge");
     auto plan = read_shard_plan(dir, s.shard.count);
-    if (!plan) return plan.error();
+    if (!plan) return with_repair(plan.error(), dir);
     s.plan = std::move(plan).value();
     auto dataset = DatasetReader::open(dir);
     if (!dataset) return dataset.error();
@@ -263,8 +271,9 @@ Result<std::vector<Placed>> place_trials(const std::vector<ShardDataset>& shards
     for (std::size_t i = 0; i < plan.size(); ++i)
         if (!placed[i].shard)
             problems.push_back("trial '" + plan[i] + "' (trial " + std::to_string(i) + " of the run) is missing from " +
-                               shards[split.owner(i)].label() +
-                               "; record it with that shard's command line plus --resume");
+                               shards[split.owner(i)].label() + "; record it with '" +
+                               resume_command(shards[split.owner(i)].dir) +
+                               "' with the script and options of its run-info.csv");
     if (!problems.empty()) return refused(std::to_string(problems.size()) + " problem(s) with the shards' trials: " + listed(problems, "; "));
     return placed;
 }
@@ -318,7 +327,7 @@ Status write_merged(const fs::path& dir, const std::vector<ShardDataset>& shards
     csv::append_row(manifest, manifests.front().header);
     std::vector<PendingFile> batch;
     for (const auto& p : placed) {
-        if (auto data = p.shard->dataset.load(*p.record); !data) return data.error();
+        if (auto data = p.shard->dataset.load(*p.record); !data) return with_repair(data.error(), p.shard->dir);
         auto bytes = csv::read_file(p.shard->dir / p.record->file);
         if (!bytes) return bytes.error();
         batch.push_back({dir / p.record->file, std::move(bytes).value()});

@@ -56,3 +56,22 @@ TEST_CASE("an explicit --seed overrides the recording's on replay") {
     CHECK(dataset_info_value(dir / "rep", "seed") == "11");
     CHECK(rep.output.find("rerun with --seed 5") != std::string::npos);  // the replay's own warning
 }
+
+// Review: a misspelt check_joint finished "done", the roll check silently off
+// (an info line, hidden by -q). Refused before anything runs, exit 3.
+TEST_CASE("a replay whose check_joint the recording lacks is refused at configure time") {
+    TempDir dir("rollsense-cli-replay-check-joint");
+    const std::string small = " --set runs=1 --set objects=C1 --set speeds=10 --set analyse=false -q";
+    const auto rec = run_rollsense("run " + kExperiment + small + " --profile mock --seed 5 --out " +
+                                   shell_quoted(dir / "rec"));
+    REQUIRE(rec.status == 0);
+    const auto rep = run_rollsense("run " + kExperiment + small + " --profile replay --set dataset=" +
+                                   shell_quoted(dir / "rec") + " --set devices.tactile.params.check_joint=nosuch --out " +
+                                   shell_quoted(dir / "rep"));
+    INFO(rep.output);
+    CHECK(rep.status == 3);
+    CHECK(rep.output.find("parameter 'check_joint' = 'nosuch': " + (dir / "rec").string() +
+                          " recorded no such joint column (its joint columns: sensing_finger); name one with --set "
+                          "devices.tactile.params.check_joint=JOINT") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "rep" / "manifest.csv"));
+}

@@ -97,7 +97,11 @@ TEST_CASE("bad trial files are reported with file, line and column", "[dataset]"
     const std::string good = kt::read_file(file);
 
     kt::write_file(file, good.substr(0, good.rfind('\n', good.size() - 2) + 1));  // drop last row
-    CHECK_THAT(load_error(dir), Catch::Contains("3 samples, the manifest says 4"));
+    CHECK_THAT(load_error(dir), Catch::Contains("3 samples, the manifest says 4 (a truncated file?)"));
+    // Review: a file longer than its manifest says was also "a truncated file?".
+    kt::write_file(file, good + "9,1,2,3,4,1\n");
+    CHECK(load_error(dir) == file.string() + ": 5 samples, the manifest says 4: the file has more rows than the "
+                                             "manifest lists (rows added to it, or the manifest edited?)");
 
     std::string text = good;
     text.replace(text.find("0.101"), 5, "0.1x1");

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "rollsense/directory_lock.hpp"
 #include "shard_fixture.hpp"
 
 namespace fs = std::filesystem;
@@ -151,13 +152,42 @@ TEST_CASE("rollsense merge refuses missing, duplicated and misplaced trials", "[
                 {s1.string() + " (shard 1/3) holds trial 'X9-v10-r002', which the run's plan does not list",
                  "trial 'C1-v10-r002' (trial 1 of the run) is missing from " + s1.string()});
     }
-    SECTION("a damaged trial file") {
+    // Review: a damaged trial file, and a missing plan, were refused with no way out.
+    const std::string resume_s1 = "'rollsense run SCRIPT --shard 1/3 --out " + s1.string() + " --resume'";
+    SECTION("a damaged trial file: resuming the shard repairs it") {
         auto text = rt::read_file(s1 / "trials/C1-v10-r002.csv");
         rt::write_file(s1 / "trials/C1-v10-r002.csv", text.substr(0, text.size() / 2));
         auto r = merge(dir / "merged", {s0, s1, s2});
-        CHECK(r.status != 0);
-        CHECK(r.output.find((s1 / "trials/C1-v10-r002.csv").string()) != std::string::npos);
+        refused(r, dir / "merged",
+                {(s1 / "trials/C1-v10-r002.csv").string() + ":",
+                 "; repair the shard by resuming it, " + resume_s1 +
+                     " with the script and options of its run-info.csv, then merge again"});
         CHECK_FALSE(fs::exists(dir / "merged/manifest.csv"));  // the manifest comes last
+        REQUIRE(rt::record(s1, kSmall + "--shard 1/3 --resume").status == 0);
+        CHECK(merge(dir / "merged", {s0, s1, s2}).status == 0);
+    }
+    SECTION("a missing trial file: the way out names the shard") {
+        fs::remove(s1 / "trials/C1-v10-r002.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {(s1 / "trials/C1-v10-r002.csv").string() + " is missing. Put the file back, record it again in "
+                 "its place with " + resume_s1});
+    }
+    SECTION("a missing shard plan: resuming the shard writes it again") {
+        fs::remove(s1 / "shard-plan.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {(s1 / "shard-plan.csv").string() + ": no such file; repair the shard by resuming it, " + resume_s1});
+        REQUIRE(rt::record(s1, kSmall + "--shard 1/3 --resume").status == 0);
+        CHECK(merge(dir / "merged", {s0, s1, s2}).status == 0);
+    }
+    SECTION("an empty OUT or SHARD is a usage error") {
+        auto r = rt::run_rollsense("merge '' " + s0.string() + " " + s1.string() + " " + s2.string());
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(r.output.find("rollsense merge: OUT is empty ('')") != std::string::npos);
+        r = rt::run_rollsense("merge " + (dir / "merged").string() + " " + s0.string() + " '' " + s2.string());
+        CHECK(r.status == 2);
+        CHECK(r.output.find("SHARD 2 is empty ('')") != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "merged"));
     }
 }
 
@@ -323,5 +353,42 @@ TEST_CASE("a merge into a link fills the folder it names, and an empty folder ke
         INFO(r.output);
         REQUIRE(r.status == 0);
         CHECK(mode(dir / "merged") == fs::perms::owner_all);
+    }
+}
+
+// Review: a merge locked each shard exclusively to read it, so a second merge
+// of the same shards was refused as "being written by another rollsense run;
+// ... choose another folder with --out" (merge has no --out).
+TEST_CASE("merges read shards side by side; a shard being recorded and a merge's shard are not shared", "[merge][lock]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    SECTION("another merge reading the shards") {
+        std::vector<rollsense::DirectoryLock> merging;  // as another merge holds them
+        for (const auto& s : {s0, s1, s2}) {
+            auto lock = rollsense::DirectoryLock::acquire_to_read(s);
+            REQUIRE(lock.ok());
+            merging.push_back(std::move(lock).value());
+        }
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        INFO(r.output);
+        CHECK(r.status == 0);
+        CHECK(rt::manifest_trials(dir / "merged") == 4);
+        // A run writing into a shard being merged waits for the merge.
+        auto run = rt::record(s0, kSmall + "--shard 0/3 --resume");
+        INFO(run.output);
+        CHECK(run.status != 0);
+        CHECK(run.output.find(s0.string() + " is being read by a rollsense merge; wait for it to end") !=
+              std::string::npos);
+    }
+    SECTION("a run recording a shard") {
+        auto recording = rollsense::DirectoryLock::acquire(s1);  // as a run writing into it holds it
+        REQUIRE(recording.ok());
+        auto r = merge(dir / "merged", {s0, s1, s2});
+        INFO(r.output);
+        CHECK(r.status != 0);
+        CHECK(r.output.find(s1.string() + " is being recorded by a rollsense run; wait for it to end") !=
+              std::string::npos);
+        CHECK(r.output.find("--out") == std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "merged"));
     }
 }

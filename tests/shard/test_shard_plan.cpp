@@ -9,14 +9,14 @@
 using namespace rollsense;
 namespace rt = rollsense::testing;
 
-TEST_CASE("the shard K/N: whole numbers with 0 <= K < N", "[shard]") {
+TEST_CASE("the shard K/N: whole numbers with 0 <= K < N and N >= 2", "[shard]") {
     auto s = parse_shard("2/4", "--shard");
     REQUIRE(s.ok());
     CHECK(s->index == 2);
     CHECK(s->count == 4);
     CHECK(s->text() == "2/4");
-    CHECK(parse_shard("0/1", "--shard").ok());
-    for (const char* bad : {"4/4", "5/4", "1/0", "0/0", "-1/4", "1", "1/", "/4", "a/b", "1.5/4", "1/4/2", ""}) {
+    CHECK(parse_shard("0/2", "--shard").ok());
+    for (const char* bad : {"0/1", "1/1", "4/4", "5/4", "1/0", "0/0", "-1/4", "1", "1/", "/4", "a/b", "1.5/4", "1/4/2", ""}) {
         INFO(bad);
         auto r = parse_shard(bad, "--shard");
         REQUIRE_FALSE(r.ok());
@@ -24,6 +24,8 @@ TEST_CASE("the shard K/N: whole numbers with 0 <= K < N", "[shard]") {
     }
     CHECK(parse_shard("4/4", "--shard").error().message.find("0/4 ... 3/4") != std::string::npos);
     CHECK(parse_shard("abc", "--shard").error().message.find("expects K/N") != std::string::npos);
+    CHECK(parse_shard("0/1", "--shard").error().message ==
+          "--shard 0/1: --shard K/N needs N >= 2; run without --shard for one process");
 }
 
 TEST_CASE("a shard claims every Nth trial it is asked about, in order, once", "[shard]") {

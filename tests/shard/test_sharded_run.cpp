@@ -144,6 +144,14 @@ TEST_CASE("a bad shard K/N is refused before anything runs", "[shard]") {
         CHECK(r.output.find("--shard") != std::string::npos);
         CHECK_FALSE(fs::exists(dir / "out"));
     }
+    // Review: 0/1 was taken, analysed as a part (rs.analyse refused it, exit 1)
+    // and then refused by merge as unfinished.
+    auto r = rt::record(dir / "out", "--set runs=1 --shard 0/1");
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(r.output.find("--shard 0/1: --shard K/N needs N >= 2; run without --shard for one process") !=
+          std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "out"));
 }
 
 namespace {

@@ -3,7 +3,7 @@
 #
 #   tools/slurm/submit.sh -n N -o OUT [options] SCRIPT [run options: --seed, --set, --profile ...]
 #
-#   -n N               shards: one array task each (sbatch --array=0-(N-1))
+#   -n N               shards (N >= 2): one array task each (sbatch --array=0-(N-1))
 #   -o OUT             results: OUT/shard-K per shard, OUT/merged the merged and
 #                      analysed dataset, OUT/logs the jobs' output
 #   --rollsense PATH   the program (default: rollsense on PATH, else this
@@ -39,7 +39,13 @@ done
 (($# >= 1)) || { echo "submit.sh: give the SCRIPT to run (see --help)" >&2; exit 2; }
 [[ -n $out ]] || { echo "submit.sh: give -o OUT, the results folder" >&2; exit 2; }
 if ! [[ $n =~ ^[1-9][0-9]*$ ]]; then
-  echo "submit.sh: -n expects the number of shards, a whole number >= 1, got '$n'" >&2
+  echo "submit.sh: -n expects the number of shards, a whole number >= 2, got '$n'" >&2
+  exit 2
+fi
+if ((n == 1)); then
+  # rollsense run refuses --shard 0/1: one shard is the whole run.
+  echo "submit.sh: -n 1: --shard K/N needs N >= 2; run without --shard for one process" \
+       "(e.g. sbatch --wrap 'rollsense run SCRIPT --out OUT ...')" >&2
   exit 2
 fi
 script=$1

@@ -71,6 +71,9 @@ int run(const std::vector<std::string>& argv) {
     args.reject_unknown({"--threads", "-v", "--verbose", "-q", "--quiet"});
     const auto pos = args.positionals({"--threads"});
     if (pos.size() < 2) throw UsageError("expects OUT and at least one SHARD folder (see --help)");
+    if (pos[0].empty()) throw UsageError("OUT is empty (''): give the folder to merge into");
+    for (std::size_t i = 1; i < pos.size(); ++i)
+        if (pos[i].empty()) throw UsageError("SHARD " + std::to_string(i) + " is empty (''): give each shard's folder");
     setup_logging(args);
     const auto threads = static_cast<unsigned>(args.unsigned_option("--threads", 0, 0, 4096));
     const std::filesystem::path out = pos[0];

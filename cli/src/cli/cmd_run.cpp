@@ -46,9 +46,10 @@ options:
                         run-info.csv is kept as run-info.N.csv
   --seed N              run seed (per-trial seeds derive from it); default: 1,
                         or, replaying a dataset, the seed it was recorded with
-  --shard K/N           record only shard K of N (0 <= K < N): the trials whose
-                        index in the run is K mod N; the shards' datasets are
-                        joined with 'rollsense merge' (docs/cluster.md)
+  --shard K/N           record only shard K of N (0 <= K < N, N >= 2): the
+                        trials whose index in the run is K mod N; the shards'
+                        datasets are joined with 'rollsense merge'
+                        (docs/cluster.md)
   --set KEY=VALUE       a setting (repeatable): a key starting with a profile
                         entry overrides it (plugin parameters:
                         devices.NAME.params.KEY, e.g. devices.tactile.params.kernel_fwhm=5);

@@ -44,8 +44,9 @@ struct Shard {
     std::size_t owner(std::size_t trial_index) const { return trial_index % count; }
 };
 
-// "K/N" with whole numbers 0 <= K < N <= kMaxShards; the error names `what`
-// (e.g. "--shard") and says what is expected.
+// "K/N" with whole numbers 0 <= K < N and 2 <= N <= kMaxShards (one process
+// is a run without --shard); the error names `what` (e.g. "--shard") and says
+// what is expected.
 Result<Shard> parse_shard(std::string_view text, std::string_view what);
 
 // The trials a sharded run's script asks about, numbered in order.
@@ -69,6 +70,12 @@ private:
     std::vector<std::string> order_;
     std::unordered_map<std::string, std::size_t> index_;
 };
+
+// The command that records the missing or damaged trials of the dataset in
+// `dir` again, in place: "rollsense run SCRIPT --shard K/N --out DIR --resume"
+// for a shard's folder (its run-info.csv names the shard), without --shard
+// for a whole run's.
+std::string resume_command(const std::filesystem::path& dir);
 
 // Reads <dir>/shard-plan.csv of a run split `count` ways: the trial ids in
 // order. Every error names the file and line (a repeated id, a shard column

@@ -11,6 +11,10 @@ namespace rollsense::plugins::replay {
 
 namespace fs = std::filesystem;
 
+namespace {
+constexpr const char* kDefaultCheckJoint = "sensing_finger";
+}  // namespace
+
 ParamSchema replay_schema() {
     return {
         param_string("dataset", std::nullopt,
@@ -24,7 +28,7 @@ ParamSchema replay_schema() {
                      "a read after the recording's end: 'invalid' (NaN, frame invalid with the reason) or 'hold' "
                      "(the last recorded sample)",
                      {"invalid", "hold"}),
-        param_string("check_joint", std::string("sensing_finger"),
+        param_string("check_joint", std::string(kDefaultCheckJoint),
                      "joint whose live angle is compared with the recorded one ('' = no check)"),
         param_number("angle_tolerance", 2.0, "largest difference between live and recorded angle before a warning",
                      0.0, {}, "deg"),
@@ -78,6 +82,10 @@ std::string ReplaySensor::source() const { return instance_.empty() ? "replay" :
 
 std::string ReplaySensor::dataset_name() const { return dataset_ ? dataset_->dir().string() : dataset_param_; }
 
+std::string ReplaySensor::setting(const std::string& param) const {
+    return "--set devices." + (instance_.empty() ? std::string("tactile") : instance_) + ".params." + param;
+}
+
 // ---------------------------------------------------------------- lifecycle --
 
 Status ReplaySensor::on_configure(const ParamSet& p, const PluginContext& context) {
@@ -121,14 +129,7 @@ Status ReplaySensor::on_configure(const ParamSet& p, const PluginContext& contex
         const std::string unit = c < info.channel_units.size() ? info.channel_units[c] : "1";
         channels_.push_back({name, unit, "column '" + name + "' replayed from " + dataset_name()});
     }
-    check_column_.reset();
-    if (!check_joint_.empty()) {
-        for (std::size_t j = 0; j < info.joints.size(); ++j)
-            if (info.joints[j] == check_joint_) check_column_ = j;
-        if (!check_column_)
-            log_info(source(), dataset_name() + " recorded no '" + check_joint_ +
-                                   "' column: the script's roll is not checked against the recording");
-    }
+    if (auto st = find_check_column(dir); !st) return st;
     reset_trial_state();
     log_info(source(), "replaying " + std::to_string(dataset_->trials().size()) + " trials of " + dataset_name() +
                            " (" + std::to_string(channels_.size()) + " channels, recorded with seed " +
@@ -155,6 +156,30 @@ Status ReplaySensor::on_cleanup() {
 
 Status ReplaySensor::on_recover() { return on_cleanup(); }
 
+Status ReplaySensor::find_check_column(const fs::path& dir) {
+    check_column_.reset();
+    if (check_joint_.empty()) return {};
+    const auto& joints = dataset_->info().joints;
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        if (joints[j] == check_joint_) check_column_ = j;
+    if (check_column_) return {};
+    // Only the default may find no column, on a dataset with nothing to check
+    // (hand-made, or no joint recorded): a joint named on purpose (a typo), or a
+    // recording whose hand names its finger otherwise, would turn the check off unseen.
+    if (check_joint_ == kDefaultCheckJoint && (joints.empty() || !fs::exists(dir / "dataset-info.csv"))) {
+        log_info(source(), dataset_name() + " recorded no '" + check_joint_ +
+                               "' column: the script's roll is not checked against the recording");
+        return {};
+    }
+    std::string recorded;
+    for (const auto& j : joints) recorded += (recorded.empty() ? "" : ", ") + j;
+    return {ErrorCode::invalid_argument,
+            "parameter 'check_joint' = '" + check_joint_ + "': " + dataset_name() + " recorded no such joint column (" +
+                (joints.empty() ? std::string("it recorded none") : "its joint columns: " + recorded) +
+                "); name one with " + setting("check_joint") + "=JOINT, or " + setting("check_joint") +
+                "='' to replay without checking the roll"};
+}
+
 // ------------------------------------------------------------------- trials --
 
 Result<std::size_t> ReplaySensor::choose(const TrialInfo& trial) {
@@ -176,8 +201,7 @@ Result<std::size_t> ReplaySensor::choose(const TrialInfo& trial) {
         return Error{found.error().code,
                      found.error().message +
                          ". Replay with the settings it was recorded with (its run-info.csv has the command line), "
-                         "or play the recorded trials in order with --set devices." +
-                         (instance_.empty() ? std::string("tactile") : instance_) + ".params.select=order"};
+                         "or play the recorded trials in order with " + setting("select") + "=order"};
     return found;
 }
 

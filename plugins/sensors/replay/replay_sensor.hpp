@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +62,10 @@ private:
 
     std::string source() const;
     std::string dataset_name() const;
+    // "--set devices.INSTANCE.params.PARAM", as a message's way out spells it.
+    std::string setting(const std::string& param) const;
+    // check_column_ for check_joint_, or why the dataset has none to check.
+    Status find_check_column(const std::filesystem::path& dir);
     Result<std::size_t> choose(const TrialInfo& trial);
     void check_roll(const SampleInput& input, std::size_t index, Frame& out);
     ValueMap describe(std::size_t index) const;
