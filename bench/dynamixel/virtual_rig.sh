@@ -19,12 +19,21 @@ source "$root/bench/same_dataset.sh"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 now() { date +%s.%N; }
+# The stock script of the source tree BUILD was configured from (an older build may
+# lack a call today's script makes); this tree's if its CMakeCache.txt does not say.
+stock_script() {
+  local src
+  src=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$1/CMakeCache.txt" 2>/dev/null || true)
+  if [ -n "$src" ] && [ -f "$src/scripts/paper_experiment.lua" ]; then echo "$src/scripts/paper_experiment.lua"
+  else echo "$root/scripts/paper_experiment.lua"; fi
+}
 run() {  # BUILD OUT [extra args]: prints the wall time in s
-  local bin=$1/bin/rollsense dir=$2
+  local bin=$1/bin/rollsense dir=$2 script
+  script=$(stock_script "$1")
   shift 2
   local start
   start=$(now)
-  "$bin" run "$root/scripts/paper_experiment.lua" --profile etroll-virtual --seed "$seed" -q --no-progress \
+  "$bin" run "$script" --profile etroll-virtual --seed "$seed" -q --no-progress \
     --out "$dir" "$@" 2>"$dir.log" || { echo "$bin failed, see below" >&2; cat "$dir.log" >&2; exit 1; }
   awk -v a="$(now)" -v b="$start" 'BEGIN { printf "%.2f", a - b }'
 }

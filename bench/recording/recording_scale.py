@@ -5,8 +5,9 @@
                                        [--repeats 3] [--stock-repeats 5] [--tmp DIR]
 
 Runs both builds' `rollsense`, interleaved (new, reference, reference, new, ...),
-in this one process, on the stock script scripts/paper_experiment.lua with
---seed 11, and prints for each:
+in this one process, each on the stock script scripts/paper_experiment.lua of
+its own source tree (from its CMakeCache.txt: an older build may lack a call
+today's script makes) with --seed 11, and prints for each:
 
   record R   the recording alone (--set runs=R --set analyse=false: 27 x R
              trials): wall time, trials/s, bytes the process wrote (write()
@@ -50,6 +51,19 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCRIPT = os.path.join(ROOT, "scripts", "paper_experiment.lua")
+
+
+def stock_script(build):
+    """The stock script of the source tree `build` was configured from (this tree's if unknown)."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as cache:
+            for line in cache:
+                if line.startswith("CMAKE_HOME_DIRECTORY:INTERNAL="):
+                    script = os.path.join(line.split("=", 1)[1].strip(), "scripts", "paper_experiment.lua")
+                    return script if os.path.exists(script) else SCRIPT
+    except OSError:
+        pass
+    return SCRIPT
 TRIALS_PER_RUN = 27  # 9 objects x 3 speeds
 
 
@@ -122,7 +136,7 @@ def main():
         if not os.access(b, os.X_OK):
             sys.exit(f"{b}: no rollsense program there; build it first (cmake --build BUILD --target rollsense)")
     work = tempfile.mkdtemp(prefix="rollsense-recording-", dir=a.tmp)
-    base = [SCRIPT, "--seed", "11", "-q", "--no-progress"]
+    base = {b: [stock_script(d), "--seed", "11", "-q", "--no-progress"] for b, d in (("new", a.build), ("ref", a.reference))}
 
     def order(i):  # interleaved, alternating which build goes first
         return ["new", "ref"] if i % 2 == 0 else ["ref", "new"]
@@ -141,7 +155,7 @@ def main():
                     # recently deleted inodes when it allocates, which would charge
                     # one run for the deletion of the one before it.
                     out = os.path.join(work, f"{b}-{runs}-{i}")
-                    wall, wchar, wbytes = run([builds[b], "run", *base, "--set", f"runs={runs}", "--set",
+                    wall, wchar, wbytes = run([builds[b], "run", *base[b], "--set", f"runs={runs}", "--set",
                                                "analyse=false", "--out", out])
                     t[b].append(wall)
                     cpu[b].append(CPU[builds[b]])
@@ -185,7 +199,7 @@ def main():
         for i in range(a.stock_repeats):
             for b in order(i):
                 out = os.path.join(work, f"{b}-stock-{i}")
-                t[b].append(run([builds[b], "run", *base, "--out", out])[0])
+                t[b].append(run([builds[b], "run", *base[b], "--out", out])[0])
                 cpu[b].append(CPU[builds[b]])
         why = same_dataset(os.path.join(work, "new-stock-0"), os.path.join(work, "ref-stock-0"),
                            ["manifest.csv", "dataset-info.csv", "features.csv", "model.rsm"])
