@@ -442,15 +442,22 @@ TEST_CASE("an interrupted run prints the exact command that resumes it, --set op
     CHECK(same_files(out / "run-config.csv", dir / "whole" / "run-config.csv"));
 }
 
+namespace {
+// Three stock trials on etroll-virtual whose servo `id` stops answering at its 25th reply, into dir/out.
+CommandRun run_with_silent_servo(const TempDir& dir, int id) {
+    write_file(dir / "faulty.lua", "local p = include('etroll-virtual')\n"
+                                   "p.devices.hand.params.inject = { '" + std::to_string(id) + ":silent:25' }\nreturn p\n");
+    return run_rollsense("run " + kPaper + " --profile " + shell_quoted(dir / "faulty.lua") +
+                         " --set runs=3 --set objects=C1 --set speeds=20 --set analyse=false --no-progress --out " +
+                         shell_quoted(dir / "out"));
+}
+}  // namespace
+
 // Review findings 9 and 12: a device failure after some trials printed its
 // fault three times and no way on; now the fault once, then the resume command.
 TEST_CASE("a run a device stops after some trials prints its fault once and the command that resumes it") {
     TempDir dir("rollsense-resume");
-    write_file(dir / "faulty.lua", "local p = include('etroll-virtual')\n"
-                                   "p.devices.hand.params.inject = { '1:silent:25' }\nreturn p\n");
-    const auto failed = run_rollsense("run " + kPaper + " --profile " + shell_quoted(dir / "faulty.lua") +
-                                      " --set runs=3 --set objects=C1 --set speeds=20 --set analyse=false --no-progress"
-                                      " --out " + shell_quoted(dir / "out"));
+    const auto failed = run_with_silent_servo(dir, 1);
     INFO(failed.output);
     CHECK(failed.status == 4);
     std::size_t faults = 0;
@@ -467,11 +474,7 @@ TEST_CASE("a run a device stops after some trials prints its fault once and the 
 // printed each time: five "did not answer" for one fault.
 TEST_CASE("a safe state that fails again and again after a fault prints that failure once") {
     TempDir dir("rollsense-safe-once");
-    write_file(dir / "faulty.lua", "local p = include('etroll-virtual')\n"
-                                   "p.devices.hand.params.inject = { '2:silent:25' }\nreturn p\n");
-    const auto failed = run_rollsense("run " + kPaper + " --profile " + shell_quoted(dir / "faulty.lua") +
-                                      " --set runs=3 --set objects=C1 --set speeds=20 --set analyse=false --no-progress"
-                                      " --out " + shell_quoted(dir / "out"));
+    const auto failed = run_with_silent_servo(dir, 2);
     INFO(failed.output);
     CHECK(failed.status == 4);
     CHECK(count_of(failed.output, "safe state: ") == 1);

@@ -220,8 +220,8 @@ int run(const std::vector<std::string>& argv) {
     if (view) view->finished(summary);
     // The trials the dataset held before this run and still holds. The kernel counts those the script skipped
     // (rs.has_trial); a resume that stopped before its script reached them (a device that failed at activation)
-    // leaves them on disk all the same.
-    const std::size_t listed = o.resume ? trials_listed(o.out_dir) : 0;
+    // leaves them on disk all the same. Read only then: a run that ended well counted them all.
+    const std::size_t listed = o.resume && !summary.status.ok() ? trials_listed(o.out_dir) : 0;
     const std::size_t already = std::max(summary.trials_skipped, listed - std::min(listed, summary.trials_saved));
     // The error first, once; then the summary, where the results are and the way on.
     if (!summary.status.ok()) log_error("rollsense", summary.status.error().describe());
