@@ -645,6 +645,55 @@ TEST_CASE("rest turns every Bus Watchdog off until control resumes: the next wri
     REQUIRE(a.on_deactivate().ok());
 }
 
+// Independent hardware review item 2: the per-period SYNC_READ does not cover
+// Bus Watchdog (98) and goals go by SYNC_WRITE, which has no reply, so a trip
+// went unnoticed and every later goal was dropped by the servo. A watchdog
+// trips only after a pause in our instructions: after one of half its time,
+// read() reads 98; a steady run costs nothing more.
+TEST_CASE("a Bus Watchdog tripped during a run is a fault naming it, on read and write; a steady run costs no READ") {
+    auto raw = etroll_raw("emulator");
+    raw["emulated_object"] = 0.0;
+    raw["bus_watchdog_ms"] = std::int64_t{500};
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    auto* link = dynamic_cast<const VirtualBusLink*>(&a.bus()->port());
+    REQUIRE(link);
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    const auto before = a.bus()->statistics().transactions;
+    for (int period = 1; period <= 100; ++period) {
+        REQUIRE(a.write(period * 0.01, cmd).ok());
+        REQUIRE(a.read(period * 0.01, s).ok());
+    }
+    CHECK(a.bus()->statistics().transactions == before + 200);  // one SYNC_WRITE, one SYNC_READ a period
+    // A pause of 300 ms: past half the watchdog, so 98 is read (one READ per servo), not tripped.
+    REQUIRE(a.read(1.3, s).ok());
+    CHECK(a.bus()->statistics().transactions == before + 200 + 1 + 4);
+    CHECK(link->bus().servo(1)->item(addr::bus_watchdog, 1) == 25);
+    // Reads past the watchdog time, no writes: every servo trips.
+    const auto tripped = a.read(2.0, s);
+    REQUIRE_FALSE(tripped.ok());
+    CHECK(link->bus().servo(1)->watchdog_tripped());
+    CHECK(tripped.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(tripped.message(), Catch::Contains("joint 'sensing_finger' (servo 1): its Bus Watchdog (address 98) "
+                                                  "tripped: no instruction reached it for 500 ms"));
+    // A goal after it: the servo would drop it; refused naming the watchdog, and so is every read.
+    cmd[0].position = 30;
+    const auto goal = a.write(2.01, cmd);
+    CHECK(goal.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(goal.message(), Catch::Contains("Bus Watchdog (address 98) tripped"));
+    const auto again = a.read(2.02, s);
+    CHECK(again.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(again.message(), Catch::Contains("Bus Watchdog (address 98) tripped"));
+    // The next activation clears it.
+    REQUIRE(a.on_deactivate().ok());
+    REQUIRE(a.on_activate().ok());
+    CHECK(a.read(2.1, s).ok());
+    CHECK(link->bus().servo(1)->item(addr::bus_watchdog, 1) == 25);
+}
+
 TEST_CASE("a crash (SIGABRT) with the hand active sends torque-off to every servo from the signal handler") {
     // The crashing "rollsense": activate (torque on everywhere), then abort. Forked
     // before the emulator's serving thread exists (fork_first.hpp says why).
