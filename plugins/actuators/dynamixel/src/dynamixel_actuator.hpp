@@ -3,8 +3,9 @@
 // Per control period it sends exactly one SYNC_WRITE (Goal Current .. Goal
 // Position for every servo) and one SYNC_READ (Moving .. Present Position);
 // single-servo WRITEs happen only for what changes rarely (operating mode,
-// torque) and a READ of Hardware Error Status only after a servo raised its
-// alert bit.
+// torque), a READ of Hardware Error Status only after a servo raised its
+// alert bit, and a READ of Bus Watchdog only after a pause in the periods
+// long enough to have tripped it.
 #pragma once
 
 #include <memory>
