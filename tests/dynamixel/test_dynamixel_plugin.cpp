@@ -80,6 +80,15 @@ std::vector<JointCommand> hold_all(DynamixelActuator& a, const std::vector<Joint
     return c;
 }
 
+// The plugin on servos in memory (device "emulator"), activated; the line it drives.
+const VirtualBusLink* activated_in_memory(DynamixelActuator& a, const std::map<std::string, ParamValue>& raw) {
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    const auto* link = dynamic_cast<const VirtualBusLink*>(&a.bus()->port());
+    REQUIRE(link);
+    return link;
+}
+
 }  // namespace
 
 TEST_CASE("the dynamixel plugin passes the actuator conformance suite on the emulated E-TRoll") {
@@ -238,10 +247,7 @@ TEST_CASE("device 'emulator': servos in memory, one sync write and one sync read
     raw["emulated_object"] = 0.0;  // a bare bus: these servos move freely
     SECTION("every period is the same two packets, answered at once") {
         DynamixelActuator a;
-        REQUIRE(a.on_configure(validated(raw), {}).ok());
-        REQUIRE(a.on_activate().ok());
-        auto* link = dynamic_cast<const VirtualBusLink*>(&a.bus()->port());
-        REQUIRE(link);
+        const VirtualBusLink* link = activated_in_memory(a, raw);
         std::vector<JointState> s(4);
         REQUIRE(a.read(0, s).ok());
         auto cmd = hold_all(a, s);
@@ -659,10 +665,7 @@ TEST_CASE("a Bus Watchdog tripped during a run is a fault naming it, on read and
     raw["emulated_object"] = 0.0;
     raw["bus_watchdog_ms"] = std::int64_t{500};
     DynamixelActuator a;
-    REQUIRE(a.on_configure(validated(raw), {}).ok());
-    REQUIRE(a.on_activate().ok());
-    auto* link = dynamic_cast<const VirtualBusLink*>(&a.bus()->port());
-    REQUIRE(link);
+    const VirtualBusLink* link = activated_in_memory(a, raw);
     std::vector<JointState> s(4);
     REQUIRE(a.read(0, s).ok());
     auto cmd = hold_all(a, s);
