@@ -446,7 +446,9 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
             continue;
         }
         if (rt_[i].watchdog_tripped) {  // its goals are read-only: the others still get theirs
-            failed(watchdog_fault(i));
+            // Short: the read that found the trip said why and what to do (the safe state logs this one).
+            failed({ErrorCode::hardware_fault, who(i) + ": its Bus Watchdog (address 98) tripped: goal not sent "
+                                                        "(the servo stopped by itself and ignores goals)"});
             continue;
         }
         if (c.mode != rt_[i].mode) {
