@@ -58,9 +58,68 @@ TEST_CASE("baud rate index <-> bits per second") {
     CHECK_FALSE(index_from_baud(12345).has_value());
 }
 
+// Independent hardware review item 4: the driver, the emulator and the tests
+// all take their addresses from addr::, so a wrong one would pass everywhere
+// and move a real servo wrongly. Pinned here as the literal numbers of the
+// X-series e-Manual (XM430-W350 / XL330-M288 control table); those marked *
+// are also in the table of docs/hardware.md §4.
+TEST_CASE("control table addresses are the e-Manual's numbers") {
+    CHECK(addr::model_number == 0);            // *
+    CHECK(addr::model_information == 2);
+    CHECK(addr::firmware_version == 6);
+    CHECK(addr::id == 7);                      // *
+    CHECK(addr::baud_rate == 8);               // *
+    CHECK(addr::return_delay_time == 9);       // *
+    CHECK(addr::drive_mode == 10);
+    CHECK(addr::operating_mode == 11);         // *
+    CHECK(addr::homing_offset == 20);
+    CHECK(addr::moving_threshold == 24);
+    CHECK(addr::temperature_limit == 31);
+    CHECK(addr::max_voltage_limit == 32);
+    CHECK(addr::min_voltage_limit == 34);
+    CHECK(addr::pwm_limit == 36);
+    CHECK(addr::current_limit == 38);          // *
+    CHECK(addr::velocity_limit == 44);         // *
+    CHECK(addr::max_position_limit == 48);     // *
+    CHECK(addr::min_position_limit == 52);     // *
+    CHECK(addr::shutdown == 63);
+    CHECK(addr::torque_enable == 64);          // *
+    CHECK(addr::led == 65);
+    CHECK(addr::status_return_level == 68);
+    CHECK(addr::registered_instruction == 69);
+    CHECK(addr::hardware_error_status == 70);  // *
+    CHECK(addr::bus_watchdog == 98);           // *
+    CHECK(addr::goal_pwm == 100);
+    CHECK(addr::goal_current == 102);          // *
+    CHECK(addr::goal_velocity == 104);         // *
+    CHECK(addr::profile_acceleration == 108);  // *
+    CHECK(addr::profile_velocity == 112);      // *
+    CHECK(addr::goal_position == 116);         // *
+    CHECK(addr::realtime_tick == 120);
+    CHECK(addr::moving == 122);                // *
+    CHECK(addr::moving_status == 123);
+    CHECK(addr::present_pwm == 124);
+    CHECK(addr::present_current == 126);       // *
+    CHECK(addr::present_velocity == 128);      // *
+    CHECK(addr::present_position == 132);      // *
+    CHECK(addr::velocity_trajectory == 136);
+    CHECK(addr::position_trajectory == 140);
+    CHECK(addr::present_input_voltage == 144); // *
+    CHECK(addr::present_temperature == 146);   // *
+    // Operating Mode (11) values: *
+    CHECK(static_cast<int>(OperatingMode::current) == 0);
+    CHECK(static_cast<int>(OperatingMode::velocity) == 1);
+    CHECK(static_cast<int>(OperatingMode::position) == 3);
+    CHECK(static_cast<int>(OperatingMode::extended_position) == 4);
+    CHECK(static_cast<int>(OperatingMode::current_based_position) == 5);
+    CHECK(static_cast<int>(OperatingMode::pwm) == 16);
+}
+
 TEST_CASE("the per-period blocks cover the items they must") {
-    CHECK(kCommandBlockAddress == addr::goal_current);
-    CHECK(kCommandBlockAddress + kCommandBlockLength == addr::goal_position + 4);
-    CHECK(kStateBlockAddress == addr::moving);
-    CHECK(kStateBlockAddress + kStateBlockLength == addr::present_position + 4);
+    // SYNC_WRITE: Goal Current (102, 2) .. Goal Position (116, 4).
+    CHECK(kCommandBlockAddress == 102);
+    CHECK(kCommandBlockLength == 18);
+    // SYNC_READ: Moving (122, 1) .. Present Position (132, 4).
+    CHECK(kStateBlockAddress == 122);
+    CHECK(kStateBlockLength == 14);
 }

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 
 #include "runtime/session/session.hpp"
@@ -20,20 +21,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-runtime::RunSummary run_with_fault(const fs::path& dir, const std::string& spec) {
-    std::ofstream(dir / "faulty.lua") << "local p = include('etroll-virtual')\n"
-                                         "p.devices.hand.params.inject = { '" << spec << "' }\n"
-                                         "return p\n";
+// A Session on etroll-virtual (or a profile in `dir` that includes it), as `rollsense run` starts one.
+runtime::RunSummary run_session(const fs::path& dir, const fs::path& script, const std::string& profile,
+                                std::initializer_list<const char*> settings) {
     runtime::SessionOptions o;
-    o.script = fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua";
-    o.profile = (dir / "faulty.lua").string();
-    for (const char* kv : {"runs=3", "objects=C1", "speeds=20", "analyse=false"}) REQUIRE(o.settings.add(kv).ok());
+    o.script = script;
+    o.profile = profile;
+    for (const char* kv : settings) REQUIRE(o.settings.add(kv).ok());
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = dir / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
     o.progress = false;
     runtime::Session session(o);
     return session.run();
+}
+
+runtime::RunSummary run_with_fault(const fs::path& dir, const std::string& spec) {
+    std::ofstream(dir / "faulty.lua") << "local p = include('etroll-virtual')\n"
+                                         "p.devices.hand.params.inject = { '" << spec << "' }\n"
+                                         "return p\n";
+    return run_session(dir, fs::path(ROLLSENSE_SOURCE_DIR) / "scripts/paper_experiment.lua",
+                       (dir / "faulty.lua").string(), {"runs=3", "objects=C1", "speeds=20", "analyse=false"});
 }
 
 }  // namespace
@@ -85,4 +93,52 @@ TEST_CASE("a servo fault is reported once, as the run's error", "[fault]") {
     CHECK(log.count("cleanup stopped") == 1);
     CHECK(log.count("needs the active state, it is error (after a timeout error)") == 1);
     for (const auto& line : log.lines()) CHECK(line.rfind("error ", 0) != 0);  // nothing else at error level
+}
+
+// The independent hardware review's repros on etroll-virtual: a finger pushing
+// with nothing in its way past its limit (item 1), and a control period longer
+// than the servos' Bus Watchdog (item 2).
+// The finger went on to 824 deg (the servo's position limits act in position mode only).
+TEST_CASE("etroll-virtual: the pushing finger in current mode with no object stops at its limit", "[limits][review]") {
+    const testing::TempDir tmp("rollsense-push-free");
+    std::ofstream(tmp.path() / "script.lua") << R"(
+local rs = require "rollsense"
+local p = rs.joint("pushing_finger")
+rs.on_cleanup(function()
+  rs.wait(1000)
+  rs.write_output("held.txt", string.format("%.2f %s %s", p:position(), p:state().mode, tostring(p:state().torque)))
+end)
+p:push(200)
+rs.wait(3000)
+rs.write_output("not_stopped.txt", string.format("%.1f", p:position()))
+)";
+    const auto summary = run_session(tmp.path(), tmp.path() / "script.lua", "etroll-virtual", {"emulated_object=0"});
+    REQUIRE_FALSE(summary.status.ok());
+    CHECK(summary.status.code() == ErrorCode::limit_violation);
+    CHECK_THAT(summary.status.message(), Catch::Contains("joint 'pushing_finger' in current mode is at 60.") &&
+                                             Catch::Contains("past its limit 60 (joint limits [-80, 60] of profile "
+                                                             "'etroll-virtual'"));
+    CHECK_FALSE(fs::exists(tmp.path() / "out" / "not_stopped.txt"));
+    double at = 0;
+    char mode[32] = {}, torque[8] = {};
+    REQUIRE(std::sscanf(read_file(tmp.path() / "out" / "held.txt").c_str(), "%lf %31s %7s", &at, mode, torque) == 3);
+    CHECK(at == Approx(60).margin(0.1));  // held at the limit, to a tick (0.088 deg)
+    CHECK(std::string(mode) == "position");
+    CHECK(std::string(torque) == "true");
+}
+
+// The trip was never noticed: the move timed out with no word about the watchdog.
+TEST_CASE("etroll-virtual: control periods longer than the Bus Watchdog end the run naming it", "[fault][watchdog][review]") {
+    const testing::TempDir tmp("rollsense-slow-control");
+    std::ofstream(tmp.path() / "slow.lua") << "local p = include('etroll-virtual')\np.control_rate_hz = 1\nreturn p\n";
+    std::ofstream(tmp.path() / "script.lua") << R"(
+local rs = require "rollsense"
+rs.wait(2000)
+rs.joint("sensing_finger"):move(30, { timeout_ms = 8000 })
+)";
+    const auto summary = run_session(tmp.path(), tmp.path() / "script.lua", (tmp.path() / "slow.lua").string(), {});
+    REQUIRE_FALSE(summary.status.ok());
+    CHECK(summary.status.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(summary.status.message(), Catch::Contains("(servo 1): its Bus Watchdog (address 98) tripped: no "
+                                                         "instruction reached it for 500 ms"));
 }

@@ -122,10 +122,10 @@ struct Outcome {
     std::string shutdown_log;          // warnings and errors logged by the shutdown
 };
 
-// Clamp, roll, then `kind` strikes servo 1 (the sensing finger); the robot
-// fails in that period and is made safe, then shut down, as Scheduler::run and
-// Session::run do; servos 2-4 are read back after each.
-Outcome clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind) {
+// Clamp, roll, then `kind` strikes `servo` (1, the sensing finger, unless
+// said); the robot fails in that period and is made safe, then shut down, as
+// Scheduler::run and Session::run do; every servo is read back after each.
+Outcome clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind, std::uint8_t servo = 1) {
     std::vector<ServoSetup> servos = etroll_servos();
     servos[1].start_degrees = -66.0;
     servos[1].contact_degrees = -44.0;  // the object, in the pushing finger's way
@@ -170,8 +170,8 @@ Outcome clamp_roll_and_fail_servo_1(bool pusher_torque_off, FaultKind kind) {
     }
     REQUIRE(robot.find_joint("sensing_finger")->state.moving);  // mid-roll
 
-    (*emu)->with_bus([kind](BusEmulator& b) {
-        b.schedule({1, kind, b.elapsed()});  // due at the next advance
+    (*emu)->with_bus([kind, servo](BusEmulator& b) {
+        b.schedule({servo, kind, b.elapsed()});  // due at the next advance
         return 0;
     });
     t += 0.01;
@@ -227,6 +227,25 @@ TEST_CASE("a silent servo mid-roll: the pushing finger stops squeezing and every
     CHECK(count_of(log, "did not answer") == 0);  // the fault itself is the run's error, printed once
     CHECK_FALSE(released.at(1).torque);
     CHECK(released.at(1).watchdog == 0);
+}
+
+// Independent hardware review item 3: the safe hold is position mode, and a
+// mode switch needs replies (READ, EEPROM WRITEs); for the silent pushing
+// finger they timed out, it got no SYNC_WRITE entry, and it went on squeezing
+// at the clamp current. It now gets Goal Current 0, which needs no reply.
+TEST_CASE("a silent pushing finger mid-clamp stops squeezing in the safe state, before shutdown", "[safety][fault]") {
+    const auto [failure, servo, released, log] = clamp_roll_and_fail_servo_1(false, FaultKind::silent, 2);
+    CHECK(failure.code() == ErrorCode::timeout);
+    CHECK_THAT(failure.message(), Catch::Contains("servo 2"));
+    CHECK(servo.at(2).mode == static_cast<int>(OperatingMode::current));  // the switch needed replies
+    CHECK(servo.at(2).current_ma <= kSafeCurrentMa);
+    for (int id : {1, 3, 4}) {  // the others hold, as with any failed servo
+        INFO("servo " << id);
+        CHECK(servo.at(id).torque);
+        CHECK(servo.at(id).mode != static_cast<int>(OperatingMode::current));
+        CHECK(servo.at(id).current_ma <= kSafeCurrentMa);
+    }
+    CHECK_FALSE(released.at(2).torque);  // and shutdown still releases it without a reply
 }
 
 TEST_CASE("a silent servo mid-roll: a pushing finger whose safe action is torque off is released",

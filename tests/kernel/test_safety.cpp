@@ -239,3 +239,60 @@ end
         CHECK_THAT(kt::read_file(o.out_dir / "run-info.csv"), Catch::Contains("cancelled"));
     }
 }
+
+// Independent hardware review item 1: the limits were checked only for
+// position-mode goals, and a servo keeps to its own position limits in
+// position mode only, so a finger pushing (current mode) or spinning
+// (velocity mode) with nothing in its way went past them. The kernel now
+// watches every read position of such a joint.
+TEST_CASE("a joint driven by current or velocity past its limit is stopped there, as a limit violation",
+          "[limits][review]") {
+    struct Case { const char* drive; const char* says; double limit; const char* torque; };
+    for (const Case& c : {Case{"f:push(100)", "joint 'finger' in current mode is at 50.", 50, "true"},
+                          Case{"f:spin(-30)", "joint 'finger' in velocity mode is at -50.", -50, "true"},
+                          Case{"p:push(-100)", "joint 'pusher' in current mode is at -60.", -60, "false"}}) {
+        kt::TempDir dir;
+        INFO(c.drive);
+        auto r = kt::run_script(dir, std::string(R"(local rs = require 'rollsense'
+local f, p = rs.joint("finger"), rs.joint("pusher")
+rs.on_cleanup(function()
+  rs.wait(1000)
+  local j = rs.joint(")") + (c.drive[0] == 'f' ? "finger" : "pusher") + R"(")
+  rs.write_output("cleanup.txt", string.format("%.3f %s %s", j:position(), j:state().mode, tostring(j:state().torque)))
+end)
+)" + c.drive + R"(
+rs.wait(8000)
+rs.write_output("not_stopped.txt", "")
+)");
+        REQUIRE_FALSE(r.summary.status.ok());
+        CHECK(r.summary.status.code() == ErrorCode::limit_violation);
+        CHECK_THAT(r.summary.status.message(), Catch::Contains(c.says));
+        CHECK_THAT(r.summary.status.message(),
+                   Catch::Contains("past its limit " + std::to_string(static_cast<int>(c.limit)) + " (joint limits [") &&
+                       Catch::Contains("stopped by the safe state"));
+        CHECK_FALSE(std::filesystem::exists(r.out / "not_stopped.txt"));
+        double at = 0;
+        char mode[32] = {}, torque[8] = {};
+        REQUIRE(std::sscanf(kt::read_file(r.out / "cleanup.txt").c_str(), "%lf %31s %7s", &at, mode, torque) == 3);
+        CHECK(std::string(torque) == c.torque);  // the pusher's profile says safe = "torque_off"
+        if (std::string(torque) == "true") {
+            CHECK(at == Approx(c.limit).margin(1e-6));  // held at the limit itself, in position mode
+            CHECK(std::string(mode) == "position");
+        } else {
+            CHECK(std::abs(at) < 61.0);  // released just past it
+        }
+    }
+}
+
+TEST_CASE("a joint pushing inside its limits is left alone", "[limits][review]") {
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local p = rs.joint("pusher")
+p:push(200)   -- closes on the object at 20 deg, inside [-60, 60]
+rs.wait(3000)
+rs.write_output("at.txt", string.format("%.3f %s", p:position(), p:state().mode))
+)");
+    INFO(r.summary.status.message());
+    REQUIRE(r.summary.status.ok());
+    CHECK(kt::read_file(r.out / "at.txt") == "20.000 current");
+}

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <utility>
 
@@ -30,6 +31,20 @@ void take_state(JointState& to, const JointState& from) {
 // A joint's member, or nullptr for no joint (the JointAccess lookups).
 template <class T>
 const T* member_of(const Joint* j, T Joint::*member) { return j ? &(j->*member) : nullptr; }
+// "a, b, c" (or "none") for messages.
+template <class Range, class Name>
+std::string names_of(const Range& items, Name name) {
+    std::string out;
+    for (const auto& x : items) out += (out.empty() ? "" : ", ") + std::string(std::invoke(name, x));
+    return out.empty() ? "none" : out;
+}
+// One sensor hook on every sensor, in order; the first failure ends it.
+template <class Slots, class Hook>
+Status call_sensors(Slots& sensors, const char* verb, Hook hook) {
+    for (auto& s : sensors)
+        if (auto st = s.handle->call(verb, [&] { return hook(s.handle->plugin()); }); !st.ok()) return st;
+    return {};
+}
 }  // namespace
 
 ControlMode position_mode_of(const JointInfo& info) {
@@ -132,14 +147,12 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                                                   slot.handle->instance() + ")"};
             auto lim = std::find_if(profile.joints.begin(), profile.joints.end(),
                                     [&](const JointLimit& l) { return l.name == info.name; });
-            std::string listed;  // a misspelt entry shows beside the joint it meant
-            for (const auto& l : profile.joints) listed += (listed.empty() ? "" : ", ") + l.name;
             if (lim == profile.joints.end())
                 return Error{ErrorCode::invalid_argument,
                              file + ": joint '" + info.name + "' of device '" + slot.handle->instance() +
                                  "' has no limits; add joints." + info.name +
                                  " = { min = ..., max = ... } (the kernel enforces them; the profile's joints: " +
-                                 (listed.empty() ? "none" : listed) + ")"};
+                                 names_of(profile.joints, &JointLimit::name) + ")"};  // a misspelt one beside the joint it meant
             // Written so that NaN fails: it would switch a limit's check off.
             for (auto [key, v] : {std::pair{"max_velocity", lim->max_velocity}, std::pair{"max_current", lim->max_current}})
                 if (!(v >= 0 && v <= DBL_MAX))
@@ -187,10 +200,8 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
     for (const auto& spec : profile.controllers) {
         const auto* type = find_controller_type(spec.name);
         if (!type) {
-            std::string known;
-            for (const auto& n : controller_type_names()) known += (known.empty() ? "" : ", ") + n;
             return Error{ErrorCode::not_found, file + ": controllers." + spec.name + ": no such controller (known: " +
-                                                   (known.empty() ? "none" : known) + ")"};
+                                                   names_of(controller_type_names(), std::identity{}) + ")"};
         }
         auto params = validate_params(type->schema, spec.params, file + ": controllers." + spec.name);
         if (!params) return params.error();
@@ -201,11 +212,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
 
 Robot::~Robot() = default;
 
-std::string Robot::joint_names() const {
-    std::string out;
-    for (const auto& j : joints_) out += (out.empty() ? "" : ", ") + j.name;
-    return out.empty() ? "none" : out;
-}
+std::string Robot::joint_names() const { return names_of(joints_, &Joint::name); }
 
 const Joint* Robot::find_joint(const std::string& name) const {
     for (const auto& j : joints_)
@@ -266,6 +273,17 @@ Status Robot::write_actuators(double time) {
 Status Robot::control_tick(double time, double dt) {
     const auto devices = lock_devices();
     if (auto s = read_actuators(time); !s.ok()) return s;
+    // A servo keeps to its position limits in position mode only: a joint driven by current or velocity that
+    // reads past a limit, or at one and going on, fails the period; the safe state holds it at that limit.
+    for (const auto& j : joints_) {
+        const double p = j.state.position, v = j.state.velocity, edge = std::clamp(p, j.limit.min, j.limit.max);
+        if ((j.command.mode == ControlMode::current || j.command.mode == ControlMode::velocity) &&
+            (p != edge || (p == j.limit.max && v > 0) || (p == j.limit.min && v < 0)))
+            return {ErrorCode::limit_violation, "joint '" + j.name + "' in " + std::string(to_string(j.command.mode)) +
+                                                    " mode is at " + fmt(p) + " " + j.info.unit + ", past its limit " +
+                                                    fmt(edge) + " (joint limits [" + fmt(j.limit.min) + ", " + fmt(j.limit.max) +
+                                                    "] of " + profile_label_ + "); stopped by the safe state (held at the limit, or torque off)"};
+    }
     for (auto& c : controllers_) {
         if (!c.enabled) continue;
         if (auto s = c.controller->update(time, dt, *this); !s.ok()) {
@@ -408,10 +426,8 @@ Status Robot::enable_controller(const std::string& name, double time) {
         c.enabled = true;
         return {};
     }
-    std::string known;
-    for (const auto& c : controllers_) known += (known.empty() ? "" : ", ") + c.name;
     return {ErrorCode::not_found, "no controller '" + name + "' in " + profile_label_ +
-                                      " (configured: " + (known.empty() ? "none" : known) + ")"};
+                                      " (configured: " + names_of(controllers_, &ControllerSlot::name) + ")"};
 }
 
 void Robot::disable_controller(const std::string& name, double time) {
@@ -436,35 +452,18 @@ SampleInput Robot::sample_input(double time) {
 }
 
 Status Robot::begin_trial(const TrialInfo& trial) {
-    for (auto& s : sensors_) {
+    for (auto& s : sensors_)
         if (auto st = s.handle->require_active("begin_trial"); !st.ok()) return st;
-        if (auto st = s.handle->call("begin_trial", [&] { return s.handle->plugin().begin_trial(trial); }); !st.ok())
-            return st;
-    }
-    return {};
+    return call_sensors(sensors_, "begin_trial", [&](Sensor& p) { return p.begin_trial(trial); });
 }
 
 Status Robot::start_recording(double time) {
     const SampleInput in = sample_input(time);
-    for (auto& s : sensors_)
-        if (auto st = s.handle->call("start_recording", [&] { return s.handle->plugin().start_recording(in); });
-            !st.ok())
-            return st;
-    return {};
+    return call_sensors(sensors_, "start_recording", [&](Sensor& p) { return p.start_recording(in); });
 }
 
-Status Robot::stop_recording() {
-    for (auto& s : sensors_)
-        if (auto st = s.handle->call("stop_recording", [&] { return s.handle->plugin().stop_recording(); }); !st.ok())
-            return st;
-    return {};
-}
-
-Status Robot::end_trial() {
-    for (auto& s : sensors_)
-        if (auto st = s.handle->call("end_trial", [&] { return s.handle->plugin().end_trial(); }); !st.ok()) return st;
-    return {};
-}
+Status Robot::stop_recording() { return call_sensors(sensors_, "stop_recording", [](Sensor& p) { return p.stop_recording(); }); }
+Status Robot::end_trial() { return call_sensors(sensors_, "end_trial", [](Sensor& p) { return p.end_trial(); }); }
 
 Status Robot::sample(double time, TrialData& data) {
     const SampleInput in = sample_input(time);

@@ -27,6 +27,19 @@ bool is_position_mode(ControlMode m) {
            m == ControlMode::current_based_position;
 }
 
+// One servo's entry of the per-period SYNC_WRITE: Goal Current .. Goal Position.
+Bytes command_block(std::int32_t current, std::int32_t velocity, std::int32_t profile_acceleration,
+                    std::int32_t profile_velocity, std::int32_t position) {
+    Bytes d;
+    d.reserve(kCommandBlockLength);
+    put_le(d, current, 2);               // 102 Goal Current
+    put_le(d, velocity, 4);              // 104 Goal Velocity
+    put_le(d, profile_acceleration, 4);  // 108 Profile Acceleration
+    put_le(d, profile_velocity, 4);      // 112 Profile Velocity
+    put_le(d, position, 4);              // 116 Goal Position
+    return d;
+}
+
 }  // namespace
 
 DynamixelActuator::~DynamixelActuator() { disarm_last_resort(); }
@@ -139,9 +152,19 @@ Status DynamixelActuator::set_watchdog(std::size_t i, int ms) {
                                    "was killed, or the bus stalled); cleared");
         if (auto st = bus_->write_value(ids_[i], addr::bus_watchdog, 1, 0); !st.ok()) return with_joint(i, st);
     }
+    rt_[i].watchdog_tripped = false;
+    watchdog_ms_ = ms;
     const int units = (ms + 19) / 20;  // round up: never shorter than asked
     if (*now == units) return {};
     return with_joint(i, bus_->write_value(ids_[i], addr::bus_watchdog, 1, units));
+}
+
+Status DynamixelActuator::watchdog_fault(std::size_t i) const {
+    return {ErrorCode::hardware_fault,
+            who(i) + ": its Bus Watchdog (address 98) tripped: no instruction reached it for " +
+                std::to_string(watchdog_ms_) + " ms (bus_watchdog_ms; the control loop paused that long), so the "
+                "servo stopped and ignores every goal until 98 is written 0. Keep control periods well under "
+                "bus_watchdog_ms (device:call('rest') before long work without control); the next activation clears it"};
 }
 
 Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
@@ -237,6 +260,7 @@ Status DynamixelActuator::activate_servo(std::size_t i) {
 
 Status DynamixelActuator::on_activate() {
     if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
+    last_io_time_ = std::nan("");  // the kernel reads right after activation: no pause to look for
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         if (auto st = activate_servo(i); !st.ok()) {
             // A refused activation leaves nothing holding: every servo that
@@ -353,6 +377,19 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
         s.fault_bits = rt_[i].hardware_error;
         s.fault = rt_[i].hardware_error ? describe_hardware_error(rt_[i].hardware_error) : std::string();
     }
+    // A SYNC_WRITE has no reply: a tripped Bus Watchdog would drop every goal
+    // unseen. It trips only after a pause in our instructions, so 98 is read
+    // only after a pause of half its time (two clocks), never in a steady run.
+    const bool paused = watchdog_ms_ > 0 && time - last_io_time_ > watchdog_ms_ * 0.5e-3;
+    last_io_time_ = time;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+        if (paused && rt_[i].torque && !rt_[i].watchdog_tripped) {
+            auto wd = bus_->read_value(ids_[i], addr::bus_watchdog, 1);
+            if (!wd.ok()) return with_joint(i, wd.status());
+            rt_[i].watchdog_tripped = *wd < 0;
+        }
+        if (rt_[i].watchdog_tripped) return watchdog_fault(i);
+    }
     return {};
 }
 
@@ -362,7 +399,6 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
 // others still get their commands, so the safe state reaches every servo that
 // still answers; the first failure is returned, naming its joint.
 Status DynamixelActuator::write(double time, std::span<const JointCommand> commands) {
-    (void)time;
     if (!bus_) return {ErrorCode::state_error, "the bus is not open (configure first)"};
     if (commands.size() != ids_.size())
         return {ErrorCode::invalid_argument, "write() got " + std::to_string(commands.size()) + " commands for " +
@@ -392,6 +428,7 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
                         " (check 'rollsense dxl info', or let the plugin write them: write_position_limits = true)"};
     }
 
+    last_io_time_ = time;
     Status first;
     auto failed = [&](Status st) {
         if (first.ok()) first = std::move(st);
@@ -408,11 +445,22 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
                 if (auto st = set_torque(i, false); !st.ok()) failed(std::move(st));
             continue;
         }
+        if (rt_[i].watchdog_tripped) {  // its goals are read-only: the others still get theirs
+            // Short: the read that found the trip said why and what to do (the safe state logs this one).
+            failed({ErrorCode::hardware_fault, who(i) + ": its Bus Watchdog (address 98) tripped: goal not sent "
+                                                        "(the servo stopped by itself and ignores goals)"});
+            continue;
+        }
         if (c.mode != rt_[i].mode) {
             // Operating Mode is EEPROM: torque off, switch, and torque comes
             // back only after this period's goals are in place.
             if (auto st = prepare(i, c.mode); !st.ok()) {
                 failed(std::move(st));
+                // A servo that cannot answer may still hear: one pushing or
+                // spinning gets Goal Current / Goal Velocity 0 in the SYNC_WRITE,
+                // which asks for no reply (the mode switch, the safe hold, needs them).
+                if (rt_[i].mode == ControlMode::current || rt_[i].mode == ControlMode::velocity)
+                    entries.push_back({ids_[i], command_block(0, 0, 0, 0, rt_[i].present_ticks)});
                 continue;
             }
             if (rt_[i].torque)
@@ -442,14 +490,9 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
             goal_velocity = std::clamp(j.joint_to_velocity_units(c.velocity), -rt_[i].velocity_limit,
                                        rt_[i].velocity_limit);
 
-        Bytes d;
-        d.reserve(kCommandBlockLength);
-        put_le(d, goal_current, 2);                                          // 102 Goal Current
-        put_le(d, goal_velocity, 4);                                         // 104 Goal Velocity
-        put_le(d, j.joint_to_profile_acceleration(c.profile_acceleration), 4);  // 108 Profile Acceleration
-        put_le(d, j.joint_to_profile_velocity(c.profile_velocity), 4);          // 112 Profile Velocity
-        put_le(d, goal_ticks[i], 4);                                         // 116 Goal Position
-        entries.push_back({ids_[i], std::move(d)});
+        entries.push_back({ids_[i], command_block(goal_current, goal_velocity,
+                                                  j.joint_to_profile_acceleration(c.profile_acceleration),
+                                                  j.joint_to_profile_velocity(c.profile_velocity), goal_ticks[i])});
     }
     if (!entries.empty())
         if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok()) return st;

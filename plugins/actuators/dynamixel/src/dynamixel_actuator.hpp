@@ -3,8 +3,9 @@
 // Per control period it sends exactly one SYNC_WRITE (Goal Current .. Goal
 // Position for every servo) and one SYNC_READ (Moving .. Present Position);
 // single-servo WRITEs happen only for what changes rarely (operating mode,
-// torque) and a READ of Hardware Error Status only after a servo raised its
-// alert bit.
+// torque), a READ of Hardware Error Status only after a servo raised its
+// alert bit, and a READ of Bus Watchdog only after a pause in the periods
+// long enough to have tripped it.
 #pragma once
 
 #include <memory>
@@ -45,6 +46,8 @@ private:
         // no reply, so a value the servo would refuse must be caught here.
         std::int32_t velocity_limit = 0;
         std::int32_t min_ticks = 0, max_ticks = 4095;
+        // Its Bus Watchdog was read as tripped (-1): goals are read-only until 98 is written 0.
+        bool watchdog_tripped = false;
     };
 
     std::string who(std::size_t i) const;
@@ -69,6 +72,8 @@ private:
     // Bus Watchdog (98): clear a tripped one (it is logged: the last run ended
     // without telling the servo), then set it to `ms` (0 = off).
     Status set_watchdog(std::size_t i, int ms);
+    // The fault of a servo whose Bus Watchdog tripped during the run.
+    Status watchdog_fault(std::size_t i) const;
     Status reboot_joint(std::size_t i);
     Result<std::size_t> joint_index(const ValueMap& args) const;
     // A torque-off SYNC_WRITE for every servo, written from the crash handler
@@ -78,6 +83,11 @@ private:
     int last_resort_slot_ = -1;
     // Set by invoke("rest"): the next write re-arms every servo's Bus Watchdog.
     bool rearm_watchdog_ = false;
+    // The Bus Watchdog last set on the servos (ms, 0 = off), and the time of
+    // the last read() or write(): only a pause longer than half of it can have
+    // tripped a watchdog, so only then does read() look at address 98.
+    int watchdog_ms_ = 0;
+    double last_io_time_ = 0.0;
 
     // "<profile file>: devices.<name>.params", the start of a configuration refusal.
     std::string where_;
