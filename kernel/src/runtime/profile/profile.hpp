@@ -77,10 +77,9 @@ struct Profile {
 };
 
 // Command-line settings (--set key=value). One namespace rule (docs/scripting.md,
-// "Settings"): a key that is a profile entry (sample_rate_hz, clock, ...) or
-// a dotted path under one (devices., joints., controllers., safety., ...)
-// overrides that part of the profile, so a plugin parameter is
-// devices.NAME.params.KEY; every other key is a script
+// "Settings"): a profile entry (sample_rate_hz) or a dotted path under one
+// (devices., joints., ...) overrides that part of the profile, so a plugin
+// parameter is devices.NAME.params.KEY; every other key is a script
 // setting: plain for the script (and a profile's `setting`), MODULE.KEY for a
 // Lua module (etroll.clamp_current).
 class Settings {
