@@ -72,7 +72,8 @@ options:
                         identification; read-only (docs/live-view.md)
   --live-bind ADDR      listen on ADDR instead of 127.0.0.1 (warns: anyone who
                         can reach ADDR can watch the run)
-  -v, --verbose         debug messages;   -q, --quiet   warnings and errors only)";
+  -v, --verbose         debug messages;   -q, --quiet   no info messages: warnings, errors
+                        and the closing summary (where the results are))";
 
 std::string default_out(const std::filesystem::path& script) {
     std::time_t t = std::time(nullptr);
