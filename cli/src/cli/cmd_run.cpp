@@ -57,7 +57,8 @@ options:
                         script (runs=2), MODULE.KEY for a Lua module
                         (etroll.clamp_current=150); checked before the first
                         trial when the script declares its settings; a
-                        --set the script refuses is a bad command line (exit 2)
+                        --set the script, the profile or a plugin refuses is a
+                        bad command line (exit 2)
   --plugin-path DIR     search plugins here first (repeatable)
   --time-limit S        cancel the run after S seconds of run time
   --slice-limit-ms MS   stop a script (or profile) that runs MS ms without
