@@ -58,7 +58,8 @@ TEST_CASE("an explicit --seed overrides the recording's on replay") {
 }
 
 // Review: a misspelt check_joint finished "done", the roll check silently off
-// (an info line, hidden by -q). Refused before anything runs, exit 3.
+// (an info line, hidden by -q). Refused before anything runs, naming the --set
+// that gave it: a bad command line (exit 2).
 TEST_CASE("a replay whose check_joint the recording lacks is refused at configure time") {
     TempDir dir("rollsense-cli-replay-check-joint");
     const std::string small = " --set runs=1 --set objects=C1 --set speeds=10 --set analyse=false -q";
@@ -69,7 +70,8 @@ TEST_CASE("a replay whose check_joint the recording lacks is refused at configur
                                    shell_quoted(dir / "rec") + " --set devices.tactile.params.check_joint=nosuch --out " +
                                    shell_quoted(dir / "rep"));
     INFO(rep.output);
-    CHECK(rep.status == 3);
+    CHECK(rep.status == 2);
+    CHECK(rep.output.find("--set devices.tactile.params.check_joint='nosuch': ") != std::string::npos);
     CHECK(rep.output.find("parameter 'check_joint' = 'nosuch': " + (dir / "rec").string() +
                           " recorded no such joint column (its joint columns: sensing_finger); name one with --set "
                           "devices.tactile.params.check_joint=JOINT") != std::string::npos);

@@ -83,3 +83,28 @@ TEST_CASE("a resume that fails before its script reaches the trials on disk coun
     CHECK(again.status == 0);
     CHECK(again.output.find("done: 0 trials saved, 4 already on disk") != std::string::npos);
 }
+
+// Newcomer review item 4: after a script's own error the printed resume was a
+// dead end (the same error again, or, the script fixed, refused as another
+// experiment), with nothing saying so.
+TEST_CASE("a run a script error stops says that a resume runs the same script, then how to resume") {
+    TempDir dir("rollsense-cli-way-on-script");
+    write_file(dir / "fails.lua", R"(local rs = require "rollsense"
+local etroll = require "etroll"
+for r = 1, 3 do
+  if r == 3 then error("my bug at trial " .. r) end
+  etroll.run_trial{ object = "C1", speed = 10, repetition = r }
+end
+)");
+    const auto failed = run_rollsense("run " + shell_quoted(dir / "fails.lua") + " --no-progress --out " +
+                                      shell_quoted(dir / "out"));
+    INFO(failed.output);
+    CHECK(failed.status == 1);
+    CHECK(failed.output.find("fails.lua:4: my bug at trial 3") != std::string::npos);
+    CHECK(failed.output.find("failed: 2 trials saved") != std::string::npos);
+    const auto note = failed.output.find("a resume runs the same script again and refuses an edited one");
+    const auto command = failed.output.find("continue with: rollsense run ");
+    CHECK(note != std::string::npos);
+    CHECK(command != std::string::npos);
+    CHECK(note < command);
+}

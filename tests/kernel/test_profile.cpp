@@ -186,13 +186,15 @@ TEST_CASE("a profile names the identification channels; the robot knows each cha
     for (const auto& u : units) CHECK(u == "1");  // example_bump's readings are unitless
 }
 
-TEST_CASE("one namespace rule for --set: a profile entry's path overrides the profile, any other key is a script's",
+TEST_CASE("one namespace rule for --set: a profile entry or its path overrides the profile, any other key is a script's",
           "[profile]") {
     CHECK(is_profile_path("devices.tactile.params.width"));
     CHECK(is_profile_path("joints.palm.max_current"));
+    CHECK(is_profile_path("sample_rate_hz"));  // review: documented, but taken as a script's setting
+    CHECK(is_profile_path("clock"));
     CHECK_FALSE(is_profile_path("etroll.clamp_current"));  // a module's setting
-    CHECK_FALSE(is_profile_path("devices"));                // no path: a plain script setting
     CHECK_FALSE(is_profile_path("runs"));
+    CHECK_FALSE(is_profile_path("sample_rate"));
     CHECK(setting_namespace("etroll.clamp_current") == "etroll");
     CHECK(setting_namespace("runs").empty());
 
@@ -200,9 +202,11 @@ TEST_CASE("one namespace rule for --set: a profile entry's path overrides the pr
     Settings s;
     REQUIRE(s.add("etroll.clamp_current=150").ok());
     REQUIRE(s.add("devices.tactile.params.width=9").ok());
+    REQUIRE(s.add("sample_rate_hz=50").ok());
     auto p = load_text(dir, kt::kTestProfile, s);
     REQUIRE(p.ok());  // was: "has no table 'etroll' on that path"
     CHECK(s.unused() == std::vector<std::string>{"etroll.clamp_current"});  // left for the script
+    CHECK(p->sample_rate_hz == 50.0);
 
     // Declarations: a namespace that declared settings knows its keys.
     s.declare("etroll.clamp_settle_ms", std::int64_t{300});

@@ -98,3 +98,20 @@ TEST_CASE("a classifier plugin that throws is a plugin error naming it with the 
                           "threw during loading " + throws_on_load.string() + ": boom in load");
     fs::remove_all(dir);
 }
+
+// Review: input(), search_space() and class_names() have no error return; what
+// they threw ended evaluate as an "unexpected error" (exit 1), or, from a
+// fold's thread, with std::terminate.
+TEST_CASE("a classifier plugin that throws where it has no error return is a plugin error naming it",
+          "[learn][cli][plugin]") {
+    const auto dir = rollsense::testing::make_dataset();
+    check_evaluate_refuses(dir, "11", "threw during input: boom in input");
+    check_evaluate_refuses(dir, "13", "threw during class_names: boom in class_names");
+    const auto r = rollsense_cli("evaluate " + (dir / "dataset").string() + " --folds 3 --repeats 1 --optimize" +
+                                 kPlugin + " --set mode=12");
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains(kNamed + "threw during search_space: boom in search_space"));
+    CHECK_THAT(r.output, !Catch::Contains("unexpected error"));
+    fs::remove_all(dir);
+}

@@ -111,6 +111,10 @@ TEST_CASE("train, report and one repetition on a run analysed with minirocket", 
     REQUIRE(r.status == 0);
     CHECK(JsonReader::parse(file_text(dir.path() / "fig-evaluation.json"))["folds"]["seeds"][std::size_t{0}].num() ==
           7);
+    // Newcomer review: the clean count was printed as a line, then again in the summary.
+    const auto clean = r.output.find("clean ");
+    REQUIRE(clean != std::string::npos);
+    CHECK(r.output.find(r.output.substr(clean, r.output.find('\n', clean) - clean), clean + 1) == std::string::npos);
 
     // --force replaces them.
     r = run_rollsense("report " + run.string() + " --force --folds 2 --repeats 2 --set learners=5");

@@ -127,8 +127,10 @@ int classifier_setup_exit(ErrorCode code) {
 
 // The learning pipeline for evaluate and report, with the command's exit codes:
 // a wrong INPUT or plugin is a configuration error, a failed evaluation a failure.
+// The clean count and rejections are printed once the features exist, unless the
+// command's own summary prints them (report).
 int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
-                          runtime::PluginRegistry& registry, learn::PipelineResult& out) {
+                          runtime::PluginRegistry& registry, learn::PipelineResult& out, bool print_rejections) {
     learn::PipelineRequest request;
     request.input = s.input;
     request.features = feature_settings_from_args(args);
@@ -151,9 +153,9 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     learn::PipelineStage failed = learn::PipelineStage::evaluation;
     auto result = learn::run_pipeline(
         registry, request,
-        [](const std::vector<features::FeatureRow>& rows) {
+        [print_rejections](const std::vector<features::FeatureRow>& rows) {
             warn_unreadable_trials(rows);
-            std::printf("%s\n", learn::summarize_rejections(rows).c_str());
+            if (print_rejections) std::printf("%s\n", learn::summarize_rejections(rows).c_str());
             std::fflush(stdout);
             return Status{};
         },
@@ -289,7 +291,7 @@ int run(const std::vector<std::string>& argv) {
         if (int rc = check_output_files("evaluate", s.input, {files.text, files.json}); rc != kExitOk) return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
-    if (int rc = run_learning_pipeline("evaluate", args, s, registry, result); rc != kExitOk) return rc;
+    if (int rc = run_learning_pipeline("evaluate", args, s, registry, result, true); rc != kExitOk) return rc;
     std::printf("\n%s", learn::format_evaluation(result.evaluation).c_str());
     if (!out.empty()) {
         if (auto st = learn::write_evaluation_files(result.evaluation, files); !st) {

@@ -43,7 +43,8 @@ goes straight to its analysis; printed at the end), or 'rollsense report OUT'.
 options:
   --threads N           feature extraction threads (0 = all cores; results do
                         not depend on it)
-  -v, --verbose         debug messages;   -q, --quiet   warnings and errors only)";
+  -v, --verbose         debug messages;   -q, --quiet   no info messages: warnings, errors
+                        and the closing summary (what was merged, the way on))";
 
 // The shards' command line turned into the one that analyses the merged
 // dataset: without --shard, --out and --resume, then --out OUT --resume.

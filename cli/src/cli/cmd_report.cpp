@@ -22,7 +22,8 @@ using LearnSetup = learn::CommandSetup;
 LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string>& extra_flags,
                                  const std::vector<std::string>& not_taken);
 int run_learning_pipeline(const char* command, const Args& args, const LearnSetup& s,
-                          runtime::PluginRegistry& registry, learn::PipelineResult& out);  // cmd_evaluate.cpp
+                          runtime::PluginRegistry& registry, learn::PipelineResult& out,
+                          bool print_rejections);  // cmd_evaluate.cpp
 features::FeatureSettings feature_settings_from_args(const Args& args);
 
 namespace {
@@ -119,7 +120,7 @@ int run(const std::vector<std::string>& argv) {
         if (auto ds = DatasetReader::open(s.input); ds && ds->info().seed != 0) s.options.seed = ds->info().seed;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
-    if (int rc = run_learning_pipeline("report", args, s, registry, result); rc != kExitOk) return rc;
+    if (int rc = run_learning_pipeline("report", args, s, registry, result, false); rc != kExitOk) return rc;
     in.rows = std::move(result.rows);
     in.evaluation = std::move(result.evaluation);
     in.settings = feature_settings_from_args(args);

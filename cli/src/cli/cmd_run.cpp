@@ -57,7 +57,8 @@ options:
                         script (runs=2), MODULE.KEY for a Lua module
                         (etroll.clamp_current=150); checked before the first
                         trial when the script declares its settings; a
-                        --set the script refuses is a bad command line (exit 2)
+                        --set the script, the profile or a plugin refuses is a
+                        bad command line (exit 2)
   --plugin-path DIR     search plugins here first (repeatable)
   --time-limit S        cancel the run after S seconds of run time
   --slice-limit-ms MS   stop a script (or profile) that runs MS ms without
@@ -72,7 +73,8 @@ options:
                         identification; read-only (docs/live-view.md)
   --live-bind ADDR      listen on ADDR instead of 127.0.0.1 (warns: anyone who
                         can reach ADDR can watch the run)
-  -v, --verbose         debug messages;   -q, --quiet   warnings and errors only)";
+  -v, --verbose         debug messages;   -q, --quiet   no info messages: warnings, errors
+                        and the closing summary (where the results are))";
 
 std::string default_out(const std::filesystem::path& script) {
     std::time_t t = std::time(nullptr);
@@ -246,6 +248,11 @@ int run(const std::vector<std::string>& argv) {
                              "would run the same analysis on them again)\nanalyse them with: %s (options such as "
                              "--folds, --classifier: their --help)\n",
                      trials_listed(*analysed), analysed->c_str(), analysis_commands(*analysed, o.out_dir).c_str());
+    else if (summary.status.code() == ErrorCode::script_error)  // review: the advice was a dead end for a script's own bug
+        std::fprintf(stderr, "a resume runs the same script again and refuses an edited one (run-config.csv): it helps "
+                             "when the cause was outside the script (the hand, an object, a device); a fixed script "
+                             "records into a new --out\ncontinue with: %s\n",
+                     resume_command(pos[0], o.out_dir, deciding).c_str());
     else
         std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
     return exit_code_for(summary.status.code());

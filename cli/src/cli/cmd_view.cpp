@@ -28,7 +28,8 @@ options:
   --port N          port to listen on (default 8027; 0: any free port, printed)
   --bind ADDR       listen on ADDR instead of 127.0.0.1 (warns)
   --for S           stop after S seconds (scripts, tests)
-  -v, --verbose     debug messages;   -q, --quiet   warnings and errors only
+  -v, --verbose     debug messages;   -q, --quiet   no info messages: warnings, errors
+                    and the address to open
 
 exit codes: 0 ok, 2 bad command line, 3 DATASET cannot be read,
             5 the port cannot be listened on)";

@@ -21,6 +21,7 @@
 // to export.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string_view>
@@ -86,10 +87,7 @@ public:
     static constexpr Xoshiro256ss from_state(std::uint64_t s0, std::uint64_t s1, std::uint64_t s2,
                                              std::uint64_t s3) noexcept {
         Xoshiro256ss g;
-        g.s_[0] = s0;
-        g.s_[1] = s1;
-        g.s_[2] = s2;
-        g.s_[3] = s3;
+        g.s_ = {s0, s1, s2, s3};
         return g;
     }
     // State = the first four outputs of a splitmix64 generator started at `seed`.
@@ -152,7 +150,7 @@ public:
 private:
     static constexpr std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }
 
-    std::uint64_t s_[4]{};
+    std::array<std::uint64_t, 4> s_{};
     double spare_ = 0.0;
     bool has_spare_ = false;
 };

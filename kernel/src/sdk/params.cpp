@@ -202,15 +202,13 @@ Result<ParamSet> validate_params(const ParamSchema& schema, const std::map<std::
                                                           with_article(value_type_name(value)) + " (" +
                                                           format_param_value(value) + ")" +
                                                           (spec->type == ParamType::string ? "; quote it to give it as text" : "")};
-        std::optional<std::string> range_error;
-        if (auto* d = std::get_if<double>(&*coerced)) range_error = check_range(*spec, *d);
-        if (auto* i = std::get_if<std::int64_t>(&*coerced)) range_error = check_range(*spec, static_cast<double>(*i));
-        if (auto* l = std::get_if<std::vector<double>>(&*coerced))
-            for (double d : *l)
-                if (!range_error) range_error = check_range(*spec, d);
-        if (auto* l = std::get_if<std::vector<std::int64_t>>(&*coerced))
-            for (auto i : *l)
-                if (!range_error) range_error = check_range(*spec, static_cast<double>(i));
+        std::optional<std::string> range_error;  // of the first number (of a number, an integer or a list) out of range
+        std::visit([&](const auto& v) {
+            using T = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<T, double> || std::is_same_v<T, std::int64_t>) range_error = check_range(*spec, double(v));
+            if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<std::int64_t>>)
+                for (auto x : v) range_error = range_error ? range_error : check_range(*spec, double(x));
+        }, *coerced);
         if (range_error) return Error{ErrorCode::invalid_argument, where + ": key '" + key + "': " + *range_error};
         if (auto* s = std::get_if<std::string>(&*coerced); s && !spec->choices.empty()) {
             bool found = false;

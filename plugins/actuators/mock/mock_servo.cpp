@@ -19,12 +19,12 @@ MockServo::MockServo(ServoModel model, double initial_position) : model_(model) 
     last_.position = p0_;
 }
 
-double MockServo::current_mode_position(double t) const {
+double MockServo::current_mode_position(double since_command) const {
     const double dir = last_.current > 0 ? 1.0 : (last_.current < 0 ? -1.0 : 0.0);
     double stop = dir > 0 ? model_.max_position : model_.min_position;
     if (!std::isnan(model_.contact) && (dir > 0 ? model_.contact >= p0_ : model_.contact <= p0_)) stop = model_.contact;
     const double speed = std::abs(last_.current) * model_.free_speed_per_ma;
-    const double p = p0_ + dir * speed * (t - t0_);
+    const double p = p0_ + dir * speed * since_command;
     return dir > 0 ? std::min(p, stop) : std::max(p, stop);
 }
 
@@ -57,8 +57,10 @@ void MockServo::state(double t, JointState& s) const {
             break;
         }
         case ControlMode::current: {
-            s.position = current_mode_position(t);
-            const double previous = current_mode_position(t - 1e-3);
+            // From the time since the command (exact on the clock's grid), not
+            // from t - 1e-3, which rounds differently at different clock magnitudes.
+            s.position = current_mode_position(t - t0_);
+            const double previous = current_mode_position(t - t0_ - 1e-3);
             s.velocity = (s.position - previous) / 1e-3;
             s.moving = std::abs(s.velocity) > 1e-9;
             // Against the contact the full commanded current flows; moving freely little does.

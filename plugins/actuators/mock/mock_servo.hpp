@@ -36,7 +36,7 @@ public:
     const ServoModel& model() const { return model_; }
 
 private:
-    double current_mode_position(double t) const;
+    double current_mode_position(double since_command) const;
 
     ServoModel model_;
     JointCommand last_{};

@@ -18,14 +18,23 @@ ParamSchema odd_scores_schema() {
     return {param_int("mode", std::int64_t{0},
                       "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99; 4 a wrong class "
                       "name; 5 a score of 7; 6 a negative score; 7 the highest score not the label's; 8 throws in "
-                      "predict; 9 throws in train; 10 throws in load",
-                      0, 10)};
+                      "predict; 9 throws in train; 10 throws in load; 11 throws in input; 12 throws in search_space; 13 "
+                      "throws in class_names",
+                      0, 13)};
 }
 
 class OddScores final : public Classifier {
 public:
     Status on_configure(const ParamSet& p, const PluginContext&) override {
         mode_ = p.get_int("mode");
+        return {};
+    }
+    ClassifierInput input() const override {
+        if (mode_ == 11) throw std::runtime_error("boom in input");
+        return ClassifierInput::features;
+    }
+    SearchSpace search_space(std::size_t, std::size_t) const override {
+        if (mode_ == 12) throw std::runtime_error("boom in search_space");
         return {};
     }
     Status train(const FeatureTable& data) override {
@@ -63,7 +72,10 @@ public:
         if (mode_ == 8) throw std::runtime_error("boom in predict");
         return p;
     }
-    std::vector<std::string> class_names() const override { return classes_; }
+    std::vector<std::string> class_names() const override {
+        if (mode_ == 13) throw std::runtime_error("boom in class_names");
+        return classes_;
+    }
     Status save(const std::filesystem::path& file) const override {
         std::ofstream out(file);
         out << "rollsense-test-odd-scores mode " << mode_ << '\n';  // predict loads the model with default parameters

@@ -62,9 +62,9 @@ class CheckedClassifier final : public Classifier {
 public:
     CheckedClassifier(ClassifierPtr inner, std::string who) : inner_(std::move(inner)), who_(std::move(who)) {}
 
-    ClassifierInput input() const override { return inner_->input(); }
+    ClassifierInput input() const override { return thrown("input", [&] { return inner_->input(); }); }
     SearchSpace search_space(std::size_t rows, std::size_t cols) const override {
-        return inner_->search_space(rows, cols);
+        return thrown("search_space", [&] { return inner_->search_space(rows, cols); });
     }
     Status train(const FeatureTable& data) override {
         return counted(guarded("training", [&] { return inner_->train(data); }));
@@ -80,7 +80,9 @@ public:
         if (auto s = check_prediction(*p, classes_, who_); !s) return s;
         return p;
     }
-    std::vector<std::string> class_names() const override { return inner_->class_names(); }
+    std::vector<std::string> class_names() const override {
+        return thrown("class_names", [&] { return inner_->class_names(); });
+    }
     Status save(const std::filesystem::path& file) const override {
         return guarded("saving " + file.string(), [&] { return inner_->save(file); });
     }
@@ -106,10 +108,23 @@ private:
         }
     }
 
-    // The classes predictions are checked against, once the model exists.
+    // The calls with no error return: what the plugin throws is thrown on as
+    // a StatusError (a plugin error naming it), which the command reports.
+    template <class Call>
+    auto thrown(const char* during, Call&& call) const -> decltype(call()) {
+        auto r = guarded(during, [&] { return Result<decltype(call())>(call()); });
+        if (!r) throw StatusError(r.status());
+        return std::move(*r);
+    }
+
+    // The classes predictions are checked against, once the model exists
+    // (train runs on the folds' threads: what class_names throws is returned).
     Status counted(Status s) {
-        if (s) classes_ = inner_->class_names();
-        return s;
+        if (!s) return s;
+        auto names = guarded("class_names", [&] { return Result<std::vector<std::string>>(inner_->class_names()); });
+        if (!names) return names.status();
+        classes_ = std::move(*names);
+        return {};
     }
 
     ClassifierPtr inner_;

@@ -23,7 +23,8 @@ Status check_prediction(const Prediction& p, const std::vector<std::string>& cla
 // `inner` behind check_prediction on every predict (classes: its class_names()
 // once trained or loaded); an exception from train, load, predict, save or
 // invoke is returned as a plugin error naming `who` with the exception's text,
-// and load's errors name `who`. Everything else is passed through.
+// and load's errors name `who`; one from input, search_space or class_names,
+// which have no error return, is thrown on as that error (a StatusError).
 ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who);
 
 }  // namespace rollsense::learn

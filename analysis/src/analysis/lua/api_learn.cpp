@@ -177,8 +177,7 @@ int l_analyse(lua_State* L) {
         // recorded earlier is left as it is.
         if (dataset.empty())
             if (auto st = features::write_features_csv(s.output_dir() / "features.csv", rows); !st) return st;
-        log_info("analysis", learn::summarize_rejections(rows));
-        return Status{};
+        return Status{};  // the clean count and rejections: in the summary that follows
     });
     check(L, result.status());
     const learn::Evaluation& evaluation = result->evaluation;

@@ -27,8 +27,7 @@ void raise_status(lua_State* L, const Status& status) {
     throw StatusError(status);  // not reached: luaL_error does not return
 }
 
-void close_thread(lua_State* thread, lua_State* from) {
-    (void)from;
+void close_thread(lua_State* thread, lua_State* /*from*/) {
     lua_resetthread(thread);  // Lua 5.4.4; 5.4.6 renames it lua_closethread(thread, from)
 }
 
@@ -37,11 +36,9 @@ void open_rollsense_api(Session& session) {
     lua_pushlightuserdata(L, &session);
     lua_rawsetp(L, LUA_REGISTRYINDEX, &kSessionKey);
     lua_newtable(L);
-    lua_api::register_core(L);
-    lua_api::register_joints(L);
-    lua_api::register_trials(L);
-    lua_api::register_devices(L);
-    lua_api::register_extras(L);
+    for (auto add : {&lua_api::register_core, &lua_api::register_joints, &lua_api::register_trials,
+                     &lua_api::register_devices, &lua_api::register_extras})
+        add(L);
     session.sandbox().set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
 }
 
@@ -80,8 +77,7 @@ int finish_wait(lua_State* L, int, lua_KContext) {
     Session& s = Session::of(L);
     LuaTask* t = resumed_task(L);
     if (!t) return 0;
-    if (t->outcome() == WaitOutcome::cancelled)
-        return raise_cancelled(L, s);
+    if (t->outcome() == WaitOutcome::cancelled) return raise_cancelled(L, s);
     if (t->outcome() == WaitOutcome::timed_out) {
         s.set_raised_code(ErrorCode::timeout);
         return luaL_error(L, "timed out waiting for %s", t->waiting_for().c_str());
@@ -157,8 +153,7 @@ int after_wait_until(lua_State* L, int, lua_KContext) {
     Session& s = Session::of(L);
     LuaTask* t = resumed_task(L);
     t->release_predicate();
-    if (t->outcome() == WaitOutcome::cancelled)
-        return raise_cancelled(L, s);
+    if (t->outcome() == WaitOutcome::cancelled) return raise_cancelled(L, s);
     lua_pushboolean(L, t->outcome() == WaitOutcome::ready);
     return 1;
 }

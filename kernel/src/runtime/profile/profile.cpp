@@ -51,7 +51,7 @@ bool is_profile_path(const std::string& key) {
     static const std::set<std::string> entries = {"description", "clock",         "sample_rate_hz", "control_rate_hz",
                                                   "plugin_path", "devices",       "joints",         "record_joints",
                                                   "controllers", "safety"};
-    return key.find('.') != std::string::npos && entries.count(setting_namespace(key)) > 0;
+    return entries.count(key.substr(0, key.find('.'))) > 0;  // an entry (sample_rate_hz) or a path under one
 }
 
 fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir) {
@@ -363,7 +363,7 @@ Status read_profile_table(lua_State* L, Profile& p) {
     return r.reject_unknown();
 }
 
-// Apply dotted --set keys (devices.tactile.params.x=1) to the profile table.
+// Apply --set keys of the profile (sample_rate_hz=50, devices.tactile.params.x=1) to its table.
 Status apply_dotted_settings(lua_State* L, const Settings& settings, const std::string& file) {
     for (const auto& [key, value] : settings.values()) {
         if (!is_profile_path(key)) continue;

@@ -77,9 +77,9 @@ struct Profile {
 };
 
 // Command-line settings (--set key=value). One namespace rule (docs/scripting.md,
-// "Settings"): a dotted key whose first part is a profile entry (devices.,
-// joints., controllers., safety., ...) overrides that path of the profile, so a
-// plugin parameter is devices.NAME.params.KEY; every other key is a script
+// "Settings"): a profile entry (sample_rate_hz) or a dotted path under one
+// (devices., joints., ...) overrides that part of the profile, so a plugin
+// parameter is devices.NAME.params.KEY; every other key is a script
 // setting: plain for the script (and a profile's `setting`), MODULE.KEY for a
 // Lua module (etroll.clamp_current).
 class Settings {
@@ -107,7 +107,7 @@ private:
 
 // "etroll" for etroll.clamp_current, "" for a plain key.
 std::string setting_namespace(const std::string& key);
-// True for a dotted key whose first part is a profile entry (devices.tactile.params.x).
+// True for a profile entry (sample_rate_hz) or a path under one (devices.tactile.params.x).
 bool is_profile_path(const std::string& key);
 
 // Where profiles named without a path are looked up: <share>/profiles/<name>.lua.

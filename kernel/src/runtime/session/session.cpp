@@ -85,8 +85,16 @@ Session& Session::of(lua_State* L) { return *session_of(L); }
 
 Status Session::prepare() {
     if (prepared_) return {};
-    // A profile whose content is wrong is a bad input file (exit 3), like one that does not parse.
-    auto bad_profile = [](const Status& s) { return s.code() == ErrorCode::invalid_argument ? Status{ErrorCode::parse_error, s.message()} : s; };
+    // A profile whose content is wrong is a bad input file (exit 3), like one that does not parse; wrong by a
+    // --set of it (the message names its key, or its leaf quoted: 'kernel_fwhm'), a bad command line (exit 2).
+    auto bad_profile = [this](const Status& s) {
+        if (s.code() != ErrorCode::invalid_argument) return s;
+        for (const auto& [key, value] : options_.settings.values())
+            if (is_profile_path(key) && (s.message().find("'" + key.substr(key.rfind('.') + 1) + "'") != std::string::npos ||
+                                         s.message().find(key) != std::string::npos))
+                return Status{ErrorCode::bad_setting, "--set " + key + "=" + format_param_value(value) + ": " + s.message()};
+        return Status{ErrorCode::parse_error, s.message()};
+    };
     auto profile = load_profile(options_.profile, options_.share_dir, options_.settings, options_.sandbox);
     if (!profile) return bad_profile(profile.status());
     profile_ = std::move(*profile);
