@@ -86,6 +86,13 @@ ParamSet validated(const std::map<std::string, ParamValue>& raw) {
     return *p;
 }
 
+void configure_and_activate(ModbusActuator& a, int port) {
+    REQUIRE(a.on_configure(validated(winch_raw(port)), {}).ok());
+    auto st = a.on_activate();
+    INFO("on_activate: " << st.message());
+    REQUIRE(st.ok());
+}
+
 JointCommand goal(double position) {
     JointCommand c;
     c.position = position;
@@ -111,8 +118,7 @@ TEST_CASE("the modbus plugin passes the actuator conformance suite against a win
 TEST_CASE("activation writes the present position as the goal before enabling the drive") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     CHECK(server->with_registers([](auto& h, auto&) { return s32(h, 0); }) == kStartCounts);
     CHECK(server->with_registers([](auto& h, auto&) { return int(h[10]); }) == 1);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -127,8 +133,7 @@ TEST_CASE("activation writes the present position as the goal before enabling th
 TEST_CASE("a move is written once, followed, and reported with moving and current") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     const JointCommand cmd = goal(20.0);
     REQUIRE(a.write(0, std::span(&cmd, 1)).ok());
     const auto after_first = server->requests();
@@ -170,8 +175,7 @@ int enable_register(ModbusLoopbackServer& server) {
 TEST_CASE("a torque-off command writes the release (deactivate_values) and keeps the joint released") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     const JointCommand move = goal(20.0);
     REQUIRE(a.write(0, std::span(&move, 1)).ok());
     REQUIRE(enable_register(*server) == 1);
@@ -214,8 +218,7 @@ TEST_CASE("a torque-off command to a map without a release says which parameters
 TEST_CASE("recover writes the release to a device that answers, and reports one that does not") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     const JointCommand move = goal(20.0);
     REQUIRE(a.write(0, std::span(&move, 1)).ok());
     SECTION("answers: released, link closed") {
@@ -251,8 +254,7 @@ TEST_CASE("deactivate_values without an activation register is refused") {
 TEST_CASE("a fault register reading non-zero shows as the joint's fault") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     server->with_registers([](auto& h, auto&) { h[5] = 0x0B; return 0; });
     std::vector<JointState> s(1);
     REQUIRE(a.read(0, s).ok());
@@ -268,8 +270,7 @@ TEST_CASE("a fault register reading non-zero shows as the joint's fault") {
 TEST_CASE("a server that stops answering ends in a timeout naming the joint and the link") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     server->set_mute(true);
     std::vector<JointState> s(1);
     auto st = a.read(0, s);

@@ -47,7 +47,10 @@ ParamSchema modbus_schema() {
                        "contents of the command block (flags, speed, force); the goal is packed into it", 0, 65535),
         param_int("activate_register", -1, "register written on activation (-1: none)", -1, 65535),
         param_int_list("activate_values", std::vector<std::int64_t>{}, "values written there on activation", 0, 65535),
-        param_int_list("deactivate_values", std::vector<std::int64_t>{}, "values written there to release the device: on deactivation, a torque-off command (safe state) and recover", 0, 65535),
+        param_int_list("deactivate_values", std::vector<std::int64_t>{},
+                       "values written there to release the device: on deactivation, a torque-off command "
+                       "(safe state) and recover",
+                       0, 65535),
         param_number("activate_timeout", 5.0, "seconds to wait for the ready bits after activation", 0, 120, "s"),
 
         param_string("state_table", std::string("holding"), "where state registers live", {"holding", "input"}),
