@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "rollsense/testing/conformance.hpp"
+#include "log_capture.hpp"
 #include "loopback_server.hpp"
 #include "modbus_actuator.hpp"
 
@@ -85,6 +86,13 @@ ParamSet validated(const std::map<std::string, ParamValue>& raw) {
     return *p;
 }
 
+void configure_and_activate(ModbusActuator& a, int port) {
+    REQUIRE(a.on_configure(validated(winch_raw(port)), {}).ok());
+    auto st = a.on_activate();
+    INFO("on_activate: " << st.message());
+    REQUIRE(st.ok());
+}
+
 JointCommand goal(double position) {
     JointCommand c;
     c.position = position;
@@ -110,8 +118,7 @@ TEST_CASE("the modbus plugin passes the actuator conformance suite against a win
 TEST_CASE("activation writes the present position as the goal before enabling the drive") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     CHECK(server->with_registers([](auto& h, auto&) { return s32(h, 0); }) == kStartCounts);
     CHECK(server->with_registers([](auto& h, auto&) { return int(h[10]); }) == 1);
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -126,8 +133,7 @@ TEST_CASE("activation writes the present position as the goal before enabling th
 TEST_CASE("a move is written once, followed, and reported with moving and current") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     const JointCommand cmd = goal(20.0);
     REQUIRE(a.write(0, std::span(&cmd, 1)).ok());
     const auto after_first = server->requests();
@@ -150,11 +156,105 @@ TEST_CASE("a move is written once, followed, and reported with moving and curren
     CHECK(a.write(0, std::span(&far, 1)).code() == ErrorCode::limit_violation);
 }
 
+namespace {
+
+JointCommand torque_off() {
+    JointCommand c;
+    c.torque_enabled = false;
+    return c;
+}
+
+int enable_register(ModbusLoopbackServer& server) {
+    return server.with_registers([](auto& h, auto&) { return int(h[10]); });
+}
+
+}  // namespace
+
+// The kernel's safe state sends torque off to a faulted joint or one whose
+// profile says safe = "torque_off": the device's release is written.
+TEST_CASE("a torque-off command writes the release (deactivate_values) and keeps the joint released") {
+    auto server = winch_driver();
+    ModbusActuator a;
+    configure_and_activate(a, server->port());
+    const JointCommand move = goal(20.0);
+    REQUIRE(a.write(0, std::span(&move, 1)).ok());
+    REQUIRE(enable_register(*server) == 1);
+    const JointCommand off = torque_off();
+    auto st = a.write(0, std::span(&off, 1));
+    INFO(st.message());
+    REQUIRE(st.ok());
+    CHECK(enable_register(*server) == 0);
+    std::vector<JointState> s(1);
+    REQUIRE(a.read(0, s).ok());
+    CHECK_FALSE(s[0].torque_enabled);
+    // The safe state repeats its command each period: written once.
+    const auto after_release = server->requests();
+    REQUIRE(a.write(0, std::span(&off, 1)).ok());
+    CHECK(server->requests() == after_release);
+    // Driving it again needs the activation (handshake) again, not a bare goal.
+    auto again = a.write(0, std::span(&move, 1));
+    CHECK(again.code() == ErrorCode::state_error);
+    CHECK(again.message().find("activate") != std::string::npos);
+    REQUIRE(a.on_deactivate().ok());
+    REQUIRE(a.on_activate().ok());
+    CHECK(enable_register(*server) == 1);
+    REQUIRE(a.write(0, std::span(&move, 1)).ok());
+}
+
+TEST_CASE("a torque-off command to a map without a release says which parameters give one") {
+    auto server = winch_driver();
+    auto raw = winch_raw(server->port());
+    raw.erase("deactivate_values");
+    ModbusActuator a;
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    const JointCommand off = torque_off();
+    auto st = a.write(0, std::span(&off, 1));
+    CHECK(st.code() == ErrorCode::unsupported);
+    CHECK(st.message().find("'deactivate_values'") != std::string::npos);
+    CHECK(enable_register(*server) == 1);
+}
+
+TEST_CASE("recover writes the release to a device that answers, and reports one that does not") {
+    auto server = winch_driver();
+    ModbusActuator a;
+    configure_and_activate(a, server->port());
+    const JointCommand move = goal(20.0);
+    REQUIRE(a.write(0, std::span(&move, 1)).ok());
+    SECTION("answers: released, link closed") {
+        testing::LogCapture log;
+        REQUIRE(a.on_recover().ok());
+        CHECK(enable_register(*server) == 0);
+        CHECK(log.lines().empty());
+        std::vector<JointState> s(1);
+        CHECK_FALSE(a.read(0, s).ok());
+    }
+    SECTION("silent: recover still ends, with a warning naming the joint") {
+        server->set_mute(true);
+        testing::LogCapture log;
+        REQUIRE(a.on_recover().ok());
+        CHECK(log.count("joint 'winch': release on recover") == 1);
+        CHECK(log.count("may still hold or drive its last goal") == 1);
+        server->set_mute(false);
+        CHECK(enable_register(*server) == 1);
+    }
+}
+
+TEST_CASE("deactivate_values without an activation register is refused") {
+    auto server = winch_driver();
+    auto raw = winch_raw(server->port());
+    raw.erase("activate_register");
+    raw.erase("activate_values");
+    ModbusActuator a;
+    auto st = a.on_configure(validated(raw), {});
+    CHECK(st.code() == ErrorCode::invalid_argument);
+    CHECK(st.message().find("'deactivate_values' is set but 'activate_register' is not") != std::string::npos);
+}
+
 TEST_CASE("a fault register reading non-zero shows as the joint's fault") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     server->with_registers([](auto& h, auto&) { h[5] = 0x0B; return 0; });
     std::vector<JointState> s(1);
     REQUIRE(a.read(0, s).ok());
@@ -170,8 +270,7 @@ TEST_CASE("a fault register reading non-zero shows as the joint's fault") {
 TEST_CASE("a server that stops answering ends in a timeout naming the joint and the link") {
     auto server = winch_driver();
     ModbusActuator a;
-    REQUIRE(a.on_configure(validated(winch_raw(server->port())), {}).ok());
-    REQUIRE(a.on_activate().ok());
+    configure_and_activate(a, server->port());
     server->set_mute(true);
     std::vector<JointState> s(1);
     auto st = a.read(0, s);
@@ -264,6 +363,10 @@ TEST_CASE("a Robotiq 2F-85 style byte map: command block, activation handshake, 
     CHECK_FALSE(s[0].moving);
     CHECK(s[0].position == Approx(40.0).margin(0.2));
     CHECK(s[0].fault.empty());
+    // The safe state's torque off: rACT and rGTO cleared, the go-to is not executed any more.
+    const JointCommand off = torque_off();
+    REQUIRE(a.write(0, std::span(&off, 1)).ok());
+    CHECK(server.with_registers([](auto& h, auto&) { return int(h[1000]); }) == 0x0000);
 }
 
 TEST_CASE("register-map mistakes are explained") {

@@ -10,6 +10,10 @@
 #      link lines, and the RUNPATH of the built and the installed module
 #   5. `rollsense plugins --plugin-path <its build folder> --params --check`
 #      loads it and lists its manifest and parameters
+#   6. the conformance snippet of docs/writing-a-sensor-plugin.md §5, taken
+#      from the page, compiled with example_bump as MySensor (docs_snippet/):
+#      it passes; the suite on the same sensor offered no joint fails, naming
+#      the frame, its time and its reason
 cmake_minimum_required(VERSION 3.25)
 
 foreach(var ROLLSENSE_SOURCE_DIR ROLLSENSE_BINARY_DIR ROLLSENSE_PROGRAM ROLLSENSE_VERSION WORK_DIR CXX_COMPILER
@@ -128,3 +132,38 @@ foreach(param joint cell_angles width amplitude noise)
   require("parameters of example_bump_oot" "${entry}" "      ${param} ")
 endforeach()
 message(STATUS "sdk_package: example_bump_oot built against ${config_dir} and loaded")
+
+# 6. the documented conformance snippet
+set(page "${ROLLSENSE_SOURCE_DIR}/docs/writing-a-sensor-plugin.md")
+file(READ "${page}" doc)
+string(FIND "${doc}" "\n## 5. " at)
+if(at EQUAL -1)
+  message(FATAL_ERROR "sdk_package: ${page} has no section '## 5.' (the conformance snippet)")
+endif()
+string(SUBSTRING "${doc}" ${at} -1 doc)
+string(REGEX MATCH "```cpp\n(#include \"rollsense/testing/conformance.hpp\"[^`]*check_sensor_conformance[^`]*)```" _
+       "${doc}")
+if(NOT CMAKE_MATCH_1)
+  message(FATAL_ERROR "sdk_package: ${page} §5 has no cpp block including rollsense/testing/conformance.hpp and "
+                      "calling check_sensor_conformance")
+endif()
+set(snippet "${CMAKE_MATCH_1}")
+string(REGEX MATCHALL "#include [^\n]*\n" SNIPPET_INCLUDES "${snippet}")
+string(REPLACE ";" "" SNIPPET_INCLUDES "${SNIPPET_INCLUDES}")
+string(REGEX REPLACE "#include [^\n]*\n" "" SNIPPET_BODY "${snippet}")
+set(snippet_src "${WORK_DIR}/docs_snippet_src")
+file(COPY "${here}/docs_snippet/CMakeLists.txt" "${src}/example_bump.cpp" DESTINATION "${snippet_src}")
+configure_file("${here}/docs_snippet/docs_snippet_test.cpp.in" "${snippet_src}/docs_snippet_test.cpp" @ONLY)
+run("configuring the docs snippet test (tests/sdk_package/docs_snippet)" "${CMAKE_COMMAND}" -S "${snippet_src}"
+    -B "${WORK_DIR}/docs_snippet" ${configure_args})
+run("building the docs snippet test (${snippet_src}/docs_snippet_test.cpp)" "${CMAKE_COMMAND}" --build
+    "${WORK_DIR}/docs_snippet")
+set(snippet_test "${WORK_DIR}/docs_snippet/docs_snippet_test")
+run("running the conformance snippet of ${page} §5" "${snippet_test}")
+execute_process(COMMAND "${snippet_test}" "[without_joints]" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0)
+  message(FATAL_ERROR "sdk_package: the conformance suite passed a sensor offered no joint:\n${out}${err}")
+endif()
+require("the failed frame's message" "${out}${err}"
+        "frame 0 (t = 0 s): invalid, reason: no joint 'sensing_finger' in this profile")
+message(STATUS "sdk_package: the conformance snippet of ${page} §5 passes out of the tree")

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <thread>
 
+#include "rollsense/log.hpp"
+
 namespace rollsense::modbus {
 
 Status ModbusActuator::on_configure(const ParamSet& params, const PluginContext& context) {
@@ -79,6 +81,7 @@ Status ModbusActuator::on_activate() {
     // enables motion is written.
     const double here = std::clamp(s->position, config_.min, config_.max);
     last_written_.reset();
+    released_ = false;
     if (config_.command_register < 0)
         if (auto st = write_goal(here); !st.ok()) return st;
     if (config_.activate_register >= 0) {
@@ -106,12 +109,20 @@ Status ModbusActuator::on_activate() {
     return {};
 }
 
+// The device's own "let go": the profile's deactivate_values written to the
+// activation register (a Robotiq 2F-85 drops rACT and rGTO and stops). The
+// one place that writes them: deactivate, a torque-off command, recover.
+Status ModbusActuator::release(const char* why) {
+    if (!config_.releasable() || !client_.is_open()) return {};
+    last_written_.reset();  // the release may overwrite the command block
+    if (auto st = client_.write_registers(config_.activate_register, config_.deactivate_values); !st.ok())
+        return {st.code(), "joint '" + config_.name + "': " + why + ": " + st.message()};
+    return {};
+}
+
 Status ModbusActuator::on_deactivate() {
     active_ = false;
-    if (config_.activate_register >= 0 && !config_.deactivate_values.empty() && client_.is_open())
-        if (auto st = client_.write_registers(config_.activate_register, config_.deactivate_values); !st.ok())
-            return {st.code(), "joint '" + config_.name + "': deactivation: " + st.message()};
-    return {};
+    return release("deactivation");
 }
 
 Status ModbusActuator::on_cleanup() {
@@ -120,7 +131,15 @@ Status ModbusActuator::on_cleanup() {
     return {};
 }
 
-Status ModbusActuator::on_recover() { return on_cleanup(); }
+// The failure that brought the device here was reported already; a device
+// still driving its last goal is released if it answers (within the link's
+// timeout and retries), and one that does not is reported, not waited for.
+Status ModbusActuator::on_recover() {
+    active_ = false;
+    if (auto st = release("release on recover"); !st.ok())
+        log_warning("modbus", st.message() + "; the device may still hold or drive its last goal");
+    return on_cleanup();
+}
 
 Status ModbusActuator::read(double time, std::span<JointState> states) {
     (void)time;
@@ -132,7 +151,7 @@ Status ModbusActuator::read(double time, std::span<JointState> states) {
     st.velocity = 0.0;  // not mapped: a register device rarely reports it
     st.current = s->current;
     st.moving = config_.moving_mask != 0 && (s->status & config_.moving_mask) == config_.moving_value;
-    st.torque_enabled = active_;
+    st.torque_enabled = active_ && !released_;
     st.mode = ControlMode::position;
     st.fault_bits = s->fault & config_.fault_mask;
     if (st.fault_bits) {
@@ -152,8 +171,18 @@ Status ModbusActuator::write(double time, std::span<const JointCommand> commands
     const auto& c = commands[0];
     if (c.mode != ControlMode::position)
         return {ErrorCode::unsupported, who() + ": only position mode is mapped (got " + std::string(to_string(c.mode)) + ")"};
-    if (!c.torque_enabled)
-        return {ErrorCode::unsupported, who() + ": torque cannot be switched off per command; deactivate the device"};
+    if (!c.torque_enabled) {  // the safe state, or a faulted joint
+        if (!config_.releasable())
+            return {ErrorCode::unsupported, who() + ": cannot release the joint: the profile maps no release "
+                                                    "(give 'activate_register' and 'deactivate_values')"};
+        if (released_) return {};
+        if (auto st = release("release"); !st.ok()) return st;
+        released_ = true;
+        return {};
+    }
+    if (released_)
+        return {ErrorCode::state_error, who() + ": released by a torque-off command; deactivate and activate "
+                                                "the device to drive it again"};
     if (c.position < config_.min - 1e-9 || c.position > config_.max + 1e-9)
         return {ErrorCode::limit_violation, who() + ": goal " + std::to_string(c.position) + " outside [" +
                                                 std::to_string(config_.min) + ", " + std::to_string(config_.max) + "]"};

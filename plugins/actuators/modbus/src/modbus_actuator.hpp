@@ -35,12 +35,14 @@ private:
     };
     Result<Snapshot> read_state();
     Status write_goal(double position);
+    Status release(const char* why);
     std::string who() const { return "joint '" + config_.name + "' (" + config_.link.describe() + ")"; }
 
     JointConfig config_;
     hal::ModbusClient client_;
     std::optional<std::vector<std::uint16_t>> last_written_;
     bool active_ = false;
+    bool released_ = false;  // a torque-off command released it; driving again needs a new activation
 };
 
 }  // namespace rollsense::modbus

@@ -47,7 +47,10 @@ ParamSchema modbus_schema() {
                        "contents of the command block (flags, speed, force); the goal is packed into it", 0, 65535),
         param_int("activate_register", -1, "register written on activation (-1: none)", -1, 65535),
         param_int_list("activate_values", std::vector<std::int64_t>{}, "values written there on activation", 0, 65535),
-        param_int_list("deactivate_values", std::vector<std::int64_t>{}, "values written there on deactivation", 0, 65535),
+        param_int_list("deactivate_values", std::vector<std::int64_t>{},
+                       "values written there to release the device: on deactivation, a torque-off command "
+                       "(safe state) and recover",
+                       0, 65535),
         param_number("activate_timeout", 5.0, "seconds to wait for the ready bits after activation", 0, 120, "s"),
 
         param_string("state_table", std::string("holding"), "where state registers live", {"holding", "input"}),
@@ -149,6 +152,9 @@ Result<JointConfig> parse_config(const ParamSet& p) {
     c.activate_timeout_s = p.get_number("activate_timeout");
     if (c.activate_register >= 0 && c.activate_values.empty())
         return Error{ErrorCode::invalid_argument, "'activate_register' is set but 'activate_values' is empty"};
+    if (c.activate_register < 0 && !c.deactivate_values.empty())
+        return Error{ErrorCode::invalid_argument, "'deactivate_values' is set but 'activate_register' is not: "
+                                                  "give the register they are written to"};
 
     c.state_input_registers = p.get_string("state_table") == "input";
     c.moving_mask = static_cast<std::uint32_t>(p.get_int("moving_mask"));

@@ -23,7 +23,7 @@ struct JointConfig {
     std::vector<std::uint16_t> command_template;  // the block's other contents (flags, speed, force)
     int activate_register = -1;                // written once on activation
     std::vector<std::uint16_t> activate_values;
-    std::vector<std::uint16_t> deactivate_values;  // written on deactivate (same register)
+    std::vector<std::uint16_t> deactivate_values;  // the release: written on deactivate, torque off, recover
     double activate_timeout_s = 5.0;
 
     // State side: one read of the span covering every mapped field.
@@ -35,6 +35,7 @@ struct JointConfig {
     RegisterField fault;   // raw value; non-zero (after fault_mask) = fault
     std::uint32_t fault_mask = 0xFFFFFFFF;
 
+    bool releasable() const { return activate_register >= 0 && !deactivate_values.empty(); }
     int state_first() const;
     int state_count() const;
 };

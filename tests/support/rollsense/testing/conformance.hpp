@@ -5,6 +5,8 @@
 //     rollsense::testing::SensorConformance c;
 //     c.make = [] { return std::make_unique<MySensor>(); };
 //     c.params = ...;                     // validated ParamSet
+//     c.joint_names = {"sensing_finger"}; // the joints the sensor reads, and
+//     c.joints = [](double t) { ... };    // their states at time t (none offered otherwise)
 //     rollsense::testing::check_sensor_conformance(c);
 #pragma once
 
@@ -31,7 +33,9 @@ struct SensorConformance {
     TrialInfo trial{"conformance-1", "C1", "10", 1, 42, {}};
     int frames = 40;
     double period = 1.0 / 31.1;
-    // Joint states offered with each sample (e.g. a sensing finger sweeping).
+    // Joint states offered with each sample (e.g. a sensing finger sweeping):
+    // a sensor that reads input.joint(name) needs that name here, or every
+    // frame it reads is invalid and the suite fails.
     std::vector<std::string> joint_names;
     std::function<std::vector<JointState>(double time)> joints;
     // Channels that must read valid in every frame (false for fault-injection runs).
@@ -70,9 +74,11 @@ inline void check_sensor_conformance(const SensorConformance& c) {
     REQUIRE(s);
 
     // configure → describes its channels
-    auto st = s->on_configure(c.params, c.context);
-    INFO("on_configure: " << st.message());
-    REQUIRE(st.ok());
+    {
+        auto st = s->on_configure(c.params, c.context);
+        INFO("on_configure: " << st.message());
+        REQUIRE(st.ok());
+    }
     const auto channels = s->channels();
     REQUIRE_FALSE(channels.empty());
     std::set<std::string> names;
@@ -89,7 +95,9 @@ inline void check_sensor_conformance(const SensorConformance& c) {
     REQUIRE(s->on_activate().ok());
     std::vector<Frame> first;
     run_sensor_recording(*s, c, first);
-    for (const auto& f : first) {
+    for (std::size_t i = 0; i < first.size(); ++i) {
+        const auto& f = first[i];
+        INFO("frame " << i << " (t = " << f.time << " s): " << (f.valid ? "valid" : "invalid, reason: " + f.reason));
         REQUIRE(f.values.size() == channels.size());
         if (f.valid) {
             for (double v : f.values) CHECK(std::isfinite(v));
@@ -104,8 +112,10 @@ inline void check_sensor_conformance(const SensorConformance& c) {
     run_sensor_recording(*s, c, second);
     REQUIRE(second.size() == first.size());
     for (std::size_t i = 0; i < first.size(); ++i)
-        for (std::size_t k = 0; k < channels.size(); ++k)
+        for (std::size_t k = 0; k < channels.size(); ++k) {
+            INFO("frame " << i << ", channel " << channels[k].name << ": the same trial again");
             if (first[i].valid && second[i].valid) CHECK(second[i].values[k] == Approx(first[i].values[k]).margin(1e-9));
+        }
 
     // deactivate → cleanup → configure again: the lifecycle can be re-entered
     REQUIRE(s->on_deactivate().ok());
@@ -151,9 +161,11 @@ inline void check_actuator_conformance(const ActuatorConformance& c) {
     REQUIRE(c.advance);
     auto a = c.make();
     REQUIRE(a);
-    auto st = a->on_configure(c.params, c.context);
-    INFO("on_configure: " << st.message());
-    REQUIRE(st.ok());
+    {
+        auto st = a->on_configure(c.params, c.context);
+        INFO("on_configure: " << st.message());
+        REQUIRE(st.ok());
+    }
     const auto joints = a->joints();
     REQUIRE_FALSE(joints.empty());
     std::set<std::string> names;
@@ -166,9 +178,11 @@ inline void check_actuator_conformance(const ActuatorConformance& c) {
     }
     const std::size_t n = joints.size();
 
-    st = a->on_activate();
-    INFO("on_activate: " << st.message());
-    REQUIRE(st.ok());
+    {
+        auto st = a->on_activate();
+        INFO("on_activate: " << st.message());
+        REQUIRE(st.ok());
+    }
 
     // No jump on activation: holding what it reads keeps every joint where it is.
     auto start = read_joints(*a, c, n);
