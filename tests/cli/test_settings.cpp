@@ -40,6 +40,12 @@ std::vector<std::string> column(const fs::path& csv, std::size_t col) {
 
 bool same_files(const fs::path& a, const fs::path& b) { return read_file(a) == read_file(b); }
 
+// A --set refused, and what the refusal says.
+struct Case {
+    const char* set;
+    const char* says;
+};
+
 }  // namespace
 
 // ------------------------------------------------------------- settings --
@@ -95,10 +101,6 @@ TEST_CASE("run SCRIPT --help reads the settings under the run's --slice-limit-ms
 
 TEST_CASE("unknown keys, unknown objects and out-of-range values are errors before the first trial, naming the valid ones") {
     TempDir dir("rollsense-settings");
-    struct Case {
-        const char* set;
-        const char* says;
-    };
     for (const Case c : {Case{"runz=2", "--set runz: no such setting. Settings here: analyse, etroll.clamp_current"},
                          Case{"etroll.clamp_curent=150", "--set etroll.clamp_curent: no such setting"},
                          Case{"objects=C1,X9", "'X9' is not an object of"},
@@ -129,10 +131,6 @@ TEST_CASE("unknown keys, unknown objects and out-of-range values are errors befo
 // refuses was blamed on the stock profile file (exit 3), a value not in it.
 TEST_CASE("a --set of the profile that the profile or a plugin refuses is a bad command line naming the --set") {
     TempDir dir("rollsense-settings-profile");
-    struct Case {
-        const char* set;
-        const char* says;
-    };
     for (const Case c : {Case{"devices.tactile.params.kernel_fwhm=50", "key 'kernel_fwhm': 50 is outside the allowed range"},
                          Case{"devices.tactile.params.nope=1", "unknown key 'nope'"},
                          Case{"sample_rate_hz=-5", "sample_rate_hz and control_rate_hz must be > 0"}}) {
@@ -167,10 +165,6 @@ TEST_CASE("nan and inf are refused where a setting declares a range, as a bad co
                               "rs.settings{ speed = { default = 10, min = 1, help = 'roll speed' },\n"
                               "             speeds = { default = '10', kind = 'numbers', min = 1 } }\n"
                               "rs.log('speed', rs.setting('speed'))\n");
-    struct Case {
-        const char* set;
-        const char* says;
-    };
     for (const Case c : {Case{"speed=nan", "s.lua:2: --set: key 'speed': nan is not a finite number in the allowed range [1, inf]"},
                          Case{"speed=inf", "key 'speed': inf is not a finite number in the allowed range [1, inf]"},
                          Case{"speed=-inf", "key 'speed': -inf is not a finite number in the allowed range [1, inf]"},
