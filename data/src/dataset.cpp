@@ -628,7 +628,9 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     // otherwise fail the whole batch later, losing the other trials in it.
     if (auto s = check_trial_id(record.info.id); !s.ok()) return s;
     if (has_trial(record.info.id))
-        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string()};
+        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string() +
+                                                " (a resumed run records only what is not on disk: skip a recorded trial with "
+                                                "'if not rs.has_trial(id)', as scripts/paper_experiment.lua does)"};
     if (data.channels.size() != info_.channels.size() || data.joints.size() != info_.joints.size())
         return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' has " +
                                                  std::to_string(data.channels.size()) + " channels, the dataset " +

@@ -205,7 +205,9 @@ Status check_same_run(const std::vector<ShardDataset>& shards) {
             };
             return refused(s.label() + " planned other trials than " + first.label() + " (shard-plan.csv): trial " +
                            std::to_string(i) + " of the run is " + at(s.plan) + " in the one, " + at(first.plan) +
-                           " in the other; the script or its settings changed between the shards");
+                           " in the other; the script or its settings changed between the shards, or the script's "
+                           "order of trials is not reproducible (e.g. it follows pairs() over a table, whose order "
+                           "changes from process to process: walk a list with ipairs, or sort the keys)");
         }
     }
     return {};

@@ -28,26 +28,30 @@ rs.on_cleanup(etroll.park)
 
 for attempt = 1, attempts do
   local id = string.format("identify-%s-v%s-a%d", object, tostring(speed), attempt)
-  rs.trial{ object = object, speed = speed, repetition = attempt, id = id }
-  etroll.open()
-  etroll.clamp()
-  local t0 = rs.now()
-  etroll.roll(speed)
-  local roll_time = rs.now() - t0
-  local answer, why = clf:identify()
-  etroll.return_to_start()
-  etroll.release()
-  if rs.setting("save") then rs.save_trial() end
-  rs.end_trial()
-  if answer then
-    local ranked = {}
-    for name, score in pairs(answer.scores) do ranked[#ranked + 1] = { name, score } end
-    table.sort(ranked, function(a, b) return a[2] > b[2] end)
-    rs.log(string.format("roll %s (%.1f s): it is %s  [%s %.2f, %s %.2f, %s %.2f]  (truth: %s)",
-      id, roll_time, answer.object, ranked[1][1], ranked[1][2], ranked[2][1], ranked[2][2],
-      ranked[3][1], ranked[3][2], object))
-    break
+  if rs.has_trial(id) then  -- saved by an earlier run (--set save=true, resumed): the next attempt
+    rs.log(string.format("roll %s: already in the dataset; rolling the next", id))
+  else
+    rs.trial{ object = object, speed = speed, repetition = attempt, id = id }
+    etroll.open()
+    etroll.clamp()
+    local t0 = rs.now()
+    etroll.roll(speed)
+    local roll_time = rs.now() - t0
+    local answer, why = clf:identify()
+    etroll.return_to_start()
+    etroll.release()
+    if rs.setting("save") then rs.save_trial() end
+    rs.end_trial()
+    if answer then
+      local ranked = {}
+      for name, score in pairs(answer.scores) do ranked[#ranked + 1] = { name, score } end
+      table.sort(ranked, function(a, b) return a[2] > b[2] end)
+      rs.log(string.format("roll %s (%.1f s): it is %s  [%s %.2f, %s %.2f, %s %.2f]  (truth: %s)",
+        id, roll_time, answer.object, ranked[1][1], ranked[1][2], ranked[2][1], ranked[2][2],
+        ranked[3][1], ranked[3][2], object))
+      break
+    end
+    rs.log(string.format("roll %s: no clean peaks (%s); rolling again", id, why))
+    etroll.winch_reset()
   end
-  rs.log(string.format("roll %s: no clean peaks (%s); rolling again", id, why))
-  etroll.winch_reset()
 end

@@ -16,6 +16,9 @@ if from > to then error(string.format("--set from=%s is above --set to=%s: need 
 rs.on_cleanup(etroll.park)
 
 for speed = from, to, step do
-  local samples, id = etroll.run_trial{ object = object, speed = speed, repetition = 1 }
-  rs.log(string.format("%s: %d samples at %.2f rev/min", id, samples, speed * 0.229))
+  -- A resumed run (--resume) finds the speeds already on disk and rolls only the others.
+  if not rs.has_trial(rs.trial_id{ object = object, speed = speed, repetition = 1 }) then
+    local samples, id = etroll.run_trial{ object = object, speed = speed, repetition = 1 }
+    rs.log(string.format("%s: %d samples at %.2f rev/min", id, samples, speed * 0.229))
+  end
 end

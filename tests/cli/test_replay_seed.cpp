@@ -49,6 +49,23 @@ TEST_CASE("a replay without --seed adopts the recording's seed and reproduces it
     CHECK(read_file(dir / "rep" / "features.csv") == features);
 }
 
+// Determinism review: run-config.csv said seed 1 (the default) for a replay
+// that used the recording's seed, so resuming it with that --seed was refused,
+// and one started with --seed resumed without it too.
+TEST_CASE("a replay's run-config records the seed it used: resumed with or without that --seed, it goes on") {
+    TempDir dir("rollsense-cli-replay-seed-resume");
+    const auto rep = record_and_replay(dir, " --set analyse=false", "");
+    CHECK(read_file(dir / "rep" / "run-config.csv").find("\nseed,5\n") != std::string::npos);
+    const std::string replay = "run " + kExperiment + " --set analyse=false --profile replay --set dataset=" +
+                               shell_quoted(dir / "rec") + " --out " + shell_quoted(dir / "rep") + " --resume";
+    for (const char* seed : {" --seed 5", ""}) {
+        const auto again = run_rollsense(replay + seed);
+        INFO(again.output);
+        CHECK(again.status == 0);
+        CHECK(again.output.find("done: 0 trials saved, 12 already on disk") != std::string::npos);
+    }
+}
+
 TEST_CASE("an explicit --seed overrides the recording's on replay") {
     TempDir dir("rollsense-cli-replay-seed-given");
     const auto rep = record_and_replay(dir, " --set analyse=false", " --seed 11");

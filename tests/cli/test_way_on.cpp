@@ -108,3 +108,29 @@ end
     CHECK(command != std::string::npos);
     CHECK(note < command);
 }
+
+// Determinism review: the shipped speed sweep, interrupted, printed a resume
+// command that failed for ever ("trial 'C3-v5-r001' is already in ..."), with
+// no word on how a script skips the trials on disk.
+TEST_CASE("the shipped speed sweep resumes; a script that records a trial on disk again is told how to skip it") {
+    TempDir dir("rollsense-cli-way-on-sweep");
+    const std::string sweep = "run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "examples" / "speed_sweep.lua") +
+                              " --seed 2 --no-progress --out " + shell_quoted(dir / "sweep");
+    const auto cut = run_rollsense(sweep + " --time-limit 25");
+    INFO(cut.output);
+    REQUIRE(cut.status == 130);
+    const auto resumed = run_rollsense(sweep + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+    CHECK(manifest_rows(dir / "sweep") == 5);  // speeds 5, 10, ..., 25
+
+    write_file(dir / "again.lua", "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
+                                  "etroll.run_trial{ object = 'C1', speed = 10, repetition = 1 }\n");
+    const std::string again = "run " + shell_quoted(dir / "again.lua") + " --no-progress --out " + shell_quoted(dir / "again");
+    REQUIRE(run_rollsense(again).status == 0);
+    const auto twice = run_rollsense(again + " --resume");
+    INFO(twice.output);
+    CHECK(twice.status == 1);
+    CHECK(twice.output.find("trial 'C1-v10-r001' is already in ") != std::string::npos);
+    CHECK(twice.output.find("skip a recorded trial with 'if not rs.has_trial(id)'") != std::string::npos);
+}

@@ -2,6 +2,9 @@
 // semantics, and byte-identical output per seed.
 #include <catch2/catch.hpp>
 
+#include <iterator>
+#include <sstream>
+
 #include "kernel_fixture.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
@@ -157,6 +160,57 @@ end
     rollsense::runtime::Session s(o);
     REQUIRE(s.run().status.ok());
     CHECK(kt::read_file(o.out_dir / "trials/X-v20-r001.csv") != kt::read_file(ra.out / "trials/X-v20-r001.csv"));
+}
+
+// Determinism review: before the first trial rs.random drew from the default
+// seed (0.7868... for every --seed), and between trials it went on from the
+// trial before, so which trials a process recorded changed its draws.
+TEST_CASE("rs.random outside a trial draws from the run's seed, apart from the trials' streams", "[dataset][seed]") {
+    const std::string script = R"(local rs = require 'rollsense'
+local out = { string.format("%.17g", rs.random()) }
+for r = 1, 2 do
+  rs.trial{ object = "X", speed = 20, repetition = r }
+  out[#out + 1] = string.format("%.17g", rs.random())
+  if r == 1 then rs.random() end
+  rs.end_trial()
+  out[#out + 1] = string.format("%.17g", rs.random())
+end
+rs.write_output("draws.txt", table.concat(out, " "))
+)";
+    auto draws = [&](std::uint64_t seed) {
+        kt::TempDir dir;
+        auto o = kt::options_for(dir, script);
+        o.seed = seed;
+        rollsense::runtime::Session s(o);
+        REQUIRE(s.run().status.ok());
+        std::istringstream in(kt::read_file(o.out_dir / "draws.txt"));
+        return std::vector<std::string>(std::istream_iterator<std::string>(in), {});
+    };
+    const auto one = draws(1), other = draws(9);
+    REQUIRE(one.size() == 5);
+    CHECK(one[0] != other[0]);  // before the first trial: the run's seed decides
+    CHECK(one == draws(1));
+    // In trial 2 the draw is its own stream's first, whatever trial 1 drew;
+    // outside, the run's stream goes on (draws 0, 2, 4), untouched by the trials.
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, R"(local rs = require 'rollsense'
+rs.trial{ object = "X", speed = 20, repetition = 2 }
+rs.write_output("draws.txt", string.format("%.17g", rs.random()))
+)");
+    rollsense::runtime::Session s(o);
+    REQUIRE(s.run().status.ok());
+    CHECK(kt::read_file(o.out_dir / "draws.txt") == one[3]);
+}
+
+TEST_CASE("math.random and math.randomseed are refused with the reproducible way", "[sandbox][seed]") {
+    for (const char* call : {"math.random()", "math.randomseed(4)"}) {
+        kt::TempDir dir;
+        auto r = kt::run_script(dir, std::string("local x = ") + call + "\n");
+        INFO(call);
+        REQUIRE_FALSE(r.summary.status.ok());
+        CHECK_THAT(r.summary.status.message(), Catch::Contains(":1: math.random is not reproducible") &&
+                                                   Catch::Contains("use rs.random()"));
+    }
 }
 
 TEST_CASE("trial seeds are pinned: a recorded dataset's seeds never change with the code") {

@@ -179,6 +179,14 @@ int run(const std::vector<std::string>& argv) {
         o.plugin_path.emplace_back(p);
         deciding.emplace_back("--plugin-path", p);
     }
+    o.sandbox = sandbox_limits_of(args);
+    // Before run-config.csv: it records the seed the run uses (review: a replay's said 1, and its resume was refused).
+    if (args.option("--seed").empty())
+        if (auto recorded = recorded_seed(o)) {
+            o.seed = recorded->seed;
+            log_info("rollsense", "replaying " + recorded->dataset.string() + ": the run uses the recording's seed " +
+                                      std::to_string(o.seed) + " (so its trials line up; give --seed N for another)");
+        }
     o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.seed, sets);
     // A --resume whose options differ from the recording's is the command line's error (2), before anything opens;
     // a run-config.csv that cannot be read is the dataset's (3, or 5 for a read the system refuses).
@@ -190,16 +198,9 @@ int run(const std::vector<std::string>& argv) {
         }
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
-    o.sandbox = sandbox_limits_of(args);
     o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
     o.progress = !args.flag("--no-progress");
     o.digital_lines = hal::gpio_digital_lines();
-    if (args.option("--seed").empty())
-        if (auto recorded = recorded_seed(o)) {
-            o.seed = recorded->seed;
-            log_info("rollsense", "replaying " + recorded->dataset.string() + ": the run uses the recording's seed " +
-                                      std::to_string(o.seed) + " (so its trials line up; give --seed N for another)");
-        }
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
 

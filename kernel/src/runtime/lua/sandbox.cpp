@@ -128,26 +128,25 @@ void Sandbox::build_environment() {
     lua_getfield(L, env, "string");
     guard_string_patterns(L);
     lua_pop(L, 1);
-    lua_getfield(L, env, "setmetatable");
-    lua_pushcclosure(L, &Sandbox::lua_setmetatable, 1);
-    lua_setfield(L, env, "setmetatable");
-    lua_getfield(L, env, "xpcall");
-    lua_pushcclosure(L, &Sandbox::lua_xpcall, 1);
-    lua_setfield(L, env, "xpcall");
+    for (auto [name, guard] : {std::pair{"setmetatable", &Sandbox::lua_setmetatable}, std::pair{"xpcall", &Sandbox::lua_xpcall}})
+        lua_getfield(L, env, name), lua_pushcclosure(L, guard, 1), lua_setfield(L, env, name);  // the original: upvalue 1
     copy_library(L, env, "table", nullptr, 0);
     copy_library(L, env, "math", nullptr, 0);
+    lua_getfield(L, env, "math");  // Lua seeds math.random anew in every process: a run would not be reproducible
+    for (const char* name : {"random", "randomseed"})
+        lua_pushcfunction(L, [](lua_State* S) { return luaL_error(S, "math.random is not reproducible (Lua seeds it "
+            "anew in every process): use rs.random() or rs.random_normal(), seeded by --seed and the trial"); }),
+            lua_setfield(L, -2, name);
+    lua_pop(L, 1);
     copy_library(L, env, "utf8", nullptr, 0);
     copy_library(L, env, "os", kOsWhitelist, std::size(kOsWhitelist));
     lua_pushvalue(L, env);
     lua_setfield(L, env, "_G");
-    lua_pushcfunction(L, &Sandbox::lua_print);
-    lua_setfield(L, env, "print");
-    lua_pushcfunction(L, &Sandbox::lua_load_text);
-    lua_setfield(L, env, "load");
+    for (auto [name, fn] : {std::pair{"print", &Sandbox::lua_print}, std::pair{"load", &Sandbox::lua_load_text},
+                            std::pair{"require", &Sandbox::lua_require}})
+        lua_pushcfunction(L, fn), lua_setfield(L, env, name);
     lua_newtable(L);
     loaded_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-    lua_pushcfunction(L, &Sandbox::lua_require);
-    lua_setfield(L, env, "require");
     env_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
     // The string metatable's __index is the real string library, which still
     // has dump; point it at the sandbox copy.

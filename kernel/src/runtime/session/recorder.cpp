@@ -11,7 +11,7 @@
 namespace rollsense::runtime {
 
 Recorder::Recorder(Robot& robot, const Clock& clock, double sample_rate_hz, std::uint64_t run_seed)
-    : robot_(robot), clock_(clock), sample_period_(1.0 / sample_rate_hz), run_seed_(run_seed) {}
+    : robot_(robot), clock_(clock), sample_period_(1.0 / sample_rate_hz), run_seed_(run_seed), run_rng_(run_seed) {}
 
 Recorder::~Recorder() = default;
 

@@ -55,7 +55,9 @@ public:
     // Already in the dataset (a resumed run skips it; counted as skipped), or
     // recorded by another shard.
     bool has_trial(const std::string& id);
-    std::mt19937_64& trial_random() { return trial_rng_; }
+    // rs.random's generator: in a trial the trial's (its seed), outside one the run's (--seed): a draw between
+    // trials does not shift a trial's, and none is the same for every seed.
+    std::mt19937_64& trial_random() { return trial_open_ ? trial_rng_ : run_rng_; }
 
     // The scheduler's sampling: when the next sample is due (infinity when
     // not recording), and taking it. A failed sample ends the recording.
@@ -86,7 +88,7 @@ private:
     TrialInfo trial_;
     bool trial_open_ = false;
     TrialData data_;
-    std::mt19937_64 trial_rng_;
+    std::mt19937_64 trial_rng_, run_rng_;
     bool recording_ = false;
     double sample_epoch_ = 0;
     std::uint64_t sample_m_ = 0;
