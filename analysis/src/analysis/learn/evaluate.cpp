@@ -68,7 +68,9 @@ Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactor
     r.sd = standard_deviation(r.repeat_accuracy);
     r.correct = r.confusion.correct();
     r.total = r.confusion.total();
-    r.wilson = wilson_interval(r.correct, r.total);
+    // Over the trials: every repetition predicts the same trials again, so its
+    // predictions are no new cases (n = R x trials would narrow it sqrt(R)-fold).
+    r.wilson = wilson_interval_of_rate(static_cast<double>(r.correct) / static_cast<double>(r.total), table.rows);
     return r;
 }
 
@@ -383,8 +385,8 @@ std::string figure(double m, double sd, const Interval& w, std::size_t k, std::s
     char buf[160];
     std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * m);
     std::string out = buf + spread(sd);
-    std::snprintf(buf, sizeof buf, "   pooled %zu / %zu, 95 %% Wilson [%.1f, %.1f] %%", k, n, 100.0 * w.low,
-                  100.0 * w.high);
+    std::snprintf(buf, sizeof buf, "   pooled %zu / %zu, 95 %% Wilson over the trials [%.1f, %.1f] %%", k, n,
+                  100.0 * w.low, 100.0 * w.high);
     return out + buf;
 }
 
