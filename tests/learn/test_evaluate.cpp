@@ -130,6 +130,8 @@ TEST_CASE("evaluate with optimisation: same-folds figure and nested CV beside it
     CHECK(r->nested->total == r->clean);
     const std::string text = format_report(*r);
     CHECK_THAT(text, Catch::Contains("optimistic") && Catch::Contains("nested CV"));
+    // Evaluation review: both spreads read "(sd)", one over repetitions, the other over outer folds.
+    CHECK_THAT(text, Catch::Contains("(sd over the outer folds)"));
 }
 
 TEST_CASE("fit_final trains on every clean trial and predicts", "[learn][train]") {
