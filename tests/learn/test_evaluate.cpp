@@ -132,6 +132,8 @@ TEST_CASE("evaluate with optimisation: same-folds figure and nested CV beside it
     CHECK_THAT(text, Catch::Contains("optimistic") && Catch::Contains("nested CV"));
     // Evaluation review: both spreads read "(sd)", one over repetitions, the other over outer folds.
     CHECK_THAT(text, Catch::Contains("(sd over the outer folds)"));
+    // With --trials all the evaluated trials are not the clean ones: the row says which it counts.
+    CHECK_THAT(text, Catch::Contains("accuracy (correct / evaluated trials)"));
 }
 
 TEST_CASE("fit_final trains on every clean trial and predicts", "[learn][train]") {

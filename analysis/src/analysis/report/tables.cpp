@@ -115,7 +115,7 @@ std::string paper_comparison_table(const learn::PaperAnalysis& ours, const std::
         {"clean trials / collected", &learn::PaperAnalysis::clean},
         {"cylinder trials clean", &learn::PaperAnalysis::cylinders_clean},
         {"polygon trials clean", &learn::PaperAnalysis::polygons_clean},
-        {"accuracy, first CV repetition (correct / clean)", &learn::PaperAnalysis::accuracy},
+        {"accuracy, first CV repetition (correct / evaluated trials)", &learn::PaperAnalysis::accuracy},
         {"cylinder vs polygon correct", &learn::PaperAnalysis::family_correct},
         {"cylinders misclassified", &learn::PaperAnalysis::cylinders_misclassified},
         {"polygons with the correct base edge length", &learn::PaperAnalysis::polygon_edge_correct},
