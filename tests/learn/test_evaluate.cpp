@@ -57,6 +57,27 @@ TEST_CASE("repeated_cv on several threads gives the serial result", "[learn][cv]
     CHECK_THAT(failed.error().message, Catch::Contains("repetition 1") && Catch::Contains("no classifier today"));
 }
 
+// Evaluation review: the interval took the R x trials pooled predictions as
+// independent cases, so ten repetitions narrowed it sqrt(10)-fold; they predict
+// the same trials again. It is the pooled rate's interval over the trials.
+TEST_CASE("repeated CV's Wilson interval counts the trials, not the repetitions' predictions", "[learn][cv]") {
+    const auto rows = synthetic_rows(12, 0.6, 3);
+    const auto table = features::to_feature_table(rows);
+    ParamSet p;
+    p.set("learners", std::int64_t{12});
+    auto plan = make_fold_plan(table.y, nullptr, 5, 10, 7);
+    REQUIRE(plan.ok());
+    auto cv = repeated_cv(table, bagged_trees_factory(), p, *plan, 1);
+    REQUIRE(cv.ok());
+    REQUIRE(cv->total == 10 * table.rows);
+    const double rate = static_cast<double>(cv->correct) / static_cast<double>(cv->total);
+    const auto over_trials = wilson_interval_of_rate(rate, table.rows);
+    CHECK(cv->wilson.low == Approx(over_trials.low));
+    CHECK(cv->wilson.high == Approx(over_trials.high));
+    const auto over_predictions = wilson_interval(cv->correct, cv->total);  // what it was
+    CHECK(cv->wilson.high - cv->wilson.low > 2.5 * (over_predictions.high - over_predictions.low));
+}
+
 TEST_CASE("evaluate: repeated CV, confusion, paper analyses, reproducible", "[learn][evaluate]") {
     const auto rows = synthetic_rows(15, 0.6, 2);  // overlapping: accuracy well below 1
     EvaluationOptions o;
@@ -109,6 +130,10 @@ TEST_CASE("evaluate with optimisation: same-folds figure and nested CV beside it
     CHECK(r->nested->total == r->clean);
     const std::string text = format_report(*r);
     CHECK_THAT(text, Catch::Contains("optimistic") && Catch::Contains("nested CV"));
+    // Evaluation review: both spreads read "(sd)", one over repetitions, the other over outer folds.
+    CHECK_THAT(text, Catch::Contains("(sd over the outer folds)"));
+    // With --trials all the evaluated trials are not the clean ones: the row says which it counts.
+    CHECK_THAT(text, Catch::Contains("accuracy (correct / evaluated trials)"));
 }
 
 TEST_CASE("fit_final trains on every clean trial and predicts", "[learn][train]") {

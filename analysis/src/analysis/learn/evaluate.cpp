@@ -68,7 +68,9 @@ Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactor
     r.sd = standard_deviation(r.repeat_accuracy);
     r.correct = r.confusion.correct();
     r.total = r.confusion.total();
-    r.wilson = wilson_interval(r.correct, r.total);
+    // Over the trials: every repetition predicts the same trials again, so its
+    // predictions are no new cases (n = R x trials would narrow it sqrt(R)-fold).
+    r.wilson = wilson_interval_of_rate(static_cast<double>(r.correct) / static_cast<double>(r.total), table.rows);
     return r;
 }
 
@@ -379,12 +381,13 @@ std::string spread(double sd, const char* label = "sd") {
     return label ? buf + std::string(" (") + label + ")" : std::string(buf);
 }
 
-std::string figure(double m, double sd, const Interval& w, std::size_t k, std::size_t n) {
+// `spread_label`: what the sd is over (repetitions' accuracies, or nested CV's outer folds).
+std::string figure(double m, double sd, const Interval& w, std::size_t k, std::size_t n, const char* spread_label = "sd") {
     char buf[160];
     std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * m);
-    std::string out = buf + spread(sd);
-    std::snprintf(buf, sizeof buf, "   pooled %zu / %zu, 95 %% Wilson [%.1f, %.1f] %%", k, n, 100.0 * w.low,
-                  100.0 * w.high);
+    std::string out = buf + spread(sd, spread_label);
+    std::snprintf(buf, sizeof buf, "   pooled %zu / %zu, 95 %% Wilson over the trials [%.1f, %.1f] %%", k, n,
+                  100.0 * w.low, 100.0 * w.high);
     return out + buf;
 }
 
@@ -418,7 +421,7 @@ std::string format_report(const EvaluationReport& r, bool with_timing) {
     if (r.nested) {
         const auto& n = *r.nested;
         out += "nested CV (tuning inside each outer training fold): the honest tuned figure\n  accuracy ";
-        out += figure(n.mean, n.sd, n.wilson, n.correct, n.total) + "\n";
+        out += figure(n.mean, n.sd, n.wilson, n.correct, n.total, "sd over the outer folds") + "\n";
         for (std::size_t i = 0; i < n.chosen.size(); ++i) {
             std::snprintf(buf, sizeof buf, "  outer fold %zu: %.1f %%  ", i + 1, 100.0 * n.outer_accuracy[i]);
             out += buf + describe_params(n.chosen[i], r.space) + "\n";

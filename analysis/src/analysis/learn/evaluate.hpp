@@ -51,7 +51,7 @@ struct RepeatedCv {
     std::vector<double> repeat_accuracy;  // one figure per repetition
     std::vector<double> fold_accuracy;    // every fold of every repetition
     double mean = 0.0, sd = 0.0;          // over repetitions
-    Interval wilson;                      // pooled over all out-of-fold predictions
+    Interval wilson;                      // of the pooled rate, over the trials (n = rows, not R x rows)
     std::size_t correct = 0, total = 0;   // pooled
     ConfusionMatrix confusion;            // pooled over repetitions
     std::vector<int> first_predicted;     // out-of-fold labels of the first repetition

@@ -43,9 +43,12 @@ ConfusionMatrix confusion(std::span<const int> truth, std::span<const int> predi
 }
 
 Interval wilson_interval(std::size_t successes, std::size_t n, double z) {
+    return wilson_interval_of_rate(n ? static_cast<double>(successes) / static_cast<double>(n) : 0.0, n, z);
+}
+
+Interval wilson_interval_of_rate(double p, std::size_t n, double z) {
     if (n == 0) return {0.0, 1.0};
     const double nn = static_cast<double>(n);
-    const double p = static_cast<double>(successes) / nn;
     const double z2 = z * z;
     const double centre = (p + z2 / (2 * nn)) / (1 + z2 / nn);
     const double half = z / (1 + z2 / nn) * std::sqrt(p * (1 - p) / nn + z2 / (4 * nn * nn));

@@ -39,6 +39,10 @@ struct Interval {
 
 // Wilson score interval for `successes` of `n` (z = 1.96: 95 %).
 Interval wilson_interval(std::size_t successes, std::size_t n, double z = 1.96);
+// The same for an observed rate `p` over `n` independent cases (a rate pooled
+// over repetitions of a CV that predicts the same n trials each time: the
+// repetitions are not new cases, so n is the trials, not the predictions).
+Interval wilson_interval_of_rate(double p, std::size_t n, double z = 1.96);
 
 double mean(std::span<const double> v);
 // Sample standard deviation (n − 1). Of fewer than two values it does not

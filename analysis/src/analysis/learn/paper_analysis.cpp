@@ -133,7 +133,7 @@ std::string format_paper_comparison(const PaperAnalysis& ours) {
         {"clean trials / collected", &PaperAnalysis::clean},
         {"cylinder trials clean", &PaperAnalysis::cylinders_clean},
         {"polygon trials clean", &PaperAnalysis::polygons_clean},
-        {"accuracy (correct / clean)", &PaperAnalysis::accuracy},
+        {"accuracy (correct / evaluated trials)", &PaperAnalysis::accuracy},  // the clean ones, unless --trials all
         {"cylinder vs polygon correct", &PaperAnalysis::family_correct},
         {"cylinders misclassified", &PaperAnalysis::cylinders_misclassified},
         {"polygons, correct base edge length", &PaperAnalysis::polygon_edge_correct},

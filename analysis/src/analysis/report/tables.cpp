@@ -115,7 +115,7 @@ std::string paper_comparison_table(const learn::PaperAnalysis& ours, const std::
         {"clean trials / collected", &learn::PaperAnalysis::clean},
         {"cylinder trials clean", &learn::PaperAnalysis::cylinders_clean},
         {"polygon trials clean", &learn::PaperAnalysis::polygons_clean},
-        {"accuracy, first CV repetition (correct / clean)", &learn::PaperAnalysis::accuracy},
+        {"accuracy, first CV repetition (correct / evaluated trials)", &learn::PaperAnalysis::accuracy},
         {"cylinder vs polygon correct", &learn::PaperAnalysis::family_correct},
         {"cylinders misclassified", &learn::PaperAnalysis::cylinders_misclassified},
         {"polygons with the correct base edge length", &learn::PaperAnalysis::polygon_edge_correct},
@@ -172,7 +172,7 @@ std::string protocol_table(const learn::EvaluationReport& r) {
                     th("95 % Wilson interval") + th("how to read it") + "</tr></thead><tbody>\n";
     const auto& b = r.baseline;
     h += "<tr>" + td("preset, repeated CV") + td(mean_sd(b.mean, b.sd), true) + td(interval(b.wilson), true) +
-         td("honest: no choice was made on the test folds") + "</tr>\n";
+         td("honest: no choice was made on the test folds (sd over repetitions; interval over the trials)") + "</tr>\n";
     if (r.tuned)
         h += "<tr class=\"optimistic\">" + td("tuned and scored on the same folds (the paper's protocol)") +
              td(percent(r.tuned->same_folds_accuracy), true) + td("\u2013", true) +
@@ -180,7 +180,8 @@ std::string protocol_table(const learn::EvaluationReport& r) {
     if (r.nested)
         h += "<tr>" + td("nested CV (tuning inside each outer training fold)") +
              td(mean_sd(r.nested->mean, r.nested->sd), true) + td(interval(r.nested->wilson), true) +
-             td("honest tuned figure: compare with the row above") + "</tr>\n";
+             td("honest tuned figure: compare with the row above (its sd is over the outer folds, not repetitions)") +
+             "</tr>\n";
     if (!r.tuned)
         h += "<tr>" + td("tuned figures") + td("\u2013", true) + td("\u2013", true) +
              td("not run: pass --optimize (rollsense report) or optimize=true (rs.analyse)") + "</tr>\n";
