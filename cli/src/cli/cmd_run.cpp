@@ -249,13 +249,13 @@ int run(const std::vector<std::string>& argv) {
                              "would run the same analysis on them again)\nanalyse them with: %s (options such as "
                              "--folds, --classifier: their --help)\n",
                      trials_listed(*analysed), analysed->c_str(), analysis_commands(*analysed, o.out_dir).c_str());
-    else if (summary.status.code() == ErrorCode::script_error)  // review: the advice was a dead end for a script's own bug
-        std::fprintf(stderr, "a resume runs the same script again and refuses an edited one (run-config.csv): it helps "
-                             "when the cause was outside the script (the hand, an object, a device); a fixed script "
-                             "records into a new --out\ncontinue with: %s\n",
-                     resume_command(pos[0], o.out_dir, deciding).c_str());
-    else
+    else {
+        if (summary.status.code() == ErrorCode::script_error)  // review: the advice was a dead end for a script's own bug
+            std::fprintf(stderr, "a resume runs the same script again and refuses an edited one (run-config.csv): it "
+                                 "helps when the cause was outside the script (the hand, an object, a device); a fixed "
+                                 "script records into a new --out\n");
         std::fprintf(stderr, "continue with: %s\n", resume_command(pos[0], o.out_dir, deciding).c_str());
+    }
     return exit_code_for(summary.status.code());
 }
 
