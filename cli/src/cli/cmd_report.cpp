@@ -67,9 +67,10 @@ options:
                       several, comma-separated; NAME:KEY=VALUE gives one
                       entry its own parameters
   --set KEY=VALUE     classifier parameter for every listed classifier, repeatable
-  --trials SET, --series-amplitude MODE
+  --trials SET, --series-amplitude MODE, --series-time-axis AXIS
                       which trials are evaluated and the series rule's
-                      amplitude (as 'rollsense evaluate --help' says)
+                      amplitude and time axis (as 'rollsense evaluate --help'
+                      says; roll_relative is outside the paper's timing rule)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'
 
