@@ -97,7 +97,7 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
     CHECK_THAT(r.output, Catch::Contains("add grouped to --cv"));
     r = rollsense_cli("train " + features.string() + " -o /tmp/m.rbt --cv blocked --block 3");
     CHECK(r.status == 2);
-    CHECK_THAT(r.output, Catch::Contains("--cv applies to 'rollsense evaluate'"));
+    CHECK_THAT(r.output, Catch::Contains("--cv applies to train with --optimize only"));
 
     const auto model = dir / "model.rsm";
     r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");

@@ -74,6 +74,27 @@ Result<FoldPlan> plan_for(const CvScheme& scheme, const std::vector<FeatureRow>&
     return make_scheme_plan(scheme, labels, names, *groups, k, repeats, 1);
 }
 
+// Every trial's features tell its object apart, with a little spread per roll.
+void separate_objects(std::vector<FeatureRow>& rows) {
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const double cls = rows[i].object == "C1" ? 0.0 : rows[i].object == "S1" ? 1.0 : 2.0;
+        for (std::size_t k = 0; k < rows[i].values.size(); ++k)
+            rows[i].values[k] = cls * (k + 1) + 0.01 * static_cast<double>((i * 7 + k) % 5);
+    }
+}
+
+// 3 folds, one repetition, two optimiser points on tiny forests: tuning, quickly.
+EvaluationOptions quick_tuning(std::vector<CvScheme> schemes) {
+    EvaluationOptions o;
+    o.folds = 3;
+    o.repeats = 1;
+    o.optimize = true;
+    o.bayes.evaluations = 2;
+    o.params.set("learners", std::int64_t{3});
+    o.schemes = std::move(schemes);
+    return o;
+}
+
 // Every group's rows sit in one fold of every repetition.
 void check_groups_whole(const FoldPlan& plan, const std::vector<std::string>& groups) {
     for (const auto& fold : plan.assignment) {
@@ -172,12 +193,7 @@ TEST_CASE("grouped CV refuses an unknown column and a grouping that is the class
 
 TEST_CASE("evaluation reports grouped and blocked CV beside random k-fold", "[learn][cv_scheme][evaluate]") {
     auto rows = protocol_rows(12, true);
-    // Features that tell the objects apart, with a little spread per roll.
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const double cls = rows[i].object == "C1" ? 0.0 : rows[i].object == "S1" ? 1.0 : 2.0;
-        for (std::size_t k = 0; k < rows[i].values.size(); ++k)
-            rows[i].values[k] = cls * (k + 1) + 0.01 * static_cast<double>((i * 7 + k) % 5);
-    }
+    separate_objects(rows);
     EvaluationOptions o;
     o.folds = 3;
     o.repeats = 2;
@@ -275,17 +291,8 @@ TEST_CASE("tuning folds that a training set's groups cannot make are an error, n
     auto rows = protocol_rows(6, true);
     rows.erase(std::remove_if(rows.begin(), rows.end(), [](const FeatureRow& r) { return r.speed == "20"; }),
                rows.end());
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const double cls = rows[i].object == "C1" ? 0.0 : rows[i].object == "S1" ? 1.0 : 2.0;
-        for (std::size_t k = 0; k < rows[i].values.size(); ++k) rows[i].values[k] = cls * (k + 1) + 0.01 * (i % 3);
-    }
-    EvaluationOptions o;
-    o.folds = 3;
-    o.repeats = 1;
-    o.optimize = true;
-    o.bayes.evaluations = 2;
-    o.params.set("learners", std::int64_t{3});
-    o.schemes = *parse_cv_schemes("grouped", "speed", "");
+    separate_objects(rows);
+    const EvaluationOptions o = quick_tuning(*parse_cv_schemes("grouped", "speed", ""));
     auto ev = evaluate_features(rows, {ClassifierRequest{"bagged_trees", fixtures::bagged_trees_factory(), o.params}}, o);
     REQUIRE_FALSE(ev.ok());
     CHECK_THAT(ev.error().describe(), Catch::Contains("nested CV outer fold 1") &&
@@ -296,18 +303,8 @@ TEST_CASE("tuning folds that a training set's groups cannot make are an error, n
 TEST_CASE("evaluation with optimize tunes each grouped or blocked CV on folds of its own kind",
           "[learn][cv_scheme][tuning][evaluate]") {
     auto rows = protocol_rows(12, true);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const double cls = rows[i].object == "C1" ? 0.0 : rows[i].object == "S1" ? 1.0 : 2.0;
-        for (std::size_t k = 0; k < rows[i].values.size(); ++k)
-            rows[i].values[k] = cls * (k + 1) + 0.01 * static_cast<double>((i * 7 + k) % 5);
-    }
-    EvaluationOptions o;
-    o.folds = 3;
-    o.repeats = 1;
-    o.optimize = true;
-    o.bayes.evaluations = 2;
-    o.params.set("learners", std::int64_t{3});
-    o.schemes = *parse_cv_schemes("blocked", "", "6");
+    separate_objects(rows);
+    const EvaluationOptions o = quick_tuning(*parse_cv_schemes("blocked", "", "6"));
     auto ev = evaluate_features(rows, {ClassifierRequest{"bagged_trees", fixtures::bagged_trees_factory(), o.params}}, o);
     REQUIRE(ev.ok());
     const auto& c = ev->primary();

@@ -250,7 +250,9 @@ options:
   --cv LIST           also cross-validate with whole groups held out, beside
                       random k-fold (always run): grouped (needs --group-by),
                       blocked (needs --block), comma-separated; figures in the
-                      report and evaluation.json (docs/identification.md)
+                      report and evaluation.json (docs/identification.md).
+                      With --optimize each is also tuned on folds of its own
+                      kind, built from each outer training fold's trials
   --group-by COLUMN   grouped CV: a manifest column (trial_id, object, speed,
                       repetition, mount, index_in_mount, or a key of its
                       extra column);

@@ -59,7 +59,8 @@ options:
                       dataset was recorded with; 1 for a dataset without one)
   --cv LIST, --group-by COLUMN, --block N
                       grouped and blocked CV beside random k-fold, shown in
-                      the accuracy table (as 'rollsense evaluate --help' says)
+                      the accuracy table (as 'rollsense evaluate --help' says;
+                      with --optimize tuned on their own folds too)
   --optimize          also run the paper's Bayesian optimisation and nested CV
   --evaluations N     with --optimize: optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
