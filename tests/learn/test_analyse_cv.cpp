@@ -1,6 +1,7 @@
 // rs.analyse with grouped and blocked CV inside a run of the simulated hand:
 // the figures come back beside random k-fold, and a grouping that is the
-// class (one mounting per object) is refused with the docs' explanation.
+// class (one mounting per object) is refused with the docs' explanation; with
+// optimize, tuning (the model's too) follows the scheme.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -36,6 +37,18 @@ local ok, err = pcall(rs.analyse, { folds = 2, repeats = 1, cv = "grouped", grou
 assert(not ok and tostring(err):find("no training fold ever sees that class", 1, true), tostring(err))
 ok, err = pcall(rs.analyse, { cv = "grouped" })
 assert(not ok and tostring(err):find("group_by", 1, true), tostring(err))
+-- Tuning under a scheme, the model's included. Two speeds: leaving one out leaves one to tune on.
+ok, err = pcall(rs.analyse, { folds = 2, repeats = 1, params = { learners = 3 }, optimize = true, evaluations = 2,
+                              cv = "grouped", group_by = "speed", tag = "speed" })
+assert(not ok and tostring(err):find("tuning folds (grouped by speed", 1, true) and
+       tostring(err):find("at least 2", 1, true), tostring(err))
+ok, err = pcall(rs.analyse, { optimize = true, cv = "blocked,grouped", block = 2, group_by = "speed", tag = "two" })
+assert(not ok and tostring(err):find("needs one fold scheme", 1, true), tostring(err))
+local tuned = rs.analyse{ folds = 2, repeats = 1, params = { learners = 3 }, optimize = true, evaluations = 2,
+                          cv = "blocked", block = 2, tag = "tuned", model = "tuned.rsm" }
+assert(tuned.model and tuned.nested_accuracy, "a tuned model and a nested figure")
+ok, err = pcall(rs.analyse, { series_time_axis = "whole" })
+assert(not ok and tostring(err):find("roll_relative", 1, true), tostring(err))
 )";
     const auto out = dir.path() / "run";
     const auto run = rollsense::testing::run_rollsense("run " + script.string() + " --profile sim --seed 4 --out " +
@@ -47,6 +60,9 @@ assert(not ok and tostring(err):find("group_by", 1, true), tostring(err))
     const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
     CHECK_THAT(text, Catch::Contains("\"cv_schemes\"") && Catch::Contains("\"id\": \"blocked:2\"") &&
                          Catch::Contains("\"group_by\": \"speed\""));
+    std::ifstream tuned_json(out / "evaluation-tuned.json");
+    const std::string tuned((std::istreambuf_iterator<char>(tuned_json)), std::istreambuf_iterator<char>());
+    CHECK_THAT(tuned, Catch::Contains("\"tuning_folds\": \"blocked: 2 consecutive trials within a mount\""));
     std::ifstream manifest(out / "manifest.csv");
     const std::string rows((std::istreambuf_iterator<char>(manifest)), std::istreambuf_iterator<char>());
     CHECK_THAT(rows, Catch::Contains("H2-v20-r004,trials/H2-v20-r004.csv,H2,20,4,") &&

@@ -97,7 +97,7 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
     CHECK_THAT(r.output, Catch::Contains("add grouped to --cv"));
     r = rollsense_cli("train " + features.string() + " -o /tmp/m.rbt --cv blocked --block 3");
     CHECK(r.status == 2);
-    CHECK_THAT(r.output, Catch::Contains("--cv applies to 'rollsense evaluate'"));
+    CHECK_THAT(r.output, Catch::Contains("--cv applies to train with --optimize only"));
 
     const auto model = dir / "model.rsm";
     r = rollsense_cli("train " + (dir / "dataset").string() + " -o " + model.string() + " --set learners=7");
@@ -202,6 +202,14 @@ TEST_CASE("rollsense evaluate and train: bad input-step words", "[learn][cli][se
     r = rollsense_cli("train /tmp -o /tmp/m.rbt --series-amplitude loud");
     CHECK(r.status == 2);
     CHECK_THAT(r.output, Catch::Contains("z_per_channel"));
+    r = rollsense_cli("evaluate /tmp --series-time-axis whole");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("--series-time-axis") && Catch::Contains("'contact'") &&
+                             Catch::Contains("outside the paper's timing rule"));
+    // A time axis outside the paper's rule is for evaluations only: no model is trained with it.
+    r = rollsense_cli("train /tmp -o /tmp/m.rbt --series-time-axis roll_relative");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("unknown option '--series-time-axis'"));
 }
 
 namespace {
@@ -354,5 +362,77 @@ TEST_CASE("learning commands refuse options they would ignore (2)", "[learn][cli
     const auto r = rollsense_cli("train " + d + " -o " + model + " --optimize --folds 3 --seed 4 --evaluations 2");
     INFO(r.output);
     CHECK(r.status == 0);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("evaluate and train --optimize with --cv: the tuning folds follow the scheme", "[learn][cli][cv_scheme][tuning]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string();
+    // 11 clean rolls per object in blocks of 2: the outer folds hold out blocks, and so do the tuning folds.
+    auto r = rollsense_cli("evaluate " + d +
+                           " --folds 2 --repeats 1 --set learners=3 --optimize --evaluations 2 --cv blocked --block 2 -o " +
+                           (dir / "tuned.json").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("tuning folds blocked: 2 consecutive trials within a mount too") &&
+                             Catch::Contains("nested CV, outer and tuning folds blocked") &&
+                             Catch::Contains("nested CV, blocked: 2 consecutive trials within a mount: tuning inside "
+                                             "outer fold 2 of 2"));
+    const auto j = rollsense::testing::JsonReader::parse(file_text(dir / "tuned.json"));
+    const auto& scheme = j["classifiers"][std::size_t{0}]["cv_schemes"][std::size_t{0}];
+    CHECK(scheme["id"].str() == "blocked:2");
+    CHECK(scheme["tuned_same_folds"]["tuning_folds"].str() == "blocked: 2 consecutive trials within a mount");
+    CHECK_THAT(scheme["nested"]["tuning_folds"].str(), Catch::Contains("built from each outer training fold's trials"));
+    CHECK(scheme["nested"]["per_outer_fold"].arr().size() == 2);
+    CHECK(scheme["nested"]["pooled"]["total"].num() == 33);
+
+    const std::string model = (dir / "m.rsm").string();
+    r = rollsense_cli("train " + d + " -o " + model + " --optimize --evaluations 2 --set learners=3 --folds 3 --cv grouped "
+                      "--group-by repetition");
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("tuning folds: 3-fold, grouped by repetition"));
+    r = rollsense_cli("train " + d + " -o " + model + " --optimize --evaluations 2 --set learners=3");
+    CHECK(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("tuning folds: 5-fold, random stratified"));
+    fs::remove(model);
+    // Without --optimize train has no folds to follow --cv; two schemes give the model two sets of tuning folds.
+    r = rollsense_cli("train " + d + " -o " + model + " --cv grouped --group-by repetition");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("--cv applies to train with --optimize only"));
+    r = rollsense_cli("train " + d + " -o " + model + " --optimize --cv blocked,grouped --block 2 --group-by repetition");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("needs one fold scheme") && !Catch::Contains("clean "));
+    CHECK_FALSE(fs::exists(model));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("evaluate --series-time-axis roll_relative: every output says it is outside the paper's timing rule",
+          "[learn][cli][series]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string();
+    auto r = rollsense_cli("evaluate " + d + " --classifier minirocket:num_features=168 --folds 2 --repeats 1 "
+                           "--series-time-axis roll_relative -o " + (dir / "roll.txt").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    const std::string label = "series time axis roll_relative: outside the paper's timing rule";
+    CHECK_THAT(r.output, Catch::Contains("NOTE: " + label));
+    CHECK_THAT(file_text(dir / "roll.txt"), Catch::Contains(label));
+    const auto j = rollsense::testing::JsonReader::parse(file_text(dir / "roll.json"));
+    CHECK(j["series_time_axis"].str() == "roll_relative");
+    CHECK_THAT(j["series_time_axis_note"].str(), Catch::StartsWith(label));
+    // The default (contact) is the paper's rule: named in the JSON, no caveat anywhere.
+    r = rollsense_cli("evaluate " + d + " --classifier minirocket:num_features=168 --folds 2 --repeats 1 -o " +
+                      (dir / "contact.txt").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, !Catch::Contains("series time axis"));
+    const auto c = rollsense::testing::JsonReader::parse(file_text(dir / "contact.json"));
+    CHECK(c["series_time_axis"].str() == "contact");
+    CHECK_THAT(file_text(dir / "contact.json"), !Catch::Contains("series_time_axis_note"));
+    // With feature classifiers only it would change nothing: refused, naming the way out.
+    r = rollsense_cli("evaluate " + d + " --set learners=3 --folds 2 --repeats 1 --series-time-axis roll_relative");
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains("applies to series classifiers"));
     fs::remove_all(dir);
 }

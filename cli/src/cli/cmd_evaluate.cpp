@@ -52,8 +52,10 @@ namespace {
 const std::vector<std::string> kLearnOptions = {"--folds",      "--repeats",     "--seed",   "--evaluations",
                                                 "--classifier", "--set",         "--plugin-path", "-o",
                                                 "--output",     "--trials",      "--series-amplitude",
-                                                "--cv",         "--group-by",    "--block"};
-// Grouped and blocked CV: evaluate and report only (train fits one model, no CV).
+                                                "--series-time-axis",            "--cv",
+                                                "--group-by",   "--block"};
+// Grouped and blocked CV: evaluate and report; train takes them with
+// --optimize only, for its tuning folds (it fits one model, no CV).
 const std::vector<std::string> kCvSchemeOptions = {"--cv", "--group-by", "--block"};
 }  // namespace
 
@@ -98,6 +100,8 @@ LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string
     for (const auto& a : args.options("--set"))
         if (auto st = learn::parse_assignment(a, o.params); !st) throw UsageError(st.message());
     for (const auto& p : args.options("--plugin-path")) s.plugin_path.emplace_back(p);
+    o.schemes = value_or_throw_usage(
+        learn::parse_cv_schemes(args.option("--cv"), args.option("--group-by"), args.option("--block")), "--cv");
     return s;
 }
 
@@ -108,14 +112,17 @@ std::vector<learn::ClassifierSpec> classifier_specs(const LearnSetup& s) {
     return std::move(specs).value();
 }
 
-// --trials and --series-amplitude: the input step's trial selection and the
-// series rule's amplitude mode (docs/series-preparation.md).
+// --trials, --series-amplitude and --series-time-axis (evaluate and report
+// only): the input step's trial selection and the series rule's amplitude and
+// time axis (docs/series-preparation.md).
 learn::InputOptions input_options_from_args(const Args& args) {
     learn::InputOptions in;
     if (const auto t = args.option("--trials"); !t.empty())
         in.trials = value_or_throw_usage(learn::parse_trial_selection(t), "--trials");
     if (const auto a = args.option("--series-amplitude"); !a.empty())
         in.series.amplitude = value_or_throw_usage(learn::parse_amplitude(a), "--series-amplitude");
+    if (const auto t = args.option("--series-time-axis"); !t.empty())
+        in.series.time_axis = value_or_throw_usage(learn::parse_time_axis(t), "--series-time-axis");
     return in;
 }
 
@@ -137,8 +144,6 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     request.classifiers = classifier_specs(s);
     request.options = s.options;
     request.inputs = input_options_from_args(args);
-    request.options.schemes = value_or_throw_usage(
-        learn::parse_cv_schemes(args.option("--cv"), args.option("--group-by"), args.option("--block")), "--cv");
     if (args.flag("--prefixes")) {
         learn::PrefixOptions po;
         // One k-fold per fraction unless --repeats asks for more.
@@ -178,9 +183,9 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
             std::vector<features::FeatureRow>& rows, learn::PreparedClassifier& classifier,
             learn::InputOptions& inputs) {
     for (const auto& o : kCvSchemeOptions)
-        if (!args.option(o).empty())
-            throw UsageError(o + " applies to 'rollsense evaluate' and 'rollsense report' only; " + command +
-                             " fits one model on every selected trial, without cross-validation");
+        if (!args.option(o).empty() && !s.options.optimize)
+            throw UsageError(o + " applies to " + command + " with --optimize only (the tuning folds follow it); " +
+                             command + " fits one model on every selected trial, without cross-validation");
     const auto specs = classifier_specs(s);
     if (specs.size() != 1)
         throw UsageError(std::string(command) + " takes one classifier, got '" + s.classifier + "'");
@@ -245,7 +250,9 @@ options:
   --cv LIST           also cross-validate with whole groups held out, beside
                       random k-fold (always run): grouped (needs --group-by),
                       blocked (needs --block), comma-separated; figures in the
-                      report and evaluation.json (docs/identification.md)
+                      report and evaluation.json (docs/identification.md).
+                      With --optimize each is also tuned on folds of its own
+                      kind, built from each outer training fold's trials
   --group-by COLUMN   grouped CV: a manifest column (trial_id, object, speed,
                       repetition, mount, index_in_mount, or a key of its
                       extra column);
@@ -263,6 +270,13 @@ options:
   --series-amplitude MODE
                       series rule amplitude: global_scale or z_per_channel
                       (default: docs/series-preparation.md)
+  --series-time-axis contact|roll_relative
+                      series rule time axis: contact (default, the paper's
+                      timing rule) or roll_relative, OUTSIDE THE PAPER'S
+                      TIMING RULE: the whole recording is resampled, so the
+                      traversal speed (a cylinder's diameter) is in the
+                      series; for measuring that leak only, and every output
+                      says so (series classifiers only)
   --prefixes          also identify before the roll ends: for f = 10 %, 20 %,
                       ... 100 % of the nominal recording length at the
                       trial's speed (median over the dataset), train on the

@@ -59,7 +59,8 @@ options:
                       dataset was recorded with; 1 for a dataset without one)
   --cv LIST, --group-by COLUMN, --block N
                       grouped and blocked CV beside random k-fold, shown in
-                      the accuracy table (as 'rollsense evaluate --help' says)
+                      the accuracy table (as 'rollsense evaluate --help' says;
+                      with --optimize tuned on their own folds too)
   --optimize          also run the paper's Bayesian optimisation and nested CV
   --evaluations N     with --optimize: optimiser evaluations (30)
   --no-nested         with --optimize: skip the nested CV
@@ -67,9 +68,10 @@ options:
                       several, comma-separated; NAME:KEY=VALUE gives one
                       entry its own parameters
   --set KEY=VALUE     classifier parameter for every listed classifier, repeatable
-  --trials SET, --series-amplitude MODE
+  --trials SET, --series-amplitude MODE, --series-time-axis AXIS
                       which trials are evaluated and the series rule's
-                      amplitude (as 'rollsense evaluate --help' says)
+                      amplitude and time axis (as 'rollsense evaluate --help'
+                      says; roll_relative is outside the paper's timing rule)
   --plugin-path DIR   search classifier plugins here first (repeatable)
   plus the feature options of 'rollsense features'
 

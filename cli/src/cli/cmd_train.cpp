@@ -45,6 +45,11 @@ options:
   --optimize          choose the parameters by Bayesian optimisation
   --evaluations N     with --optimize: optimiser evaluations (30)
   --folds K, --seed S with --optimize: partition of the optimiser's CV (5, 1)
+  --cv SCHEME, --group-by COLUMN, --block N
+                      with --optimize: the optimiser's folds hold out whole
+                      groups, as 'rollsense evaluate --cv' (one scheme:
+                      grouped or blocked); default: random stratified folds
+                      (the paper's). The folds used are printed
   --trials SET        clean (default): the paper's clean trials, with a
                       series classifier only those the series rule accepts
                       too; all: every trial the series rule accepts (series
@@ -58,7 +63,7 @@ options:
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
     // One model on every clean trial: no repetitions, and no partition unless the optimiser's.
-    const LearnSetup s = learn_setup_from_args(args, {"--optimize"}, {"--repeats"});
+    const LearnSetup s = learn_setup_from_args(args, {"--optimize"}, {"--repeats", "--series-time-axis"});
     require_optimize(args, {"--folds", "--seed"});
     setup_logging(args);
     const std::string out = args.option("--output", "-o");
@@ -94,6 +99,7 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense train: %s\n", st.error().describe().c_str());
         return exit_code_for(st.code());
     }
+    if (!model->tuning_folds.empty()) std::printf("tuning folds: %s\n", model->tuning_folds.c_str());
     const std::string params = learn::describe_param_values(model->params);
     std::printf("trained '%s' on %zu classes%s%s\nwrote %s\n", s.classifier.c_str(),
                 model->classifier->class_names().size(), params.empty() ? "" : ", parameters: ", params.c_str(),

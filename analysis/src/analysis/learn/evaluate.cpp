@@ -16,27 +16,6 @@ void say(const EvaluationOptions& o, const std::string& line) {
     if (o.progress) o.progress(line);
 }
 
-std::string pct(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * v);
-    return buf;
-}
-
-Result<std::vector<int>> make_folds(std::span<const int> labels, const std::vector<std::string>* groups, int k,
-                                    std::uint64_t seed) {
-    if (groups) return grouped_folds(*groups, labels, k, seed);
-    return stratified_folds(labels, k, seed);
-}
-
-// Objective of the optimiser: k-fold misclassification rate on one partition.
-Objective cv_error(const FeatureTable& table, const std::vector<int>& folds, int k, const ClassifierFactory& factory) {
-    return [&table, &folds, k, &factory](const ParamSet& p) -> Result<double> {
-        auto cv = cross_validate(table, folds, k, factory, p);
-        if (!cv) return cv.error();
-        return 1.0 - cv->accuracy();
-    };
-}
-
 }  // namespace
 
 Result<RepeatedCv> repeated_cv(const FeatureTable& table, const ClassifierFactory& factory, const ParamSet& params,
@@ -103,8 +82,6 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
                      : declared_search_space(factory, request.params, n_rows, n_cols, options.space);
     if (!space && options.optimize) return space.error();  // before minutes of CV
     rep.space = space ? std::move(space).value() : SearchSpace{};  // else the CV below reports the factory's error
-    const std::vector<std::string> no_groups;
-    const std::vector<std::string>& groups = group_ptr ? *group_ptr : no_groups;
 
     say(options, "cross-validating the preset" + (several ? " of " + request.name : std::string()) + ": " +
                      std::to_string(plan.repeats()) + " x " + std::to_string(plan.folds) + "-fold on " +
@@ -118,80 +95,45 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
                          std::to_string(s.plan.folds) + "-fold over " + std::to_string(s.groups) + " groups");
         auto cv = repeated_cv(table, factory, request.params, s.plan);
         if (!cv) return Status(cv.error()).with_context(s.scheme.describe());
-        rep.scheme_cv.push_back({s.scheme, std::move(cv).value()});
+        rep.scheme_cv.push_back({s.scheme, std::move(cv).value(), std::nullopt, std::nullopt});
     }
     rep.analysis = analyse_like_paper(rows, row_of, table.y, rep.baseline.first_predicted, table.class_names,
                                       options.catalogue);
 
     if (options.optimize) {
+        TuningSetup setup;
+        setup.factory = factory;
+        setup.params = request.params;
+        setup.space = rep.space;
+        setup.given_space = options.space;
+        setup.classifier = request.name;
+        setup.folds = options.folds;
+        setup.seed = options.seed;
+        setup.bayes = options.bayes;
+        setup.say = options.progress;
         // The paper's protocol: one partition, reused for every evaluation and
-        // for the reported figure.
-        auto fixed = make_folds(table.y, group_ptr, options.folds, options.seed);
-        if (!fixed) return fixed.error();
-        BayesOptOptions bo = options.bayes;
-        bo.seed = options.seed;
-        if (!bo.progress && options.progress)
-            bo.progress = [&](int i, const ParamSet& p, double v) {
-                say(options, "  optimiser " + std::to_string(i) + ": error " + pct(v) + "  " +
-                                 describe_params(p, rep.space));
-            };
-        say(options, "Bayesian optimisation on one fixed partition (" + std::to_string(bo.evaluations) +
-                         " evaluations)");
-        auto search = bayes_optimize(rep.space, cv_error(table, *fixed, options.folds, factory), request.params, bo);
-        if (!search) return search.error();
-        TunedCv tuned;
-        tuned.search = std::move(search).value();
-        auto cv = cross_validate(table, *fixed, options.folds, factory, tuned.search.best_params());
-        if (!cv) return cv.error();
-        tuned.same_folds_accuracy = cv->accuracy();
-        tuned.confusion = confusion(table.y, cv->predicted, table.class_names);
-        rep.tuned = std::move(tuned);
-
+        // for the reported figure; then nested CV. Random folds tune the random k-fold.
+        const TuningFoldRule random{nullptr, group_ptr};
+        auto tuned = tune_fixed_partition(table, random, setup);
+        if (!tuned) return tuned.error();
+        rep.tuned = std::move(tuned).value();
         if (options.nested) {
-            auto outer = make_folds(table.y, group_ptr, options.folds, options.seed + 7919);
-            if (!outer) return outer.error();
-            NestedCv nested;
-            nested.confusion = ConfusionMatrix(table.class_names);
-            for (int f = 0; f < options.folds; ++f) {
-                const auto train_rows = fold_rows(*outer, f, false);
-                const auto test_rows = fold_rows(*outer, f, true);
-                if (test_rows.empty()) continue;
-                const FeatureTable inner_table = subset(table, train_rows);
-                std::vector<std::string> inner_groups;
-                for (std::size_t r : train_rows)
-                    if (group_ptr) inner_groups.push_back(groups[r]);
-                auto inner = make_folds(inner_table.y, group_ptr ? &inner_groups : nullptr, options.folds,
-                                        options.seed + 104729 + static_cast<std::uint64_t>(f));
-                if (!inner) return inner.error();
-                BayesOptOptions ibo = options.bayes;
-                ibo.seed = options.seed + 31 * static_cast<std::uint64_t>(f + 1);
-                ibo.progress = nullptr;
-                say(options, "nested CV: tuning inside outer fold " + std::to_string(f + 1) + " of " +
-                                 std::to_string(options.folds));
-                auto inner_space = tuning_space(factory, request.params, inner_table.rows, inner_table.cols(),
-                                                options.space, request.name);
-                if (!inner_space) return inner_space.error();
-                auto s = bayes_optimize(*inner_space, cv_error(inner_table, *inner, options.folds, factory),
-                                        request.params, ibo);
-                if (!s) return Status(s.error()).with_context("nested CV outer fold " + std::to_string(f + 1));
-                auto model = train_classifier(inner_table, factory, s->best_params());
-                if (!model) return model.error();
-                auto labels = predict_labels(**model, table, test_rows);
-                if (!labels) return labels.error();
-                std::size_t ok = 0;
-                for (std::size_t i = 0; i < test_rows.size(); ++i) {
-                    nested.confusion.add(table.y[test_rows[i]], (*labels)[i]);
-                    ok += (*labels)[i] == table.y[test_rows[i]];
-                }
-                nested.outer_accuracy.push_back(static_cast<double>(ok) / static_cast<double>(test_rows.size()));
-                nested.chosen.push_back(s->best_params());
-            }
-            nested.mean = mean(nested.outer_accuracy);
-            nested.sd = standard_deviation(nested.outer_accuracy);
-            nested.correct = nested.confusion.correct();
-            nested.total = nested.confusion.total();
-            nested.wilson = wilson_interval(nested.correct, nested.total);
-            rep.nested = std::move(nested);
+            auto nested = nested_cv(table, random, setup);
+            if (!nested) return nested.error();
+            rep.nested = std::move(nested).value();
+        }
+        // Each grouped / blocked CV tunes on folds of its own kind, so that its
+        // tuned figures never profit from the neighbours it holds out.
+        for (std::size_t i = 0; i < schemes.size(); ++i) {
+            const TuningFoldRule rule{&schemes[i].scheme, &schemes[i].group_of};
+            auto& sc = rep.scheme_cv[i];
+            auto t = tune_fixed_partition(table, rule, setup);
+            if (!t) return Status(t.error()).with_context(sc.scheme.describe());
+            sc.tuned = std::move(t).value();
+            if (!options.nested) continue;
+            auto n = nested_cv(table, rule, setup);
+            if (!n) return Status(n.error()).with_context(sc.scheme.describe());
+            sc.nested = std::move(n).value();
         }
     }
     return rep;
@@ -245,6 +187,7 @@ Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows
     ev.classes = table.class_names;
     ev.truth = table.y;
     ev.selection = input.selection;
+    ev.series_time_axis = input.series_time_axis;
     {
         std::vector<bool> kind_used(input.tables.size(), false);
         for (const auto& c : classifiers) kind_used[c.table] = true;
@@ -283,8 +226,15 @@ Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows
                                   options.repeats, options.seed);
         if (!p) return p.error();
         const std::set<std::string> distinct(scheme_groups_of->begin(), scheme_groups_of->end());
-        ev.schemes.push_back({scheme, std::move(p).value(), distinct.size()});
+        ev.schemes.push_back({scheme, std::move(p).value(), distinct.size(), std::move(scheme_groups_of).value()});
     }
+    // A scheme's tuning folds that its groups cannot make are refused now, not after the random k-fold's tuning.
+    if (options.optimize && options.nested)
+        for (const auto& s : ev.schemes)
+            if (auto parts = nested_partitions(TuningFoldRule{&s.scheme, &s.group_of}, table.y, table.class_names,
+                                               options.folds, options.seed);
+                !parts)
+                return Status(parts.error()).with_context(s.scheme.describe());
 
     for (const auto& request : classifiers) {
         const auto one_started = std::chrono::steady_clock::now();
@@ -323,23 +273,47 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
     return std::move(ev->classifiers.front());
 }
 
+Status check_final_tuning(const EvaluationOptions& options) {
+    if (!options.optimize || options.schemes.size() <= 1) return {};
+    return {ErrorCode::invalid_argument,
+            "tuning the model needs one fold scheme for its tuning folds, but " +
+                std::to_string(options.schemes.size()) + " are given (" + options.schemes[0].id() + ", " +
+                options.schemes[1].id() +
+                "); give one (--cv grouped or --cv blocked; rs.analyse: cv = \"grouped\"), see docs/identification.md"};
+}
+
 Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                              const EvaluationOptions& options) {
-    const FeatureTable table = features::to_feature_table(rows);
+    std::vector<std::size_t> row_of;
+    const FeatureTable table = features::to_feature_table(rows, &row_of);
     if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to train on"};
     FinalModel out;
     out.params = options.params;
     if (options.optimize) {
-        auto fixed = stratified_folds(table.y, options.folds, options.seed);
-        if (!fixed) return fixed.error();
+        // The tuning folds follow the one grouped / blocked scheme asked for
+        // (tuning.hpp); without one they are the paper's random stratified folds.
+        if (auto st = check_final_tuning(options); !st) return st.error();
+        std::vector<std::string> groups;
+        TuningFoldRule rule;
+        if (!options.schemes.empty()) {
+            auto g = scheme_groups(options.schemes.front(), rows, row_of);
+            if (!g) return g.error();
+            groups = std::move(g).value();
+            rule = {&options.schemes.front(), &groups};
+        }
+        std::vector<std::size_t> every(table.rows);
+        for (std::size_t i = 0; i < every.size(); ++i) every[i] = i;
+        auto fixed = tuning_folds(rule, table.y, table.class_names, every, options.folds, options.seed);
+        if (!fixed) return Status(fixed.error()).with_context("the tuning folds (" + rule.describe() + ")");
         auto space = tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier);
         if (!space) return space.error();
         BayesOptOptions bo = options.bayes;
         bo.seed = options.seed;
-        auto s = bayes_optimize(*space, cv_error(table, *fixed, options.folds, factory), options.params, bo);
+        auto s = bayes_optimize(*space, tuning_objective(table, *fixed, factory), options.params, bo);
         if (!s) return s.error();
         out.params = s->best_params();
         out.search = std::move(s).value();
+        out.tuning_folds = std::to_string(fixed->k) + "-fold, " + rule.describe();
     }
     auto model = train_classifier(table, factory, out.params);
     if (!model) return model.error();
@@ -391,6 +365,25 @@ std::string figure(double m, double sd, const Interval& w, std::size_t k, std::s
     return out + buf;
 }
 
+// The figure and choice of a fixed-partition tuning.
+std::string tuned_lines(const TunedCv& t, const SearchSpace& space) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "  accuracy %.1f %%  -- tuned and scored on the same folds: optimistic\n",
+                  100.0 * t.same_folds_accuracy);
+    return buf + ("  chosen: " + describe_params(t.search.best_params(), space) + "\n");
+}
+
+// A nested CV's figure and each outer fold's accuracy and choice.
+std::string nested_lines(const NestedCv& n, const SearchSpace& space) {
+    std::string out = "  accuracy " + figure(n.mean, n.sd, n.wilson, n.correct, n.total, "sd over the outer folds") + "\n";
+    char buf[64];
+    for (std::size_t i = 0; i < n.chosen.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "  outer fold %zu: %.1f %%  ", i + 1, 100.0 * n.outer_accuracy[i]);
+        out += buf + describe_params(n.chosen[i], space) + "\n";
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string format_report(const EvaluationReport& r, bool with_timing) {
@@ -407,26 +400,29 @@ std::string format_report(const EvaluationReport& r, bool with_timing) {
         std::snprintf(buf, sizeof buf, "%s, %d x %d-fold CV (whole groups held out):\n  accuracy ",
                       s.scheme.describe().c_str(), s.cv.repeats, s.cv.folds);
         out += buf + figure(s.cv.mean, s.cv.sd, s.cv.wilson, s.cv.correct, s.cv.total) + "\n";
+        if (s.tuned) {
+            std::snprintf(buf, sizeof buf,
+                          "  Bayesian optimisation, %zu evaluations on ONE fixed partition of this scheme "
+                          "(tuning folds %s too):\n",
+                          s.tuned->search.history.size(), s.scheme.describe().c_str());
+            out += buf + tuned_lines(*s.tuned, r.space);
+        }
+        if (s.nested)
+            out += "  nested CV, outer and tuning folds " + s.scheme.describe() +
+                   " (tuning folds from each outer training fold's trials only): the honest tuned figure\n" +
+                   nested_lines(*s.nested, r.space);
     }
     out += "\nconfusion matrix (pooled over repetitions):\n" + format_confusion(b.confusion);
     if (r.tuned) {
         const auto& t = *r.tuned;
         std::snprintf(buf, sizeof buf,
-                      "\nBayesian optimisation, %zu evaluations on ONE fixed %d-fold partition (the paper's protocol):\n"
-                      "  accuracy %.1f %%  -- tuned and scored on the same folds: optimistic\n",
-                      t.search.history.size(), b.folds, 100.0 * t.same_folds_accuracy);
-        out += buf;
-        out += "  chosen: " + describe_params(t.search.best_params(), r.space) + "\n";
+                      "\nBayesian optimisation, %zu evaluations on ONE fixed %d-fold partition (the paper's protocol):\n",
+                      t.search.history.size(), b.folds);
+        out += buf + tuned_lines(t, r.space);
     }
-    if (r.nested) {
-        const auto& n = *r.nested;
-        out += "nested CV (tuning inside each outer training fold): the honest tuned figure\n  accuracy ";
-        out += figure(n.mean, n.sd, n.wilson, n.correct, n.total, "sd over the outer folds") + "\n";
-        for (std::size_t i = 0; i < n.chosen.size(); ++i) {
-            std::snprintf(buf, sizeof buf, "  outer fold %zu: %.1f %%  ", i + 1, 100.0 * n.outer_accuracy[i]);
-            out += buf + describe_params(n.chosen[i], r.space) + "\n";
-        }
-    }
+    if (r.nested)
+        out += "nested CV (tuning inside each outer training fold): the honest tuned figure\n" +
+               nested_lines(*r.nested, r.space);
     out += "\nthe paper's analyses (preset, first repetition = one " + std::to_string(b.folds) +
            "-fold CV) beside the paper:\n";
     out += format_paper_comparison(r.analysis);
@@ -473,7 +469,25 @@ std::string selection_line(const Evaluation& ev) {
 }
 }  // namespace
 
+std::string time_axis_caveat(const Evaluation& ev) {
+    if (ev.series_time_axis.empty() || ev.series_time_axis == "contact") return {};
+    return "series time axis " + ev.series_time_axis + ": " + kOutsideTimingRule +
+           " (the whole recording is resampled, so the traversal speed, and with it a cylinder's diameter and the "
+           "speed setting, is in the series); for comparison only, docs/series-preparation.md";
+}
+
+namespace {
+std::string format_evaluation_body(const Evaluation& ev);
+}  // namespace
+
 std::string format_evaluation(const Evaluation& ev) {
+    const std::string caveat = time_axis_caveat(ev);
+    return (caveat.empty() ? std::string() : "NOTE: " + caveat + "\n\n") + format_evaluation_body(ev);
+}
+
+namespace {
+// Everything after the caveat.
+std::string format_evaluation_body(const Evaluation& ev) {
     if (ev.classifiers.size() == 1)
         return format_report(ev.primary()) + selection_line(ev) +
                (ev.prefixes ? format_prefix_curves(*ev.prefixes) : std::string());
@@ -515,5 +529,6 @@ std::string format_evaluation(const Evaluation& ev) {
     out += buf;
     return out;
 }
+}  // namespace
 
 }  // namespace rollsense::learn

@@ -19,6 +19,7 @@
 #include "analysis/learn/metrics.hpp"
 #include "analysis/learn/paper_analysis.hpp"
 #include "analysis/learn/prefix_curves.hpp"
+#include "analysis/learn/tuning.hpp"
 
 namespace rollsense::learn {
 
@@ -58,21 +59,6 @@ struct RepeatedCv {
     std::vector<std::vector<double>> first_scores;  // their class scores (one vector per table row)
 };
 
-struct TunedCv {
-    BayesOptResult search;
-    double same_folds_accuracy = 0.0;  // 1 − objective at the chosen point: tuned and scored on the same folds
-    ConfusionMatrix confusion;
-};
-
-struct NestedCv {
-    std::vector<double> outer_accuracy;
-    std::vector<ParamSet> chosen;  // per outer fold
-    double mean = 0.0, sd = 0.0;
-    Interval wilson;
-    std::size_t correct = 0, total = 0;
-    ConfusionMatrix confusion;
-};
-
 // One classifier's evaluation. `name` is how the comparison calls it (the
 // plugin, with its parameters when the same plugin is compared with itself).
 struct EvaluationReport {
@@ -87,6 +73,10 @@ struct EvaluationReport {
     struct SchemeCv {
         CvScheme scheme;
         RepeatedCv cv;
+        // With optimize: the tuning under this scheme, its tuning folds by the
+        // same groups (tuning.hpp): the fixed-partition figure and nested CV.
+        std::optional<TunedCv> tuned;
+        std::optional<NestedCv> nested;
     };
     std::vector<SchemeCv> scheme_cv;  // one per Evaluation::schemes, same order
     PaperAnalysis analysis;  // of the baseline's first repetition (one k-fold CV, as the paper)
@@ -114,6 +104,7 @@ struct SchemePlan {
     CvScheme scheme;
     FoldPlan plan;
     std::size_t groups = 0;  // distinct groups among the used trials
+    std::vector<std::string> group_of;  // per used trial (table row): its group, for the tuning folds
 };
 
 // Between two classifiers of the comparison: their per-fold accuracies over
@@ -128,6 +119,7 @@ struct PairedComparison {
 struct Evaluation {
     std::string input = "features";  // the input steps that made the tables: features | series | features+series
     std::string selection = "paper_clean";  // which trials: paper_clean | series_accepted (InputTables)
+    std::string series_time_axis;  // with a series classifier: the series rule's time axis (InputTables)
     std::size_t trials = 0, clean = 0;
     std::vector<std::string> classes;
     std::vector<std::string> trial_ids;  // the table's rows: the trials used, in fold-assignment order
@@ -159,6 +151,7 @@ struct InputTables {
     std::vector<std::size_t> row_of;     // table row → index into rows
     std::vector<RefusedTrial> refused;   // trials left out, with why; empty = rows' rejection reasons
     std::string selection = "paper_clean";
+    std::string series_time_axis;        // with a series table: contact | roll_relative (series::to_string)
 };
 
 // Every classifier on its table (ClassifierRequest::table), all on one fold
@@ -186,12 +179,18 @@ Result<EvaluationReport> evaluate(const std::vector<features::FeatureRow>& rows,
                                   const EvaluationOptions& options);
 
 // The model to deploy: trained on every clean trial, with `options.params`, or
-// — with options.optimize — with the parameters the paper's protocol picks.
+// — with options.optimize — with the parameters the paper's protocol picks,
+// on tuning folds that follow options.schemes (at most one; none: random
+// stratified, the paper's).
 struct FinalModel {
     ClassifierPtr classifier;
     ParamSet params;
     std::optional<BayesOptResult> search;
+    std::string tuning_folds;  // with optimize: "5-fold, random stratified", "3-fold, grouped by speed"
 };
+// Whether fit_final can tune with `options`, known before any work: its
+// tuning folds follow at most one scheme.
+Status check_final_tuning(const EvaluationOptions& options);
 Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                              const EvaluationOptions& options);
 
@@ -201,6 +200,12 @@ struct SubsetScore {
     std::size_t total = 0, correct = 0;
 };
 SubsetScore paper_refused_first_repeat(const Evaluation& evaluation, const EvaluationReport& classifier);
+
+// The label of every result made with the series time axis roll_relative.
+inline constexpr const char* kOutsideTimingRule = "outside the paper's timing rule";
+// With time axis roll_relative, the caveat every output of `evaluation` carries
+// (text, evaluation.json, report); empty otherwise.
+std::string time_axis_caveat(const Evaluation& evaluation);
 
 // Human-readable report: every figure labelled with how it was obtained.
 // `with_timing` = false leaves out the final "evaluation took" line.

@@ -1,5 +1,6 @@
 #include "analysis/learn/evaluation_json.hpp"
 
+#include <optional>
 #include <type_traits>
 
 #include "analysis/learn/json_writer.hpp"
@@ -67,6 +68,39 @@ void write_pooled(JsonWriter& w, std::size_t correct, std::size_t total, const I
     w.end_object();
 }
 
+// tuned_same_folds and nested, when run. `scheme`: a grouped / blocked CV's
+// own tuning, whose tuning folds follow it ("tuning_folds" says so); the
+// random k-fold's keep their fields as they always were.
+void write_tuning(JsonWriter& w, const std::optional<TunedCv>& tuned, const std::optional<NestedCv>& nested,
+                  const CvScheme* scheme) {
+    if (tuned) {
+        w.key("tuned_same_folds").begin_object();
+        w.key("note").value("Bayesian optimisation scored on the folds it tuned on: optimistic (the paper's protocol)");
+        if (scheme) w.key("tuning_folds").value(scheme->describe());
+        w.key("evaluations").value(static_cast<std::uint64_t>(tuned->search.history.size()));
+        w.key("accuracy").value(tuned->same_folds_accuracy);
+        w.key("parameters");
+        write_params(w, tuned->search.best_params());
+        w.end_object();
+    }
+    if (nested) {
+        const auto& n = *nested;
+        w.key("nested").begin_object();
+        if (scheme)
+            w.key("tuning_folds").value(scheme->describe() + ", built from each outer training fold's trials");
+        w.key("mean").value(n.mean);
+        w.key("sd").value(n.sd);
+        w.key("per_outer_fold");
+        write_numbers(w, n.outer_accuracy);
+        w.key("pooled");
+        write_pooled(w, n.correct, n.total, n.wilson);
+        w.key("chosen").begin_array();
+        for (const auto& p : n.chosen) write_params(w, p);
+        w.end_array();
+        w.end_object();
+    }
+}
+
 void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationReport& c) {
     const auto& b = c.baseline;
     w.begin_object();
@@ -105,6 +139,7 @@ void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationRepor
         write_numbers(w, s.cv.confusion.true_positive_rates());
         w.key("confusion");
         write_confusion(w, s.cv.confusion);
+        write_tuning(w, s.tuned, s.nested, &s.scheme);
         w.end_object();
     }
     w.end_array();
@@ -143,29 +178,7 @@ void write_classifier(JsonWriter& w, const Evaluation& ev, const EvaluationRepor
         w.end_object();
     }
     w.end_array();
-    if (c.tuned) {
-        w.key("tuned_same_folds").begin_object();
-        w.key("note").value("Bayesian optimisation scored on the folds it tuned on: optimistic (the paper's protocol)");
-        w.key("evaluations").value(static_cast<std::uint64_t>(c.tuned->search.history.size()));
-        w.key("accuracy").value(c.tuned->same_folds_accuracy);
-        w.key("parameters");
-        write_params(w, c.tuned->search.best_params());
-        w.end_object();
-    }
-    if (c.nested) {
-        const auto& n = *c.nested;
-        w.key("nested").begin_object();
-        w.key("mean").value(n.mean);
-        w.key("sd").value(n.sd);
-        w.key("per_outer_fold");
-        write_numbers(w, n.outer_accuracy);
-        w.key("pooled");
-        write_pooled(w, n.correct, n.total, n.wilson);
-        w.key("chosen").begin_array();
-        for (const auto& p : n.chosen) write_params(w, p);
-        w.end_array();
-        w.end_object();
-    }
+    write_tuning(w, c.tuned, c.nested, nullptr);
     w.key("seconds").value(c.seconds);
     w.end_object();
 }
@@ -230,6 +243,10 @@ std::string evaluation_json(const Evaluation& ev) {
     w.key("version").value(kEvaluationJsonVersion);
     w.key("input").value(ev.input);
     w.key("selection").value(ev.selection);
+    if (!ev.series_time_axis.empty()) {
+        w.key("series_time_axis").value(ev.series_time_axis);
+        if (const auto caveat = time_axis_caveat(ev); !caveat.empty()) w.key("series_time_axis_note").value(caveat);
+    }
     w.key("trials").value(static_cast<std::uint64_t>(ev.trials));
     w.key("clean").value(static_cast<std::uint64_t>(ev.clean));
     w.key("classes").begin_array();

@@ -118,6 +118,15 @@ Result<series::Amplitude> parse_amplitude(std::string_view text) {
                                                   "(docs/series-preparation.md)"};
 }
 
+Result<series::TimeAxis> parse_time_axis(std::string_view text) {
+    if (text == "contact") return series::TimeAxis::contact;
+    if (text == "roll_relative") return series::TimeAxis::roll_relative;
+    return Error{ErrorCode::invalid_argument,
+                 "series time axis '" + std::string(text) +
+                     "' is not a mode: write 'contact' (the paper's timing rule, default) or 'roll_relative' (" +
+                     kOutsideTimingRule + ", for comparison only; docs/series-preparation.md)"};
+}
+
 Result<std::vector<std::string>> series_channels(const DatasetInfo& info, const std::string& dataset) {
     auto columns = features::identification_channels(info, dataset);
     if (!columns) return columns.error();
@@ -181,6 +190,11 @@ Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& r
         std::find(kinds.begin(), kinds.end(), ClassifierInput::features) != kinds.end();
     const bool need_series = std::find(kinds.begin(), kinds.end(), ClassifierInput::series) != kinds.end();
     if (!need_features && !need_series) return Error{ErrorCode::invalid_argument, "no classifier input kind given"};
+    if (!need_series && options.series.time_axis != series::TimeAxis::contact)
+        return Error{ErrorCode::invalid_argument,
+                     "series time axis " + std::string(series::to_string(options.series.time_axis)) +
+                         " applies to series classifiers (minirocket), but every classifier listed takes the 13 "
+                         "features: list a series classifier, or drop the time axis"};
     if (options.trials == TrialSelection::series_accepted && need_features)
         return Error{ErrorCode::invalid_argument,
                      "trials=all takes every trial the series rule accepts, but a feature classifier has no "
@@ -196,6 +210,7 @@ Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& r
 
     InputTables in;
     in.selection = options.trials == TrialSelection::paper_clean ? "paper_clean" : "series_accepted";
+    if (need_series) in.series_time_axis = std::string(series::to_string(options.series.time_axis));
     std::map<std::string, int> classes;
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const auto& row = rows[r];
@@ -283,6 +298,7 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
 }
 
 Status check_final_fit(const PreparedClassifier& classifier, const EvaluationOptions& options) {
+    if (auto st = check_final_tuning(options); !st) return st;
     if (classifier.input == ClassifierInput::series && options.optimize)
         return {ErrorCode::unsupported, "classifier '" + classifier.spec.name +
                                             "': tuning the deployed model is implemented for feature "

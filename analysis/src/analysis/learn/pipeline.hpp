@@ -73,6 +73,9 @@ std::string_view to_string(TrialSelection t) noexcept;
 Result<TrialSelection> parse_trial_selection(std::string_view text);
 // "global_scale" | "z_per_channel"; the error lists both.
 Result<series::Amplitude> parse_amplitude(std::string_view text);
+// "contact" | "roll_relative" (outside the paper's timing rule, for comparison
+// only: docs/series-preparation.md); the error lists both.
+Result<series::TimeAxis> parse_time_axis(std::string_view text);
 
 // How the input step prepares the trials.
 struct InputOptions {

@@ -84,6 +84,8 @@ std::vector<learn::ClassifierSpec> classifier_specs_from(lua_State* L, int opts,
 // rs.analyse{ folds=5, repeats=10, optimize=false, evaluations=30, classifier=<share/analysis/defaults.csv>,
 //             classifiers={"a","b"}, params={...}, model="model.rsm",
 //             trials="clean"|"all", series_amplitude="global_scale"|"z_per_channel",
+//             series_time_axis="contact"|"roll_relative" (outside the paper's timing rule; no model is saved
+//             for a series classifier with it),
 //             dataset=DIR (default: this run's), tag="NAME" (outputs evaluation-NAME.*, report-NAME.html),
 //             prefixes=false (identification before the roll ends), prefix_repeats=1,
 //             cv="random"|"grouped,blocked", group_by=COLUMN, block=N (grouped/blocked CV beside
@@ -102,8 +104,8 @@ int l_analyse(lua_State* L) {
     const int opts = 1;
     check_options(L, opts, "rs.analyse", {"model", "dataset", "tag", "folds", "repeats", "params", "optimize",
                                           "nested", "evaluations", "classifier", "classifiers", "trials",
-                                          "prefixes", "prefix_repeats", "series_amplitude", "cv", "group_by",
-                                          "block"});
+                                          "prefixes", "prefix_repeats", "series_amplitude", "series_time_axis",
+                                          "cv", "group_by", "block"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
     // dataset = DIR analyses a dataset recorded earlier (outputs still go to --out);
     // tag = "NAME" names the outputs evaluation-NAME.txt/.json and report-NAME.html,
@@ -150,6 +152,8 @@ int l_analyse(lua_State* L) {
                                                block == 0 ? "" : std::to_string(static_cast<long long>(block)));
         if (!schemes) raise_status(L, Status(schemes.error()).with_context("rs.analyse"));
         eo.schemes = std::move(schemes).value();
+        // The model's tuning folds follow the scheme: refused now, not after the evaluation.
+        if (auto st = learn::check_final_tuning(eo); !st) raise_status(L, std::move(st).with_context("rs.analyse"));
     }
     eo.progress = [](const std::string& line) { log_info("analysis", line); };
     eo.stop = &s.interrupt_flag();  // Ctrl-C stops the analysis, not only the roll
@@ -170,6 +174,11 @@ int l_analyse(lua_State* L) {
         auto amp = learn::parse_amplitude(a);
         if (!amp) raise_status(L, Status(amp.error()).with_context("rs.analyse"));
         request.inputs.series.amplitude = *amp;
+    }
+    if (const auto t = opt_field_string(L, opts, "series_time_axis", ""); !t.empty()) {
+        auto axis = learn::parse_time_axis(t);
+        if (!axis) raise_status(L, Status(axis.error()).with_context("rs.analyse"));
+        request.inputs.series.time_axis = *axis;
     }
 
     auto result = learn::run_pipeline(s.registry(), request, [&s, &dataset](const std::vector<features::FeatureRow>& rows) {
@@ -209,11 +218,22 @@ int l_analyse(lua_State* L) {
     const auto& first = result->classifiers.front();
     eo.params = first.spec.params;
     const auto& rows = result->rows;
-    auto final_model = learn::fit_final_prepared(rows, dataset_dir, first, eo, request.inputs);
-    check(L, final_model.status());
-    const auto model_path = s.output_dir() / model_name;
-    check(L, final_model->classifier->save(model_path));
-    log_info("analysis", "model saved to " + model_path.string());
+    // A series model prepared with a time axis outside the paper's timing rule
+    // is for comparison only: no model records that rule, so none is deployed.
+    const bool deployable = !(first.input == ClassifierInput::series &&
+                              request.inputs.series.time_axis != series::TimeAxis::contact);
+    std::filesystem::path model_path;
+    if (deployable) {
+        auto final_model = learn::fit_final_prepared(rows, dataset_dir, first, eo, request.inputs);
+        check(L, final_model.status());
+        model_path = s.output_dir() / model_name;
+        check(L, final_model->classifier->save(model_path));
+        log_info("analysis", "model saved to " + model_path.string());
+    } else {
+        log_warning("analysis", "no model saved: '" + first.spec.name + "' was evaluated with series_time_axis = " +
+                                 std::string(series::to_string(request.inputs.series.time_axis)) + ", " +
+                                 learn::kOutsideTimingRule + " (for comparison only)");
+    }
 
     lua_newtable(L);
     const auto* report = &primary;
@@ -265,8 +285,10 @@ int l_analyse(lua_State* L) {
         lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
     }
     lua_setfield(L, -2, "classifiers");
-    lua_pushstring(L, model_path.c_str());
-    lua_setfield(L, -2, "model");
+    if (!model_path.empty()) {  // nil when no model was saved (series_time_axis = "roll_relative")
+        lua_pushstring(L, model_path.c_str());
+        lua_setfield(L, -2, "model");
+    }
     lua_pushstring(L, (s.output_dir() / ("evaluation" + suffix + ".json")).c_str());
     lua_setfield(L, -2, "evaluation");
     if (dataset.empty()) {  // written only beside this run's own dataset

@@ -102,7 +102,11 @@ Result<std::string> render_report(const ReportInputs& in) {
             "the E-TRoll paper computed for this data.</p>\n";
     body += "<p class=\"headline\" id=\"headline\">Accuracy " + mean_sd(b.mean, b.sd) + " (" + escape_xml(ev.name) + ", " + std::to_string(b.repeats) +
             " \u00d7 " + std::to_string(b.folds) + "-fold CV), 95\u00a0% interval " + fixed(100.0 * b.wilson.low, 1) +
-            "\u2013" + fixed(100.0 * b.wilson.high, 1) + "\u00a0%; the paper: 90.5\u00a0%.</p>\n</header>\n";
+            "\u2013" + fixed(100.0 * b.wilson.high, 1) + "\u00a0%; the paper: 90.5\u00a0%.</p>\n";
+    // Method caveat: a series time axis outside the paper's timing rule taints every figure below.
+    if (const auto caveat = learn::time_axis_caveat(in.evaluation); !caveat.empty())
+        body += "<p class=\"headline\" id=\"time-axis-caveat\">Method: " + escape_xml(caveat) + ".</p>\n";
+    body += "</header>\n";
     body += "<nav><ol><li><a href=\"#sec-accuracy\">Accuracy</a></li>" +
             std::string(several ? "<li><a href=\"#sec-compare\">Classifiers compared</a></li>" : "") + std::string(in.evaluation.prefixes ? "<li><a href=\"#sec-prefixes\">Before the roll ends</a></li>" : "") + "<li><a href=\"#sec-confusion\">Confusion "
             "matrix</a></li><li><a href=\"#sec-breakdown\">By speed and object</a></li><li><a "

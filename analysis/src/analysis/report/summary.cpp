@@ -38,6 +38,7 @@ std::string text_summary(const ReportInputs& in) {
     std::snprintf(buf, sizeof buf, "Identification of %s\n", in.dataset_dir.string().c_str());
     out += buf;
     out += "  " + learn::summarize_rejections(in.rows) + "\n";
+    if (const auto caveat = learn::time_axis_caveat(in.evaluation); !caveat.empty()) out += "  NOTE: " + caveat + "\n";
     std::snprintf(buf, sizeof buf,
                   "  accuracy %s%s (%s, %d x %d-fold CV), 95 %% interval %.1f-%.1f %%; paper 90.5 %%\n",
                   pct(b.mean).c_str(), pm(b.sd).c_str(), ev.name.c_str(), b.repeats, b.folds, 100.0 * b.wilson.low,
@@ -47,6 +48,11 @@ std::string text_summary(const ReportInputs& in) {
         std::snprintf(buf, sizeof buf, "  %s: %s%s (%d x %d-fold, groups held out whole)\n",
                       s.scheme.describe().c_str(), pct(s.cv.mean).c_str(), pm(s.cv.sd).c_str(), s.cv.repeats, s.cv.folds);
         out += buf;
+        if (s.nested) {
+            std::snprintf(buf, sizeof buf, "    tuned on folds of the same scheme, nested CV (honest): %s%s\n",
+                          pct(s.nested->mean).c_str(), pm(s.nested->sd).c_str());
+            out += buf;
+        }
     }
     if (ev.tuned) {
         std::snprintf(buf, sizeof buf, "  tuned, scored on the same folds (optimistic, the paper's protocol): %s\n",

@@ -182,6 +182,18 @@ std::string protocol_table(const learn::EvaluationReport& r) {
              td(mean_sd(r.nested->mean, r.nested->sd), true) + td(interval(r.nested->wilson), true) +
              td("honest tuned figure: compare with the row above (its sd is over the outer folds, not repetitions)") +
              "</tr>\n";
+    // Tuning under grouped / blocked CV: its tuning folds hold out the same groups (learn/tuning.hpp).
+    for (const auto& s : r.scheme_cv) {
+        if (s.tuned)
+            h += "<tr class=\"optimistic\">" +
+                 td("tuned and scored on the same folds, " + s.scheme.describe() + " (tuning folds too)") +
+                 td(percent(s.tuned->same_folds_accuracy), true) + td("\u2013", true) +
+                 td("optimistic: the optimiser saw the folds it is scored on") + "</tr>\n";
+        if (s.nested)
+            h += "<tr>" + td("nested CV, " + s.scheme.describe() + " (outer and tuning folds)") +
+                 td(mean_sd(s.nested->mean, s.nested->sd), true) + td(interval(s.nested->wilson), true) +
+                 td("honest tuned figure with whole groups held out, in tuning as in testing") + "</tr>\n";
+    }
     if (!r.tuned)
         h += "<tr>" + td("tuned figures") + td("\u2013", true) + td("\u2013", true) +
              td("not run: pass --optimize (rollsense report) or optimize=true (rs.analyse)") + "</tr>\n";
