@@ -197,5 +197,14 @@ TEST_CASE("rollsense predict prepares a z_per_channel model's trials as training
     CHECK(r.status == 3);  // a bad model file, as any other (kExitConfig)
     CHECK_THAT(r.output, Catch::Contains("model file '" + (root / "bad.rsm").string() +
                                          "': series_rule: setting 'amplitude' has a malformed value 'loud'"));
+
+    // A rule whose length contradicts the file's series_length is refused too.
+    std::string edited = saved.substr(0, saved.rfind("checksum "));
+    edited.replace(edited.find("series_rule length=128"), 22, "series_rule length=64");
+    model_text::put_checksum(edited);
+    std::ofstream(root / "edited.rsm", std::ios::binary) << edited;
+    r = rollsense::testing::run_rollsense("predict " + (root / "edited.rsm").string() + " " + dataset.string());
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("series_rule length=64 but series_length 128"));
     fs::remove_all(root);
 }
