@@ -197,6 +197,18 @@ TEST_CASE("rollsense predict prepares a z_per_channel model's trials as training
     CHECK(r.status == 3);  // a bad model file, as any other (kExitConfig)
     CHECK_THAT(r.output, Catch::Contains("model file '" + (root / "bad.rsm").string() +
                                          "': series_rule: setting 'amplitude' has a malformed value 'loud'"));
+    // rs.classifier refuses it when it loads the model, naming the file and the key.
+    std::ofstream(root / "load.lua") << "local rs = require 'rollsense'\n"
+                                        "rs.settings{ model = { kind = 'string', help = 'the model file' } }\n"
+                                        "local ok, err = pcall(rs.classifier, { model = rs.setting('model'), classifier = 'minirocket' })\n"
+                                        "assert(not ok, 'a malformed series rule was loaded')\n"
+                                        "rs.log('refused: ' .. tostring(err))\n";
+    r = rollsense::testing::run_rollsense("run " + (root / "load.lua").string() + " --profile sim --out " +
+                                          (root / "run").string() + " --set model=" + (root / "bad.rsm").string());
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("refused: ") &&
+                             Catch::Contains("series_rule: setting 'amplitude' has a malformed value 'loud'"));
 
     // A rule whose length contradicts the file's series_length is refused too.
     std::string edited = saved.substr(0, saved.rfind("checksum "));
