@@ -7,7 +7,7 @@
 #include <map>
 #include <set>
 
-#include "../learn/json_reader.hpp"
+#include "json_reader.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/series/series_table.hpp"

@@ -1,7 +1,9 @@
 // A series model end to end inside a run: rs.analyse with minirocket first
 // trains and saves it (on the trials the input step selects), and
 // rs.classifier{...}:identify() prepares a fresh recording with the same
-// series rule and names the object.
+// series rule and names the object. A model trained with series_amplitude =
+// "z_per_channel" records it in its file: identify() applies it unasked, and
+// refuses an amplitude that contradicts it.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -23,15 +25,34 @@ end
 local result = rs.analyse{ classifiers = { "minirocket" }, folds = 2, repeats = 1, trials = "all",
                            params = { num_features = 168 }, model = "rocket.rsm", tag = "rocket" }
 local clf = rs.classifier{ model = result.model, classifier = "minirocket" }
+local z = rs.analyse{ classifiers = { "minirocket" }, folds = 2, repeats = 1, trials = "all",
+                      params = { num_features = 168 }, model = "z.rsm", tag = "z", series_amplitude = "z_per_channel" }
+local clf_z = rs.classifier{ model = z.model, classifier = "minirocket" }
+-- Prefix models record the rule too (rs.prefix_models, identify_early.lua).
+local early = rs.prefix_models{ dataset = z.model:match("(.*)/"), classifier = "minirocket:num_features=168",
+                                fractions = { 1 }, name = "zp", series_amplitude = "z_per_channel" }
+local clf_p = rs.classifier{ model = early.models[1].path, classifier = "minirocket" }
 rs.trial{ object = "P1", speed = 15, repetition = 99, id = "live" }
 etroll.open(); etroll.clamp(); etroll.roll(15)
 local answer, why = clf:identify()
+local unasked, told = clf_z:identify(), clf_z:identify{ series_amplitude = "z_per_channel" }
+local ok_g, err_g = pcall(clf_z.identify, clf_z, { series_amplitude = "global_scale" })
+local p_unasked = clf_p:identify{ open_end = true }
+local p_told = clf_p:identify{ open_end = true, series_amplitude = "z_per_channel" }
 etroll.return_to_start(); etroll.release(); rs.end_trial()
 assert(answer, "identify refused: " .. tostring(why))
 local sum = 0
 for _, s in pairs(answer.scores) do sum = sum + s end
 assert(math.abs(sum - 1) < 1e-9, "scores sum to " .. sum)
 rs.log("identified " .. answer.object)
+assert(unasked and told, "the z_per_channel model refused the roll")
+for name, s in pairs(told.scores) do
+  assert(unasked.scores[name] == s, name .. ": " .. tostring(unasked.scores[name]) .. " without the option, " .. s .. " with it")
+end
+assert(not ok_g and tostring(err_g):find("trained with 'z_per_channel'"), tostring(err_g))
+assert(p_unasked and p_told, "the z_per_channel prefix model refused the roll")
+for name, s in pairs(p_told.scores) do assert(p_unasked.scores[name] == s, "prefix model, " .. name) end
+rs.log("z_per_channel model: recorded rule applied")
 -- A wrong amplitude word is an error naming the choices.
 local ok, err = pcall(clf.identify, clf, { series_amplitude = "loud" })
 assert(not ok and tostring(err):find("z_per_channel"), tostring(err))
@@ -41,8 +62,12 @@ assert(not ok and tostring(err):find("z_per_channel"), tostring(err))
                                                        out.string());
     INFO(run.output);
     REQUIRE(run.status == 0);
-    CHECK_THAT(run.output, Catch::Contains("identified "));
+    CHECK_THAT(run.output, Catch::Contains("identified ") && Catch::Contains("z_per_channel model: recorded rule applied"));
     CHECK(std::filesystem::exists(out / "rocket.rsm"));
+    std::ifstream prefix_model(out / "zp-f100.rsm");
+    std::string line;
+    while (std::getline(prefix_model, line) && line.rfind("series_rule", 0) != 0) {}
+    CHECK_THAT(line, Catch::StartsWith("series_rule length=128 ") && Catch::Contains(" amplitude=z_per_channel "));
     CHECK(std::filesystem::exists(out / "evaluation-rocket.json"));
     CHECK(std::filesystem::exists(out / "report-rocket.html"));
 }

@@ -17,6 +17,7 @@
 #include "cli/paths.hpp"
 #include "analysis/learn/json_writer.hpp"
 #include "analysis/learn/plugin_factory.hpp"
+#include "analysis/series/model_rule.hpp"
 #include "analysis/series/series_table.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
@@ -36,8 +37,10 @@ const char* kHelp = R"(usage: rollsense predict MODEL (TRIAL.csv | DATASET) [opt
 Classify recordings with a saved model (model.rsm of a stock run, or the file
 of 'rollsense train'). Each trial's input is computed as in training: the 13
 features (the feature options below must be those of training; the defaults
-are), or the prepared series for a classifier that takes series. A trial whose
-peaks are not clean gets no decision, with the reason.
+are), or the prepared series for a classifier that takes series (prepared by
+the series rule with the settings the model file records: channels, length,
+amplitude and the rest, docs/series-preparation.md). A trial whose peaks are
+not clean gets no decision, with the reason.
 
 TRIAL.csv must lie in a dataset's trials/ folder (its dataset-info.csv names
 the channels and the sample rate); DATASET classifies every trial of a dataset.
@@ -292,9 +295,25 @@ Result<std::vector<Outcome>> predict_features(const Classifier& clf, const Input
     return out;
 }
 
-Result<std::vector<Outcome>> predict_series(const Classifier& clf, const Input& in, const ModelHeader& h) {
-    series::SeriesSettings settings;
-    if (h.series_length > 0) settings.length = h.series_length;
+// The series rule of training, from the model file; one written before the
+// file recorded it is prepared by the default rule with its length, and
+// predict says so.
+Result<std::vector<Outcome>> predict_series(const Classifier& clf, const Input& in, const ModelHeader& h,
+                                            const fs::path& model) {
+    auto rule = series::model_rule(clf, model.string());
+    if (!rule) return rule.error();
+    series::SeriesSettings settings = rule->settings;
+    if (!rule->recorded && h.series_length > 0) settings.length = h.series_length;
+    if (rule->recorded && h.series_length > 0 && h.series_length != settings.length)
+        return Error{ErrorCode::parse_error, "model file '" + model.string() + "': series_rule length=" +
+                                                 std::to_string(settings.length) + " but series_length " +
+                                                 std::to_string(h.series_length) +
+                                                 ": the file was edited; train the model again"};
+    if (!rule->recorded)
+        std::fprintf(stderr, "rollsense predict: %s records no series rule (written before rollsense recorded it): "
+                             "series prepared with its channels and length and the default rule of "
+                             "docs/series-preparation.md; train it again if it used other settings\n",
+                     model.c_str());
     const std::vector<std::string> channels = h.channels.empty() ? in.dataset.info().channels : h.channels;
     auto table = series::series_table(in.dataset, in.trials, channels, settings, 1);
     if (!table) return table.error();
@@ -418,12 +437,9 @@ int run(const std::vector<std::string>& argv) {
 
     std::vector<Outcome> outcomes;
     if ((*clf)->input() == ClassifierInput::series) {
-        auto s = predict_series(**clf, *input, *header);
+        auto s = predict_series(**clf, *input, *header, model);
         if (!s) return fail(s.error(), kExitConfig);
         outcomes = std::move(s).value();
-        if (!header->channels.empty() || header->series_length)
-            std::fprintf(stderr, "rollsense predict: series prepared with the model's channels and length and the "
-                                 "default rule of docs/series-preparation.md (the model does not store other settings)\n");
     } else {
         auto f = predict_features(**clf, *input, settings, training);
         if (!f) return fail(f.error(), kExitConfig);

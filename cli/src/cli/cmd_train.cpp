@@ -35,8 +35,10 @@ partition); run 'rollsense evaluate --optimize' for an honest figure of that.
 A classifier that takes the prepared series (minirocket) is trained on the
 dataset's three sensor channels prepared by the series rule
 (docs/series-preparation.md), on the trials 'rollsense evaluate' would use:
-the same model rs.analyse saves with the same options. It needs a dataset
-folder (a features CSV has no series) and takes no --optimize.
+the same model rs.analyse saves with the same options. The model file records
+the series rule's settings (--series-amplitude and the rest), so that
+'rollsense predict' and clf:identify() prepare as training did. It needs a
+dataset folder (a features CSV has no series) and takes no --optimize.
 
 options:
   -o, --output MODEL  model file to write (required)

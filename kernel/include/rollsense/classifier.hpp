@@ -27,6 +27,7 @@ struct FeatureTable {
     std::vector<std::string> feature_names;  // feature vectors
     std::vector<std::string> channel_names;  // series
     std::size_t series_length = 0;           // samples per channel; 0 = feature vectors
+    std::string series_rule;                 // how the series were prepared; opaque, saved and loaded with the model
     std::vector<std::string> class_names;    // label i is class_names[i]
     std::size_t rows = 0;
     std::vector<double> x;                   // rows * cols()
@@ -60,16 +61,13 @@ public:
     virtual ClassifierInput input() const { return ClassifierInput::features; }
     // What tuning may search for a training set of `rows` trials of `cols`
     // columns (ranges may depend on them); empty = nothing to tune.
-    virtual SearchSpace search_space(std::size_t rows, std::size_t cols) const {
-        (void)rows;
-        (void)cols;
-        return {};
-    }
+    virtual SearchSpace search_space(std::size_t /*rows*/, std::size_t /*cols*/) const { return {}; }
     virtual Status train(const FeatureTable& data) = 0;
     virtual Result<Prediction> predict(std::span<const double> features) const = 0;
     virtual std::vector<std::string> class_names() const = 0;
     virtual Status save(const std::filesystem::path& file) const = 0;
     virtual Status load(const std::filesystem::path& file) = 0;
+    virtual std::string series_rule() const { return {}; }  // the trained (or loaded) FeatureTable::series_rule
 };
 
 }  // namespace rollsense

@@ -83,6 +83,7 @@ public:
     std::vector<std::string> class_names() const override {
         return thrown("class_names", [&] { return inner_->class_names(); });
     }
+    std::string series_rule() const override { return thrown("series_rule", [&] { return inner_->series_rule(); }); }
     Status save(const std::filesystem::path& file) const override {
         return guarded("saving " + file.string(), [&] { return inner_->save(file); });
     }

@@ -260,6 +260,7 @@ Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& r
         FeatureTable t;
         t.channel_names = src.channel_names;
         t.series_length = src.series_length;
+        t.series_rule = src.series_rule;  // saved with the model (series/model_rule.hpp)
         t.class_names = class_names;
         t.x.reserve(in.row_of.size() * width);
         for (std::size_t r : in.row_of) {

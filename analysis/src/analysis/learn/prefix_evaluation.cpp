@@ -8,6 +8,7 @@
 
 #include "analysis/learn/cross_validation.hpp"
 #include "analysis/learn/parallel_for.hpp"
+#include "analysis/series/model_rule.hpp"
 #include "analysis/series/series_table.hpp"
 
 namespace rollsense::learn {
@@ -189,7 +190,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
         // Full tables (every trial; rows without a decision hold zeros and are never used).
         ftab.feature_names.assign(features::feature_names().begin(), features::feature_names().end());
         stab.channel_names = channels;
-        stab.series_length = inputs.series.length;
+        series::describe_series(stab, inputs.series);
         for (auto* t : {&ftab, &stab}) {
             t->class_names = ev.classes;
             t->y = ev.truth;
@@ -310,7 +311,7 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
             if (!st) return st.error();
         FeatureTable table;
         table.channel_names = channels;
-        table.series_length = inputs.series.length;
+        series::describe_series(table, inputs.series);  // the models are saved: their rule goes with them
         table.class_names = class_names;
         PrefixModel pm;
         pm.fraction = f;

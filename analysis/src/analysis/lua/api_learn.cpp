@@ -21,6 +21,7 @@
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
 #include "analysis/report/report.hpp"
+#include "analysis/series/model_rule.hpp"
 #include "analysis/series/prepare.hpp"
 
 namespace rollsense::runtime::lua_api {
@@ -331,6 +332,8 @@ int l_classifier(lua_State* L) {
     auto clf = (*factory)(ParamSet{});
     check(L, clf.status());
     check(L, (*clf)->load(model));
+    // A series model's recorded rule is read now, so a malformed one is named with its file here.
+    if ((*clf)->input() == ClassifierInput::series) check(L, series::model_rule(**clf, model).status());
     new (lua_newuserdatauv(L, sizeof(learn::ClassifierPtr), 0)) learn::ClassifierPtr(std::move(*clf));
     luaL_setmetatable(L, kClassifierMeta);
     return 1;
@@ -356,13 +359,18 @@ void push_prediction(lua_State* L, const Classifier& clf, const Prediction& p) {
 }
 
 // A series model (minirocket) identifies from the recording prepared by the
-// one series rule, with the settings it was trained with: the documented
-// defaults, or clf:identify{series_amplitude = "z_per_channel"}.
+// one series rule, with the settings it was trained with, which its model
+// file records (series/model_rule.hpp). A file written before it recorded
+// them is prepared by the documented defaults, or by
+// clf:identify{series_amplitude = "z_per_channel"} for a model trained so; a
+// series_amplitude that contradicts the recorded rule is refused.
 // clf:identify{open_end = true} during the roll (before rs.record_stop) treats
 // the recording so far as a prefix: a contact it cuts off is not refused.
 int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
                     const std::array<std::size_t, features::kChannels>& columns) {
-    series::SeriesSettings settings;
+    auto rule = series::model_rule(clf, "the model of rs.classifier");  // read once already when it was loaded
+    check(L, Status(rule.status()).with_context("identify"));
+    series::SeriesSettings settings = rule->settings;
     if (lua_istable(L, 2)) {
         check_options(L, 2, "identify", {"series_amplitude", "open_end"});
         settings.open_end = opt_field_bool(L, 2, "open_end", false);
@@ -370,6 +378,11 @@ int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
         if (!amplitude.empty()) {
             auto a = learn::parse_amplitude(amplitude);
             if (!a) raise_status(L, Status(a.error()).with_context("identify"));
+            if (rule->recorded && *a != settings.amplitude)
+                raise_status(L, {ErrorCode::invalid_argument,
+                                 "identify: series_amplitude = '" + amplitude + "', but the model was trained with '" +
+                                     std::string(series::to_string(settings.amplitude)) +
+                                     "' (its file records the series rule): leave series_amplitude out"});
             settings.amplitude = *a;
         }
     }

@@ -6,6 +6,8 @@
 #include <optional>
 #include <thread>
 
+#include "analysis/series/model_rule.hpp"
+
 namespace rollsense::series {
 
 Result<std::vector<std::size_t>> channel_indices(const DatasetInfo& info, const std::vector<std::string>& names) {
@@ -58,7 +60,7 @@ Result<SeriesTable> series_table(const DatasetReader& dataset, std::span<const T
     SeriesTable out;
     FeatureTable& table = out.table;
     table.channel_names = channel_names;
-    table.series_length = settings.length;
+    describe_series(table, settings);
     std::map<std::string, int> classes;
     for (std::size_t i = 0; i < trials.size(); ++i) {
         if (!done[i]->ok()) return done[i]->error();

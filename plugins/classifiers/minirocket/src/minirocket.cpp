@@ -103,6 +103,7 @@ Status MiniRocket::train(const FeatureTable& data) {
     Model m;
     m.class_names = data.class_names;
     m.channel_names = data.channel_names;
+    m.series_rule = data.series_rule;
     if (auto s = m.transform.fit(series, n, data.channel_names.size(), data.series_length, options_.transform); !s)
         return s;
     const std::size_t p = m.transform.features();
@@ -215,6 +216,9 @@ Status MiniRocket::save(const std::filesystem::path& file) const {
         for (const auto& n : *names)
             if (n.find_first_of("\r\n") != std::string::npos)
                 return {ErrorCode::invalid_argument, "minirocket: name '" + n + "' contains a line break"};
+    if (model_.series_rule.find_first_of("\r\n") != std::string::npos)
+        return {ErrorCode::invalid_argument, "minirocket: the series rule '" + model_.series_rule +
+                                                 "' contains a line break; the model file keeps it on one line"};
     return write_file_atomic(file, model_.serialize(options_));
 }
 
@@ -259,6 +263,7 @@ Result<ValueMap> MiniRocket::invoke(const std::string& verb, const ValueMap& arg
     out["classes"] = model_.class_names;
     out["channels"] = model_.channel_names;
     out["series_length"] = static_cast<std::int64_t>(model_.transform.length());
+    out["series_rule"] = model_.series_rule;
     return out;
 }
 

@@ -2,10 +2,11 @@
 // (rollsense/model_text.hpp: versioned lines, shortest round-trip numbers,
 // counts checked before allocation, a checksum line):
 //
-//   rollsense-minirocket 1
+//   rollsense-minirocket 2
 //   classes K            then K lines "class <name>"
 //   channels C           then C lines "channel <name>"
 //   series_length L
+//   series_rule <how the series were prepared>   (version 2; the rest of the line, possibly empty)
 //   options num_features=9996 max_dilations_per_kernel=32 seed=1 alpha_log10_low=-3 alpha_log10_high=3 alphas=10
 //   alpha <chosen α>
 //   combinations M       then M lines: the channel subset of each (dilation, kernel), dilation-major
@@ -15,6 +16,11 @@
 //
 // Dilations, feature counts and padding are not stored: they follow from L
 // and the options, and are recomputed (and checked against M and P) on load.
+//
+// Version 2 added the series_rule line (FeatureTable::series_rule: the series
+// rule's settings, written and read by the analysis layer, opaque here).
+// Version 1 files, which lack it, still load with an empty rule; a version 1
+// reader refuses version 2 files as newer than it reads.
 #include <cmath>
 
 #include "rollsense/model_text.hpp"
@@ -24,7 +30,8 @@ namespace rollsense::minirocket {
 namespace {
 
 constexpr const char* kMagic = "rollsense-minirocket";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;
+constexpr int kVersionWithoutRule = 1;  // still read: no series_rule line
 
 using model_text::at_end;
 using model_text::keyword;
@@ -41,6 +48,7 @@ std::string Model::serialize(const Options& o) const {
     out += "channels " + std::to_string(channel_names.size()) + "\n";
     for (const auto& c : channel_names) out += "channel " + c + "\n";
     out += "series_length " + std::to_string(transform.length()) + "\n";
+    out += "series_rule" + (series_rule.empty() ? "" : " " + series_rule) + "\n";
     const auto& t = transform.options();
     out += "options num_features=" + std::to_string(t.num_features) +
            " max_dilations_per_kernel=" + std::to_string(t.max_dilations_per_kernel) +
@@ -96,7 +104,8 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
     if (version > kVersion)
         return in.fail("model format version " + std::to_string(version) + " is newer than this build reads (" +
                        std::to_string(kVersion) + "); update rollsense to read it");
-    if (version != kVersion) return in.fail("model format version " + std::to_string(version) + " is not supported");
+    if (version != kVersion && version != kVersionWithoutRule)
+        return in.fail("model format version " + std::to_string(version) + " is not supported");
 
     Model m;
     std::size_t k = 0, channels = 0, length = 0, combos = 0, p = 0;
@@ -106,6 +115,11 @@ Status Model::deserialize(std::string_view text, const std::string& source, Opti
     if (auto s = in.count("channels", 100000, channels); !s) return s;
     if (auto s = in.names("channel", channels, m.channel_names); !s) return s;
     if (auto s = in.count("series_length", 10000000, length); !s) return s;
+    if (version != kVersionWithoutRule) {
+        if (!in.next(line)) return in.truncated("reading the series rule");
+        if (!keyword(line, "series_rule", rest)) return in.fail("expected the 'series_rule' line");
+        m.series_rule = std::string(rest);
+    }
 
     Options o = options;
     if (!in.next(line)) return in.truncated("reading the options");

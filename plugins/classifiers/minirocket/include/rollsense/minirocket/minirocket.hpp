@@ -28,6 +28,7 @@ Result<Options> options_from(const ParamSet& params);
 // The fitted model: transform, standardisation and ridge weights.
 struct Model {
     std::vector<std::string> class_names, channel_names;
+    std::string series_rule;               // FeatureTable::series_rule of training: stored, never read here
     Transform transform;
     std::vector<float> mean, scale;        // per feature, training statistics (scale 1 where constant)
     std::vector<float> weights;            // features × classes, row-major, on standardised features
@@ -63,6 +64,7 @@ public:
     // Decision values of many rows at once (rows × classes), for benches and CV.
     Result<std::vector<Prediction>> predict_many(std::span<const double> rows, std::size_t count) const;
     std::vector<std::string> class_names() const override { return model_.class_names; }
+    std::string series_rule() const override { return model_.series_rule; }
     Status save(const std::filesystem::path& file) const override;
     Status load(const std::filesystem::path& file) override;
 
