@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 namespace rollsense {
@@ -157,7 +158,7 @@ TableSource::TableSource(std::string file, std::string_view text) : file_(std::m
 }
 
 std::string TableSource::where(std::string path, const ParamValue* now) const {
-    const auto holds = [now](const Site& s) {
+    const auto holds_value = [](const Site& s, const ParamValue* now) {
         if (!now || s.kind == 0) return true;
         if (s.kind == 's') return std::get_if<std::string>(now) && *std::get_if<std::string>(now) == s.text;
         if (s.kind == 'b') return std::get_if<bool>(now) && (*std::get_if<bool>(now) ? "true" : "false") == s.text;
@@ -165,8 +166,24 @@ std::string TableSource::where(std::string path, const ParamValue* now) const {
         if (const auto* i = std::get_if<std::int64_t>(now)) return static_cast<double>(*i) == written;
         return std::get_if<double>(now) && *std::get_if<double>(now) == written;
     };
+    // A list holds what the file wrote when each entry does, and there are no more of them.
+    const auto holds = [&](const Site& s) {
+        return std::visit([&](const auto& value) {
+            if constexpr (requires { value.size(); typename std::decay_t<decltype(value)>::value_type; } &&
+                          !std::is_same_v<std::decay_t<decltype(value)>, std::string>) {
+                for (std::size_t i = 0; i < value.size(); ++i) {
+                    const ParamValue entry{value[i]};
+                    const auto it = sites_.find(path + "." + std::to_string(i + 1));
+                    if (it == sites_.end() || !holds_value(it->second, &entry)) return false;
+                }
+                return sites_.count(path + "." + std::to_string(value.size() + 1)) == 0;
+            } else {
+                return holds_value(s, now);
+            }
+        }, now ? *now : ParamValue{false});
+    };
     // The key's own line while it holds what the file wrote; else its nearest written parent's.
-    if (auto it = sites_.find(path); it != sites_.end() && !holds(it->second)) return "";
+    if (auto it = sites_.find(path); it != sites_.end() && now && !holds(it->second)) return "";
     for (; !path.empty(); path.resize(path.find('.') == std::string::npos ? 0 : path.rfind('.')))
         if (auto it = sites_.find(path); it != sites_.end() && it->second.line > 0)
             return file_ + ":" + std::to_string(it->second.line);
@@ -175,7 +192,7 @@ std::string TableSource::where(std::string path, const ParamValue* now) const {
 
 std::string nearest_site(const std::map<std::string, std::string>& sites, std::string path, const std::string& fallback) {
     for (; !path.empty(); path.resize(path.find('.') == std::string::npos ? 0 : path.rfind('.')))
-        if (auto it = sites.find(path); it != sites.end()) return it->second;
+        if (auto it = sites.find(path); it != sites.end()) return it->second.empty() ? fallback : it->second;
     return fallback;
 }
 
@@ -183,10 +200,12 @@ const std::string* key_named_in(std::string_view message, const std::map<std::st
     const auto word = [&](std::size_t i) {
         return i < message.size() && (std::isalnum(static_cast<unsigned char>(message[i])) || message[i] == '_');
     };
+    const std::string* first = nullptr;  // the key named first: what the message is about
+    std::size_t first_at = std::string_view::npos;
     for (const auto& [key, value] : keys)
-        for (auto i = message.find(key); i != std::string_view::npos; i = message.find(key, i + 1))
-            if (!word(i - 1) && !word(i + key.size())) return &key;
-    return nullptr;
+        for (auto i = message.find(key); i != std::string_view::npos && i < first_at; i = message.find(key, i + 1))
+            if (!word(i - 1) && !word(i + key.size())) first = &key, first_at = i;
+    return first;
 }
 
 }  // namespace rollsense

@@ -2,6 +2,8 @@
 // line it cannot be sure of is left out, never guessed.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "rollsense/table_source.hpp"
 
 using rollsense::ParamValue;
@@ -57,6 +59,28 @@ TEST_CASE("a value that is not what the file wrote there, or a key written twice
     CHECK(src.where("rate", nullptr) == "p.lua");  // two constructors write it: which one counts is not in the text
 }
 
+TEST_CASE("a list holds what the file wrote when every entry does and there are no more", "[table_source]") {
+    const TableSource src("p.lua", "return {
+  max = { 60, 60, 110, 300 },
+  names = { "a", "b" },
+"
+                                   "  contact = { 0/0, -44 },
+  from = other,
+}
+");
+    const ParamValue written{std::vector<std::int64_t>{60, 60, 110, 300}}, changed{std::vector<std::int64_t>{200, 60, 110, 300}},
+        longer{std::vector<std::int64_t>{60, 60, 110, 300, 1}}, shorter{std::vector<std::int64_t>{60, 60}};
+    CHECK(src.where("max", &written) == "p.lua:2");
+    CHECK(src.where("max", &changed).empty());  // e.g. hand.params.max = { 200, ... } in a file that includes this one
+    CHECK(src.where("max", &longer).empty());
+    CHECK(src.where("max", &shorter).empty());
+    const ParamValue names{std::vector<std::string>{"a", "b"}}, contact{std::vector<double>{std::nan(""), -44}};
+    CHECK(src.where("names", &names) == "p.lua:3");
+    CHECK(src.where("contact", &contact) == "p.lua:4");  // 0/0 is an expression: not checked, not refused
+    CHECK(src.where("from", &names).empty());            // a list the text does not spell out
+    CHECK(rollsense::nearest_site({{"max", ""}, {"", "x"}}, "max", "root.lua") == "root.lua");
+}
+
 TEST_CASE("nearest_site and key_named_in", "[table_source]") {
     const std::map<std::string, std::string> sites{{"joints", "a.lua:3"}, {"joints.palm", "b.lua:9"}};
     CHECK(rollsense::nearest_site(sites, "joints.palm.min", "p.lua") == "b.lua:9");
@@ -66,5 +90,6 @@ TEST_CASE("nearest_site and key_named_in", "[table_source]") {
     REQUIRE(rollsense::key_named_in("cell_angles is empty", keys));
     CHECK(*rollsense::key_named_in("cell_angles is empty", keys) == "cell_angles");
     CHECK(*rollsense::key_named_in("key 'joint' must be a string", keys) == "joint");
+    CHECK(*rollsense::key_named_in("joint: set cell_angles too", keys) == "joint");  // the first named
     CHECK_FALSE(rollsense::key_named_in("joints are wrong", keys));  // a word, not a part of one
 }

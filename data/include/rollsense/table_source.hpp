@@ -42,10 +42,11 @@ private:
     std::map<std::string, Site> sites_;
 };
 
-// The entry of `sites` (path → "FILE:LINE") for `path` or its nearest parent that has one; `fallback` when none.
+// The entry of `sites` (path → "FILE:LINE") for `path` or its nearest parent that has one; `fallback` when none
+// or when that entry is "" (a value not from the file that wrote its table: see where()).
 std::string nearest_site(const std::map<std::string, std::string>& sites, std::string path, const std::string& fallback);
 
-// The first of `keys` that `message` names as a whole word ("cell_angles is empty" names cell_angles), or null.
+// The key of `keys` that `message` names first as a whole word ("cell_angles is empty": cell_angles), or null.
 const std::string* key_named_in(std::string_view message, const std::map<std::string, ParamValue>& keys);
 
 }  // namespace rollsense

@@ -366,7 +366,7 @@ void note_sites(lua_State* L, const LoadState& st, const TableSource* src, std::
         const std::string key = lua_tostring(L, -1) ? lua_tostring(L, -1) : "?";
         lua_pop(L, 1);
         auto now = lua_to_param(L, -1, path);
-        if (auto site = src->where(in_src + key, now ? &*now : nullptr); !site.empty()) out[path + key] = site;
+        out[path + key] = src->where(in_src + key, now ? &*now : nullptr);  // "": set later, not by that file
         if (lua_istable(L, -1) && depth < 8) note_sites(L, st, src, in_src + key + ".", path + key + ".", depth + 1, out);
     }
 }

@@ -95,10 +95,11 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         ctx.profile_path = profile.path;
         ctx.virtual_time = profile.virtual_clock;
 
-        // Created and configured; a refusal names where the profile writes what the plugin refused.
+        // Created and configured; a refusal names where the profile writes what the plugin refused (once).
         const auto configure = [&](auto& h) {
             auto s = h ? (*h)->configure(*params, ctx) : h.status();
-            return s.ok() || !h ? s : Status{s.code(), params_site(profile, dev, s.message()) + ": " + s.message()};
+            const std::string site = s.ok() ? "" : params_site(profile, dev, s.message());
+            return s.ok() || !h || s.message().find(site) != std::string::npos ? s : Status{s.code(), site + ": " + s.message()};
         };
         if (lib->manifest().kind == PluginKind::sensor) {
             auto h = registry.create_sensor(dev.plugin, dev.name);
