@@ -158,13 +158,13 @@ TableSource::TableSource(std::string file, std::string_view text) : file_(std::m
 }
 
 std::string TableSource::where(std::string path, const ParamValue* now) const {
-    const auto holds_value = [](const Site& s, const ParamValue* now) {
-        if (!now || s.kind == 0) return true;
-        if (s.kind == 's') return std::get_if<std::string>(now) && *std::get_if<std::string>(now) == s.text;
-        if (s.kind == 'b') return std::get_if<bool>(now) && (*std::get_if<bool>(now) ? "true" : "false") == s.text;
+    const auto holds_value = [](const Site& s, const ParamValue* value) {
+        if (!value || s.kind == 0) return true;
+        if (s.kind == 's') return std::get_if<std::string>(value) && *std::get_if<std::string>(value) == s.text;
+        if (s.kind == 'b') return std::get_if<bool>(value) && (*std::get_if<bool>(value) ? "true" : "false") == s.text;
         const double written = std::strtod(s.text.c_str(), nullptr);
-        if (const auto* i = std::get_if<std::int64_t>(now)) return static_cast<double>(*i) == written;
-        return std::get_if<double>(now) && *std::get_if<double>(now) == written;
+        if (const auto* i = std::get_if<std::int64_t>(value)) return static_cast<double>(*i) == written;
+        return std::get_if<double>(value) && *std::get_if<double>(value) == written;
     };
     // A list holds what the file wrote when each entry does, and there are no more of them.
     const auto holds = [&](const Site& s) {

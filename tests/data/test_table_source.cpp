@@ -60,14 +60,8 @@ TEST_CASE("a value that is not what the file wrote there, or a key written twice
 }
 
 TEST_CASE("a list holds what the file wrote when every entry does and there are no more", "[table_source]") {
-    const TableSource src("p.lua", "return {
-  max = { 60, 60, 110, 300 },
-  names = { "a", "b" },
-"
-                                   "  contact = { 0/0, -44 },
-  from = other,
-}
-");
+    const TableSource src("p.lua", "return {\n  max = { 60, 60, 110, 300 },\n  names = { \"a\", \"b\" },\n"
+                                   "  contact = { 0/0, -44 },\n  from = other,\n}\n");
     const ParamValue written{std::vector<std::int64_t>{60, 60, 110, 300}}, changed{std::vector<std::int64_t>{200, 60, 110, 300}},
         longer{std::vector<std::int64_t>{60, 60, 110, 300, 1}}, shorter{std::vector<std::int64_t>{60, 60}};
     CHECK(src.where("max", &written) == "p.lua:2");
