@@ -157,7 +157,7 @@ TableSource::TableSource(std::string file, std::string_view text) : file_(std::m
     }
 }
 
-std::string TableSource::where(std::string path, const ParamValue* now) const {
+std::string TableSource::where(const std::string& path, const ParamValue* now) const {
     const auto holds_value = [](const Site& s, const ParamValue* value) {
         if (!value || s.kind == 0) return true;
         if (s.kind == 's') return std::get_if<std::string>(value) && *std::get_if<std::string>(value) == s.text;
@@ -182,12 +182,11 @@ std::string TableSource::where(std::string path, const ParamValue* now) const {
             }
         }, now ? *now : ParamValue{false});
     };
-    // The key's own line while it holds what the file wrote; else its nearest written parent's.
-    if (auto it = sites_.find(path); it != sites_.end() && now && !holds(it->second)) return "";
-    for (; !path.empty(); path.resize(path.find('.') == std::string::npos ? 0 : path.rfind('.')))
-        if (auto it = sites_.find(path); it != sites_.end() && it->second.line > 0)
-            return file_ + ":" + std::to_string(it->second.line);
-    return file_;
+    // Not written here (added later to a table of this file, or reached through a name: `hand = hand`), or not
+    // the value written here: it came from elsewhere.
+    const auto it = sites_.find(path);
+    if (it == sites_.end() || (now && !holds(it->second))) return "";
+    return it->second.line > 0 ? file_ + ":" + std::to_string(it->second.line) : file_;
 }
 
 std::string nearest_site(const std::map<std::string, std::string>& sites, std::string path, const std::string& fallback) {

@@ -4,8 +4,8 @@
 // The scan knows Lua's tokens (comments, strings, long brackets), not its
 // statements: a key path is that of the constructors' nesting, counted from the
 // outermost one. Whatever it cannot be sure of gives no line, never a wrong one:
-// a path written twice in the file, and a value that is no longer what the file
-// wrote there (set later by an assignment or a --set).
+// a path written twice in the file, one it does not write, and a value that is
+// no longer what the file wrote there (set later by an assignment or a --set).
 #pragma once
 
 #include <filesystem>
@@ -26,11 +26,12 @@ public:
     TableSource(std::string file, std::string_view text);
 
     // "FILE:LINE" where `path` ("devices.tactile.params.joint", list entries
-    // by 1-based index: "record_joints.2") is written, or where its nearest
-    // written parent is; "FILE" when there is none. `now` (may be null) is the
-    // value the table holds: when the file wrote another literal there, the
-    // value came from elsewhere (not from this file) and the answer is "".
-    std::string where(std::string path, const ParamValue* now) const;
+    // by 1-based index: "record_joints.2") is written; "FILE" when it is
+    // written twice. `now` (may be null) is the value the table holds. "" when
+    // the value did not come from this file's text: the path is not written
+    // here (added later, or reached through a name), or the file wrote another
+    // literal there (a list: other entries).
+    std::string where(const std::string& path, const ParamValue* now) const;
 
 private:
     struct Site {
