@@ -4,6 +4,8 @@
 // file the manifest lists but trials/ lacks.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "cli_helpers.hpp"
 
 using namespace rollsense::testing;
@@ -235,4 +237,24 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     INFO(shipped.output);
     CHECK(shipped.status == 0);
     CHECK(shipped.output.find("SCHEMA FAILED") == std::string::npos);
+}
+
+// A profile's content error was printed as a "parse error" with the file alone ("mock.lua: sample_rate_hz and
+// control_rate_hz must be > 0"): now once, as a bad profile, at the key's file:line with the way out, exit 3.
+TEST_CASE("a profile whose content is wrong is named once by file:line and key, as a bad profile (3)") {
+    TempDir dir("rollsense-cli-bad-profile");
+    std::string mock = read_file(fs::path(ROLLSENSE_SOURCE_DIR) / "share/profiles/mock.lua");
+    const auto at = mock.find("sample_rate_hz = 31.1");
+    REQUIRE(at != std::string::npos);
+    const int line = 1 + static_cast<int>(std::count(mock.begin(), mock.begin() + static_cast<long>(at), '\n'));
+    write_file(dir / "mock.lua", mock.replace(at, 21, "sample_rate_hz = -5"));
+    const auto r = run_rollsense("run " + kDemo + " --profile " + shell_quoted(dir / "mock.lua") + " --no-progress --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "bad profile: " + (dir / "mock.lua").string() + ":" + std::to_string(line) +
+                                 ": sample_rate_hz = -5: must be > 0 (the sensors' sample rate in Hz)") == 1);
+    CHECK(count_of(r.output, "must be > 0") == 1);
+    CHECK(r.output.find("parse error") == std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "out"));
 }

@@ -47,14 +47,14 @@ TEST_CASE("an unknown top-level key is an error naming file and key", "[profile]
     kt::TempDir dir;
     auto p = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",", "clock = \"virtual\", sample_rte_hz = 3,"));
     REQUIRE_FALSE(p.ok());
-    CHECK_THAT(p.error().message, Catch::Contains("p.lua.sample_rte_hz: unknown key"));
+    CHECK_THAT(p.error().message, Catch::Contains("p.lua:4: sample_rte_hz: unknown key"));
 }
 
 TEST_CASE("a wrong type is an error naming the key", "[profile]") {
     kt::TempDir dir;
     auto p = load_text(dir, replace(kt::kTestProfile, "control_rate_hz = 100", "control_rate_hz = \"fast\""));
     REQUIRE_FALSE(p.ok());
-    CHECK_THAT(p.error().message, Catch::Contains("p.lua.control_rate_hz must be a number"));
+    CHECK_THAT(p.error().message, Catch::Contains("p.lua:6: control_rate_hz must be a number"));
 }
 
 // A plugin_path entry that is no folder was searched, found empty, and the run went on with the other folders.
@@ -69,7 +69,7 @@ TEST_CASE("a plugin_path that is not a folder is an error naming the entry and t
         auto bad = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",",
                                           std::string("clock = \"virtual\", plugin_path = { \"") + entry + "\" },"));
         REQUIRE_FALSE(bad.ok());
-        CHECK_THAT(bad.error().message, Catch::Contains("p.lua.plugin_path: " + (dir / "profiles" / entry).string() +
+        CHECK_THAT(bad.error().message, Catch::Contains("p.lua:4: plugin_path: " + (dir / "profiles" / entry).string() +
                                                         " is not a folder"));
     }
 }
@@ -78,7 +78,7 @@ TEST_CASE("a plugin parameter with a typo or the wrong type names the device and
     kt::TempDir dir;
     auto typo = robot_from(dir, replace(kt::kTestProfile, "joint = \"finger\"", "joint = \"finger\", widht = 3"));
     REQUIRE_FALSE(typo.ok());
-    CHECK_THAT(typo.error().message, Catch::Contains("p.lua: devices.tactile.params: unknown key 'widht'"));
+    CHECK_THAT(typo.error().message, Catch::Contains("p.lua:13: devices.tactile.params: unknown key 'widht'"));
     auto type = robot_from(dir, replace(kt::kTestProfile, "joint = \"finger\"", "joint = 7"));
     REQUIRE_FALSE(type.ok());
     CHECK_THAT(type.error().message, Catch::Contains("key 'joint' must be a string"));
@@ -111,17 +111,17 @@ TEST_CASE("a joint limit that is NaN or negative is refused, naming the key", "[
         const char* says;
     };
     for (const Case c : {Case{"min = -50, max = 50, max_velocity = 0/0, max_current = 300",
-                              "p.lua: joints.finger.max_velocity is nan, expected a number >= 0"},
+                              "p.lua:16: joints.finger.max_velocity is nan, expected a number >= 0"},
                          Case{"min = -50, max = 50, max_velocity = -1, max_current = 300",
-                              "p.lua: joints.finger.max_velocity is -1, expected a number >= 0"},
+                              "p.lua:16: joints.finger.max_velocity is -1, expected a number >= 0"},
                          Case{"min = -50, max = 50, max_velocity = 60, max_current = 0/0",
-                              "p.lua: joints.finger.max_current is nan"},
+                              "p.lua:16: joints.finger.max_current is nan"},
                          Case{"min = -50, max = 50, max_velocity = 60, max_current = -300",
-                              "p.lua: joints.finger.max_current is -300"},
+                              "p.lua:16: joints.finger.max_current is -300"},
                          Case{"min = -50, max = 50, max_velocity = 1/0, max_current = 300",
-                              "p.lua: joints.finger.max_velocity is inf"},
+                              "p.lua:16: joints.finger.max_velocity is inf"},
                          Case{"min = 0/0, max = 50, max_velocity = 60, max_current = 300",
-                              "p.lua: joints.finger limits [nan, 50] are not within what the device allows"},
+                              "p.lua:16: joints.finger limits [nan, 50] are not within what the device allows"},
                          Case{"min = -50, max = 0/0, max_velocity = 60, max_current = 300",
                               "limits [-50, nan] are not within"}}) {
         INFO(c.limits);
@@ -213,4 +213,73 @@ TEST_CASE("one namespace rule for --set: a profile entry or its path overrides t
     CHECK(s.namespace_declared("etroll.anything"));
     CHECK_FALSE(s.namespace_declared("runs"));
     CHECK(s.declared().count("etroll.clamp_settle_ms") == 1);
+}
+
+// A content error named the file only ("mock.lua: sample_rate_hz and control_rate_hz must be > 0"), not the line of
+// the key, nor the included file that holds it: each class of content error below names FILE:LINE where it is written.
+TEST_CASE("a content error names the file and line where the key is written", "[profile][sites]") {
+    kt::TempDir dir;
+    const std::string p_lua = (dir / "profiles/p.lua").string();
+    SECTION("a top-level number, with its allowed range and what it is") {
+        auto p = load_text(dir, replace(kt::kTestProfile, "sample_rate_hz = 31.1", "sample_rate_hz = -5"));
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().message == p_lua + ":5: sample_rate_hz = -5: must be > 0 (the sensors' sample rate in Hz)");
+    }
+    SECTION("a joint limit, an unknown key and a wrong type in an included file name that file") {
+        const std::string joints = "-- joint limits\nreturn {\n"
+                                   "  finger = { min = -50, max = 50, max_velocity = 60, max_current = 300 },\n"
+                                   "  pusher = { min = -60,\n"
+                                   "             max = 60, safe = \"torque_off\" },\n}\n";
+        std::string text = kt::kTestProfile;
+        const auto from = text.find("\n  joints = {") + 1;  // the profile's joints, not the device's
+        text.replace(from, text.find("  record_joints") - from, "  joints = include(\"joints\"),\n");
+        const std::string joints_lua = (dir / "profiles/joints.lua").string();
+        kt::write_file(dir / "profiles/joints.lua", joints);
+        auto good = load_text(dir, text);
+        INFO((good ? "" : good.error().message));
+        REQUIRE(good.ok());
+        kt::write_file(dir / "profiles/joints.lua", replace(joints, "min = -50, max = 50", "min = 70, max = 50"));
+        auto p = load_text(dir, text);
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().message == joints_lua + ":3: joints.finger.min is not below max (50)");
+        kt::write_file(dir / "profiles/joints.lua", replace(joints, "max = 60, safe", "max = 60, saf"));
+        p = load_text(dir, text);
+        REQUIRE_FALSE(p.ok());
+        CHECK_THAT(p.error().message, Catch::StartsWith(joints_lua + ":5: joints.pusher.saf: unknown key (known here: "));
+        kt::write_file(dir / "profiles/joints.lua", replace(joints, "max = 60, safe", "max = \"60\", safe"));
+        p = load_text(dir, text);
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().message == joints_lua + ":5: joints.pusher.max must be a number");
+        // Checked by the robot (the device's range), still at the include's line.
+        kt::write_file(dir / "profiles/joints.lua", replace(joints, "min = -60,", "min = -160,"));
+        auto r = robot_from(dir, text);
+        REQUIRE_FALSE(r.ok());
+        CHECK_THAT(r.error().message, Catch::StartsWith(joints_lua + ":4: joints.pusher limits [-160, 60] are not within"));
+    }
+    SECTION("a device's params refused by the kernel's check of the schema or by the plugin itself") {
+        const std::string text = replace(kt::kTestProfile, "params = { joint = \"finger\" } },",
+                                         "params = {\n      joint = \"finger\",\n      cell_angles = { -20, 20 } } },");
+        REQUIRE(robot_from(dir, text).ok());
+        auto typo = robot_from(dir, replace(text, "cell_angles =", "cell_angels ="));
+        REQUIRE_FALSE(typo.ok());
+        CHECK_THAT(typo.error().message, Catch::StartsWith(p_lua + ":15: devices.tactile.params: unknown key 'cell_angels'"));
+        auto refused = robot_from(dir, replace(text, "cell_angles = { -20, 20 }", "cell_angles = {}"));
+        REQUIRE_FALSE(refused.ok());
+        CHECK_THAT(refused.error().message, Catch::StartsWith(p_lua + ":15: ") && Catch::EndsWith("cell_angles is empty"));
+    }
+    SECTION("an unknown key") {
+        auto p = load_text(dir, replace(kt::kTestProfile, "  record_joints", "  recrd_joints = {},\n  record_joints"));
+        REQUIRE_FALSE(p.ok());
+        CHECK_THAT(p.error().message, Catch::StartsWith(p_lua + ":19: recrd_joints: unknown key (known here: "));
+    }
+    SECTION("a value set after the table was written (a statement, a --set) has no line rather than a wrong one") {
+        auto p = load_text(dir, "local p = " + std::string(kt::kTestProfile).substr(8) + "\np.sample_rate_hz = -5\nreturn p\n");
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().message == p_lua + ": sample_rate_hz = -5: must be > 0 (the sensors' sample rate in Hz)");
+        Settings settings;
+        REQUIRE(settings.add("control_rate_hz=0").ok());
+        p = load_text(dir, kt::kTestProfile, settings);
+        REQUIRE_FALSE(p.ok());
+        CHECK(p.error().message == p_lua + ": control_rate_hz = 0: must be > 0 (the control loop's rate in Hz)");
+    }
 }

@@ -56,7 +56,7 @@ TEST_CASE("channel names that give one column twice are refused at configure tim
     auto same = robot_with(dir, "tactile = { plugin = \"test_faulty_sensor\", params = { names = \"ch,ch,ch\" } },");
     REQUIRE_FALSE(same.ok());
     CHECK(same.error().code == ErrorCode::plugin_error);  // exit 3, as any plugin's error
-    CHECK_THAT(same.error().message, Catch::Contains("p.lua: devices.tactile (plugin 'test_faulty_sensor')") &&
+    CHECK_THAT(same.error().message, Catch::Contains("p.lua:13: devices.tactile (plugin 'test_faulty_sensor')") &&
                                          Catch::Contains("the channel column 'ch' is taken") &&
                                          Catch::Contains("channel names must be unique"));
     // Across devices, through the <device>_<channel> prefix: a + b_c and a_b + c are both a_b_c.
@@ -90,6 +90,6 @@ TEST_CASE("a channel name that would not stay one CSV column, or that a recorded
     auto joint = robot_with(dir, "tactile = { plugin = \"test_faulty_sensor\", params = { names = \"finger,b\" } },");
     REQUIRE_FALSE(joint.ok());
     CHECK(joint.error().code == ErrorCode::invalid_argument);
-    CHECK_THAT(joint.error().message, Catch::Contains("p.lua: record_joints names 'finger'") &&
+    CHECK_THAT(joint.error().message, Catch::Contains("p.lua:19: record_joints.1 is 'finger', which is no usable column") &&
                                           Catch::Contains("taken by a channel"));
 }

@@ -52,6 +52,7 @@ int exit_code_for(ErrorCode code, int fallback) {
         case ErrorCode::hardware_fault: return kExitHardware;
         case ErrorCode::not_found:
         case ErrorCode::parse_error:
+        case ErrorCode::bad_profile:
         case ErrorCode::plugin_error: return kExitConfig;
         default: return fallback;
     }

@@ -33,7 +33,7 @@ enum ExitCode : int {
 };
 
 // The exit code for a failed Status: io_error → kExitIo, device errors →
-// kExitHardware, not_found/parse_error/plugin_error → kExitConfig, cancelled →
+// kExitHardware, not_found/parse_error/bad_profile/plugin_error → kExitConfig, cancelled →
 // kExitCancelled, bad_setting (a --set, --seed or --profile refused) → kExitUsage; any other code → `fallback` (the command knows best whether
 // e.g. an invalid_argument came from its input file or from the job).
 int exit_code_for(ErrorCode code, int fallback = kExitFailure);

@@ -29,6 +29,7 @@ enum class ErrorCode {
     unsupported,       // the operation is not implemented by this component
     script_error,      // a roll script raised an error
     bad_setting,       // a --set, --seed or --profile the script or a resumed dataset refuses: exit 2
+    bad_profile,       // a profile whose content (a value, a key, a device's params) is refused: exit 3
 };
 
 std::string_view to_string(ErrorCode code) noexcept;

@@ -23,6 +23,7 @@ std::string_view to_string(ErrorCode code) noexcept {
         case ErrorCode::unsupported: return "unsupported";
         case ErrorCode::script_error: return "script error";
         case ErrorCode::bad_setting: return "bad setting";
+        case ErrorCode::bad_profile: return "bad profile";
     }
     return "unknown error";
 }

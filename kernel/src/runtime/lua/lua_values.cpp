@@ -18,11 +18,7 @@ Result<ParamValue> lua_to_param(lua_State* L, int index, const std::string& wher
             const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, index));
             // Only sequences: a table with other keys is a nested structure.
             lua_Integer count = 0;
-            lua_pushnil(L);
-            while (lua_next(L, index)) {
-                ++count;
-                lua_pop(L, 1);
-            }
+            for (lua_pushnil(L); lua_next(L, index); lua_pop(L, 1)) ++count;
             if (count != n)
                 return Error{ErrorCode::invalid_argument,
                              where + ": a nested table is not a parameter value (use a flat list like {1, 2, 3})"};
@@ -37,10 +33,7 @@ Result<ParamValue> lua_to_param(lua_State* L, int index, const std::string& wher
                 all_num = all_num && t == LUA_TNUMBER;
                 all_int = all_int && t == LUA_TNUMBER && lua_isinteger(L, -1);
                 if (t == LUA_TSTRING) strs.emplace_back(lua_tostring(L, -1));
-                if (t == LUA_TNUMBER) {
-                    nums.push_back(lua_tonumber(L, -1));
-                    ints.push_back(static_cast<std::int64_t>(lua_tointeger(L, -1)));
-                }
+                if (t == LUA_TNUMBER) nums.push_back(lua_tonumber(L, -1)), ints.push_back(lua_tointeger(L, -1));
                 lua_pop(L, 1);
             }
             if (n == 0) return ParamValue{std::vector<double>{}};
@@ -136,28 +129,19 @@ ParamValue parse_cli_value(const std::string& text) {
             comma = std::min(inner.find(',', start), inner.size());
             if (auto item = trim(inner.substr(start, comma - start)); !item.empty()) items.push_back(parse_scalar(item));
         }
-        bool ints = true, nums = true;
+        // The list of the narrowest type all items have: integers, numbers, else strings.
+        std::vector<std::int64_t> ints;
+        std::vector<double> nums;
+        std::vector<std::string> strs;
         for (const auto& v : items) {
-            ints = ints && std::holds_alternative<std::int64_t>(v);
-            nums = nums && (std::holds_alternative<std::int64_t>(v) || std::holds_alternative<double>(v));
+            if (const auto* i = std::get_if<std::int64_t>(&v)) ints.push_back(*i), nums.push_back(static_cast<double>(*i));
+            if (const auto* d = std::get_if<double>(&v)) nums.push_back(*d);
+            strs.push_back(std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_param_value(v));
         }
         if (items.empty()) return std::vector<double>{};
-        if (ints) {
-            std::vector<std::int64_t> out;
-            for (const auto& v : items) out.push_back(std::get<std::int64_t>(v));
-            return out;
-        }
-        if (nums) {
-            std::vector<double> out;
-            for (const auto& v : items)
-                out.push_back(std::holds_alternative<double>(v) ? std::get<double>(v)
-                                                                 : static_cast<double>(std::get<std::int64_t>(v)));
-            return out;
-        }
-        std::vector<std::string> out;
-        for (const auto& v : items)
-            out.push_back(std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : format_param_value(v));
-        return out;
+        if (ints.size() == items.size()) return ints;
+        if (nums.size() == items.size()) return nums;
+        return strs;
     }
     return parse_scalar(text);
 }

@@ -92,6 +92,7 @@ struct LoadState {
     fs::path share_dir;
     const Settings* settings;
     int depth = 0;
+    std::map<const void*, TableSource> sources;  // each table a profile file returned: that file's text
 };
 
 int run_profile_file(lua_State* L, const fs::path& path);
@@ -133,6 +134,9 @@ int run_profile_file(lua_State* L, const fs::path& path) {
     lua_setupvalue(L, -2, 1);
     lua_call(L, 0, 1);
     if (!lua_istable(L, -1)) return luaL_error(L, "%s: a profile must return a table", path.c_str());
+    auto* st = static_cast<LoadState*>(lua_touserdata(L, lua_upvalueindex(1)));
+    if (st->sources.try_emplace(lua_topointer(L, -1), TableSource::scan(path)).second)  // the first file returning it made it
+        lua_pushvalue(L, -1), luaL_ref(L, LUA_REGISTRYINDEX);  // kept alive: its address names it to the end
     return 1;
 }
 
@@ -140,10 +144,11 @@ int run_profile_file(lua_State* L, const fs::path& path) {
 // can be reported as unknown.
 class TableReader {
 public:
-    TableReader(lua_State* L, int index, std::string where) : L_(L), index_(lua_absindex(L, index)), where_(std::move(where)) {}
+    TableReader(lua_State* L, int index, const Profile& p, std::string path)
+        : L_(L), index_(lua_absindex(L, index)), p_(p), path_(std::move(path)) {}
 
-    const std::string& where() const { return where_; }
-    std::string at(const std::string& key) const { return where_ + "." + key; }
+    std::string path(const std::string& key) const { return path_.empty() || key.empty() ? path_ + key : path_ + "." + key; }
+    std::string at(const std::string& key) const { return p_.at(path(key)); }
 
     // Pushes the field (or nil); remember to pop.
     int push(const std::string& key) {
@@ -151,9 +156,7 @@ public:
         return lua_getfield(L_, index_, key.c_str());
     }
     Result<std::optional<double>> number(const std::string& key) { return field<double>(key, LUA_TNUMBER, "a number"); }
-    Result<std::optional<std::string>> string(const std::string& key) {
-        return field<std::string>(key, LUA_TSTRING, "a string");
-    }
+    Result<std::optional<std::string>> string(const std::string& key) { return field<std::string>(key, LUA_TSTRING, "a string"); }
     Result<std::optional<bool>> boolean(const std::string& key) { return field<bool>(key, LUA_TBOOLEAN, "true or false"); }
     // A field of Lua type `type` (empty when absent), else an error saying what it must be.
     template <class T>
@@ -189,8 +192,7 @@ public:
         int table = lua_gettop(L_);
         // Sorted keys: deterministic device order regardless of Lua's hashing.
         std::vector<std::string> names;
-        lua_pushnil(L_);
-        while (lua_next(L_, table)) {
+        for (lua_pushnil(L_); lua_next(L_, table);) {
             lua_pop(L_, 1);
             if (lua_type(L_, -1) != LUA_TSTRING) {
                 lua_pop(L_, 2);
@@ -199,21 +201,17 @@ public:
             names.emplace_back(lua_tostring(L_, -1));
         }
         std::sort(names.begin(), names.end());
-        for (const auto& name : names) {
-            lua_getfield(L_, table, name.c_str());
-            Status s = fn(name, at(key) + "." + name);
+        Status s;
+        for (auto name = names.begin(); s.ok() && name != names.end(); ++name) {
+            lua_getfield(L_, table, name->c_str());
+            s = fn(*name, path(key) + "." + *name);
             lua_settop(L_, table);
-            if (!s.ok()) {
-                lua_pop(L_, 1);
-                return s;
-            }
         }
         lua_pop(L_, 1);
-        return {};
+        return s;
     }
     Status reject_unknown() {
-        lua_pushnil(L_);
-        while (lua_next(L_, index_)) {
+        for (lua_pushnil(L_); lua_next(L_, index_);) {
             lua_pop(L_, 1);
             std::string key = lua_type(L_, -1) == LUA_TSTRING ? lua_tostring(L_, -1) : "<non-name key>";
             if (!used_.count(key)) {
@@ -229,7 +227,8 @@ public:
 private:
     lua_State* L_;
     int index_;
-    std::string where_;
+    const Profile& p_;
+    std::string path_;  // from the profile's table: "devices.tactile"
     std::set<std::string> used_;
 };
 
@@ -250,10 +249,8 @@ Status take(Result<T> r, T& out) {
     return {};
 }
 
-Status read_gpio(lua_State* L, const std::string& where, bool is_trigger, std::optional<GpioLine>& out) {
-    if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table"};
-    TableReader r(L, -1, where);
-    GpioLine g;
+Status read_gpio(lua_State* L, TableReader r, bool is_trigger, std::optional<GpioLine>& out) {
+    if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, r.at("") + " must be a table { chip = ..., line = ... }"};
     std::optional<std::string> chip;
     std::optional<double> line, pulse;
     std::optional<bool> active_low;
@@ -262,17 +259,13 @@ Status read_gpio(lua_State* L, const std::string& where, bool is_trigger, std::o
     TRY(take(r.boolean("active_low"), active_low));
     if (is_trigger) TRY(take(r.number("pulse_ms"), pulse));
     TRY(r.reject_unknown());
-    if (!chip || !line) return {ErrorCode::invalid_argument, where + " needs chip and line"};
-    g.chip = *chip;
-    g.line = static_cast<unsigned>(*line);
-    g.active_low = active_low.value_or(false);
-    if (pulse) g.pulse_ms = *pulse;
-    out = g;
+    if (!chip || !line) return {ErrorCode::invalid_argument, r.at("") + " needs chip and line"};
+    out = GpioLine{*chip, static_cast<unsigned>(*line), active_low.value_or(false), pulse.value_or(GpioLine{}.pulse_ms)};
     return {};
 }
 
 Status read_profile_table(lua_State* L, Profile& p) {
-    TableReader r(L, -1, p.path.filename().string());
+    TableReader r(L, -1, p, "");
     std::optional<std::string> s;
     std::optional<double> d;
     TRY(take(r.string("description"), s));
@@ -281,12 +274,13 @@ Status read_profile_table(lua_State* L, Profile& p) {
     if (s && *s != "virtual" && *s != "monotonic")
         return {ErrorCode::invalid_argument, r.at("clock") + " is '" + *s + "', expected 'virtual' or 'monotonic'"};
     p.virtual_clock = !s || *s == "virtual";
-    TRY(take(r.number("sample_rate_hz"), d));
-    if (d) p.sample_rate_hz = *d;
-    TRY(take(r.number("control_rate_hz"), d));
-    if (d) p.control_rate_hz = *d;
-    if (p.sample_rate_hz <= 0 || p.control_rate_hz <= 0)
-        return {ErrorCode::invalid_argument, r.where() + ": sample_rate_hz and control_rate_hz must be > 0"};
+    for (auto [key, rate, what] : {std::tuple{"sample_rate_hz", &p.sample_rate_hz, "the sensors' sample rate in Hz"},
+                                   std::tuple{"control_rate_hz", &p.control_rate_hz, "the control loop's rate in Hz"}}) {
+        TRY(take(r.number(key), d));
+        if (d) *rate = *d;
+        if (!(*rate > 0))  // NaN too
+            return {ErrorCode::invalid_argument, r.at(key) + " = " + format_param_value(*rate) + ": must be > 0 (" + what + ")"};
+    }
     std::vector<std::string> list;
     TRY(take(r.string_list("plugin_path"), list));
     for (const auto& entry : list) {  // a mistyped folder would be searched, found empty, and the run go on
@@ -297,17 +291,17 @@ Status read_profile_table(lua_State* L, Profile& p) {
     TRY(take(r.string_list("record_joints"), p.record_joints));
     TRY(take(r.string_list("identification_channels"), p.identification_channels));
 
-    TRY(r.each("devices", [&](const std::string& name, const std::string& where) -> Status {
-        if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table { plugin = ..., params = {...} }"};
-        TableReader dr(L, -1, where);
+    TRY(r.each("devices", [&](const std::string& name, const std::string& path) -> Status {
+        TableReader dr(L, -1, p, path);
+        if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, dr.at("") + " must be a table { plugin = ..., params = {...} }"};
         DeviceSpec dev;
         dev.name = name;
         std::optional<std::string> plugin;
         TRY(take(dr.string("plugin"), plugin));
-        if (!plugin) return {ErrorCode::invalid_argument, where + ".plugin is missing (which plugin drives it?)"};
+        if (!plugin) return {ErrorCode::invalid_argument, dr.at("plugin") + " is missing (which plugin drives it? `rollsense plugins` lists them)"};
         dev.plugin = *plugin;
         dr.push("params");
-        auto params = lua_to_param_map(L, -1, where + ".params");
+        auto params = lua_to_param_map(L, -1, dr.at("params"));
         lua_pop(L, 1);
         if (!params) return params.status();
         dev.params = std::move(*params);
@@ -315,19 +309,18 @@ Status read_profile_table(lua_State* L, Profile& p) {
         p.devices.push_back(std::move(dev));
         return {};
     }));
-    TRY(r.each("joints", [&](const std::string& name, const std::string& where) -> Status {
-        if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, where + " must be a table"};
-        TableReader jr(L, -1, where);
+    TRY(r.each("joints", [&](const std::string& name, const std::string& path) -> Status {
+        TableReader jr(L, -1, p, path);
+        if (!lua_istable(L, -1)) return {ErrorCode::invalid_argument, jr.at("") + " must be a table { min = ..., max = ... }"};
         JointLimit j;
         j.name = name;
         std::optional<double> v;
-        TRY(take(jr.number("min"), v));
-        if (!v) return {ErrorCode::invalid_argument, where + ".min is missing"};
-        j.min = *v;
-        TRY(take(jr.number("max"), v));
-        if (!v) return {ErrorCode::invalid_argument, where + ".max is missing"};
-        j.max = *v;
-        if (j.min >= j.max) return {ErrorCode::invalid_argument, where + ": min must be below max"};
+        for (auto [key, bound] : {std::pair{"min", &j.min}, std::pair{"max", &j.max}}) {
+            TRY(take(jr.number(key), v));
+            if (!v) return {ErrorCode::invalid_argument, jr.at(key) + " is missing (the kernel keeps the joint within min and max)"};
+            *bound = *v;
+        }
+        if (j.min >= j.max) return {ErrorCode::invalid_argument, jr.at("min") + " is not below max (" + format_param_value(j.max) + ")"};
         TRY(take(jr.number("max_velocity"), v));
         j.max_velocity = v.value_or(0);
         TRY(take(jr.number("max_current"), v));
@@ -335,24 +328,24 @@ Status read_profile_table(lua_State* L, Profile& p) {
         std::optional<std::string> safe;
         TRY(take(jr.string("safe"), safe));
         if (safe && *safe != "hold" && *safe != "torque_off")
-            return {ErrorCode::invalid_argument, where + ".safe is '" + *safe + "', expected 'hold' or 'torque_off'"};
+            return {ErrorCode::invalid_argument, jr.at("safe") + " is '" + *safe + "', expected 'hold' or 'torque_off'"};
         j.safe_torque_off = safe && *safe == "torque_off";
         TRY(jr.reject_unknown());
         p.joints.push_back(j);
         return {};
     }));
-    TRY(r.each("controllers", [&](const std::string& name, const std::string& where) -> Status {
-        auto params = lua_to_param_map(L, -1, where);
+    TRY(r.each("controllers", [&](const std::string& name, const std::string& path) -> Status {
+        auto params = lua_to_param_map(L, -1, r.at(path));
         if (!params) return params.status();
         p.controllers.push_back({name, std::move(*params)});
         return {};
     }));
     int t = r.push("safety");
     if (t == LUA_TTABLE) {
-        TableReader sr(L, -1, r.at("safety"));
-        if (sr.push("estop") != LUA_TNIL) TRY(read_gpio(L, sr.at("estop"), false, p.estop));
+        TableReader sr(L, -1, p, "safety");
+        if (sr.push("estop") != LUA_TNIL) TRY(read_gpio(L, TableReader(L, -1, p, "safety.estop"), false, p.estop));
         lua_pop(L, 1);
-        if (sr.push("trigger") != LUA_TNIL) TRY(read_gpio(L, sr.at("trigger"), true, p.trigger));
+        if (sr.push("trigger") != LUA_TNIL) TRY(read_gpio(L, TableReader(L, -1, p, "safety.trigger"), true, p.trigger));
         lua_pop(L, 1);
         TRY(sr.reject_unknown());
     } else if (t != LUA_TNIL) {
@@ -361,6 +354,21 @@ Status read_profile_table(lua_State* L, Profile& p) {
     }
     lua_pop(L, 1);
     return r.reject_unknown();
+}
+
+// Where each key of the table at the top is written (path → "file:line"), read in the text of the file whose
+// constructor made the table it is in: an included table is in its own file, at paths from its top.
+void note_sites(lua_State* L, const LoadState& st, const TableSource* src, std::string in_src, const std::string& path,
+                int depth, std::map<std::string, std::string>& out) {
+    if (auto it = st.sources.find(lua_topointer(L, -1)); it != st.sources.end()) src = &it->second, in_src.clear();
+    for (lua_pushnil(L); lua_next(L, -2); lua_pop(L, 1)) {
+        lua_pushvalue(L, -2);  // a copy: lua_tostring would turn a number key into a string under lua_next
+        const std::string key = lua_tostring(L, -1) ? lua_tostring(L, -1) : "?";
+        lua_pop(L, 1);
+        auto now = lua_to_param(L, -1, path);
+        out[path + key] = src->where(in_src + key, now ? &*now : nullptr);  // "": set later, not by that file
+        if (lua_istable(L, -1) && depth < 8) note_sites(L, st, src, in_src + key + ".", path + key + ".", depth + 1, out);
+    }
 }
 
 // Apply --set keys of the profile (sample_rate_hz=50, devices.tactile.params.x=1) to its table.
@@ -416,15 +424,9 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
     lua_State* L = holder.get();
     *static_cast<ProfileBudget**>(lua_getextraspace(L)) = &budget;
     lua_sethook(L, &budget_hook, LUA_MASKCOUNT, 10000);
-    LoadState st{share_dir, &settings, 0};
+    LoadState st{share_dir, &settings, 0, {}};
     lua_pushlightuserdata(L, &st);
-    lua_pushcclosure(
-        L,
-        [](lua_State* L2) -> int {
-            auto path = fs::path(lua_tostring(L2, 1));
-            return run_profile_file(L2, path);
-        },
-        1);
+    lua_pushcclosure(L, [](lua_State* L2) { return run_profile_file(L2, fs::path(lua_tostring(L2, 1))); }, 1);
     lua_pushstring(L, p.path.c_str());
     if (const int rc = lua_pcall(L, 1, 1, 0); rc != LUA_OK) {
         const char* msg = lua_tostring(L, -1);
@@ -435,6 +437,7 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
         return Error{ErrorCode::parse_error, "profile " + text};
     }
     if (auto s = apply_dotted_settings(L, settings, p.path.string()); !s.ok()) return s.error();
+    note_sites(L, st, nullptr, "", "", 0, p.sites);  // the top table is in st.sources: its file returned it
     if (auto s = read_profile_table(L, p); !s.ok()) return s.error();
     return p;
 }

@@ -2,7 +2,7 @@
 // which device, with what parameters, what the joint limits are and how the
 // run is clocked. A profile is configuration only (Cartographer-style): it runs
 // in an empty sandbox, and every key must be one the kernel knows, so a typo is
-// an error naming the file and the key instead of a silent default.
+// an error naming the file:line and the key instead of a silent default.
 //
 //   return {
 //     description = "...",
@@ -30,6 +30,7 @@
 
 #include "rollsense/params.hpp"
 #include "rollsense/status.hpp"
+#include "rollsense/table_source.hpp"
 
 namespace rollsense::runtime {
 
@@ -74,6 +75,11 @@ struct Profile {
     std::vector<ControllerSpec> controllers;
     std::optional<GpioLine> estop;
     std::optional<GpioLine> trigger;
+    std::map<std::string, std::string> sites;  // "joints.palm.min" → ".../etroll-joints.lua:9": where the files write it
+
+    // "FILE:LINE" for an error about `key`: where it, or its nearest written parent, is written (else the file).
+    std::string site(const std::string& key) const { return nearest_site(sites, key, path.string()); }
+    std::string at(const std::string& key) const { return site(key) + ": " + key; }  // "FILE:LINE: joints.palm.min"
 };
 
 // Command-line settings (--set key=value). One namespace rule (docs/scripting.md,

@@ -52,6 +52,12 @@ ControlMode position_mode_of(const JointInfo& info) {
                                                                                       : ControlMode::position;
 }
 
+// Where the profile writes the key of the device's params that an error names, else its params.
+std::string params_site(const Profile& p, const DeviceSpec& dev, const std::string& message) {
+    const std::string* key = key_named_in(message, dev.params);
+    return p.site("devices." + dev.name + ".params" + (key ? "." + *key : ""));
+}
+
 JointCommand hold_command(const Joint& j) {
     JointCommand c;
     c.mode = position_mode_of(j.info);
@@ -64,10 +70,9 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                              const std::filesystem::path& share_dir) {
     std::unique_ptr<Robot> r(new Robot());
     r->profile_label_ = "profile '" + profile.name + "' (" + profile.path.string() + ")";
-    const std::string file = profile.path.string();
 
     for (const auto& dev : profile.devices) {
-        const std::string where = file + ": devices." + dev.name;
+        const std::string where = profile.at("devices." + dev.name);
         std::shared_ptr<const LoadedLibrary> lib;
         for (auto kind : {PluginKind::sensor, PluginKind::actuator, PluginKind::classifier}) {
             auto found = registry.find(dev.plugin, kind);
@@ -82,30 +87,29 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         }
         auto schema = PluginRegistry::schema_of(*lib);
         if (!schema) return schema.error();
-        auto params = validate_params(*schema, dev.params, where + ".params");
-        if (!params) return params.error();
+        auto params = validate_params(*schema, dev.params, "devices." + dev.name + ".params");
+        if (!params) return Error{params.error().code, params_site(profile, dev, params.error().message) + ": " + params.error().message};
         PluginContext ctx;
         ctx.instance = dev.name;
         ctx.share_dir = share_dir;
         ctx.profile_path = profile.path;
         ctx.virtual_time = profile.virtual_clock;
 
+        // Created and configured; a refusal names where the profile writes what the plugin refused (once).
+        const auto configure = [&](auto& h) {
+            auto s = h ? (*h)->configure(*params, ctx) : h.status();
+            const std::string site = s.ok() ? "" : params_site(profile, dev, s.message());
+            return s.ok() || !h || s.message().find(site) != std::string::npos ? s : Status{s.code(), site + ": " + s.message()};
+        };
         if (lib->manifest().kind == PluginKind::sensor) {
             auto h = registry.create_sensor(dev.plugin, dev.name);
-            if (!h) return h.error();
-            if (auto s = (*h)->configure(*params, ctx); !s.ok()) return s.error();
-            SensorSlot slot;
-            slot.handle = std::move(*h);
-            auto channels = slot.handle->plugin().channels();
-            slot.channels = channels.size();
-            r->sensors_.push_back(std::move(slot));
+            if (auto s = configure(h); !s.ok()) return s.error();
+            const std::size_t channels = (*h)->plugin().channels().size();
+            r->sensors_.push_back({std::move(*h), channels, {}});
         } else if (lib->manifest().kind == PluginKind::actuator) {
             auto h = registry.create_actuator(dev.plugin, dev.name);
-            if (!h) return h.error();
-            if (auto s = (*h)->configure(*params, ctx); !s.ok()) return s.error();
-            ActuatorSlot slot;
-            slot.handle = std::move(*h);
-            r->actuators_.push_back(std::move(slot));
+            if (auto s = configure(h); !s.ok()) return s.error();
+            r->actuators_.push_back({std::move(*h), {}, {}, {}});
         } else {
             return Error{ErrorCode::invalid_argument,
                          where + ": plugin '" + dev.plugin +
@@ -123,7 +127,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         for (const auto& ch : s.handle->plugin().channels()) {
             const std::string column = r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name;
             if (unusable_column(column))
-                return Error{ErrorCode::plugin_error, file + ": devices." + s.handle->instance() + " (plugin '" +
+                return Error{ErrorCode::plugin_error, profile.at("devices." + s.handle->instance()) + " (plugin '" +
                                  s.handle->plugin_name() + "'): the channel column '" + column + "' is taken or "
                                  "not a column name; channel names must be unique, not 'time' or 'valid', and free of spaces, "
                                  "commas and quotes (with several sensors: <device>_<channel>)"};
@@ -141,7 +145,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
             const auto& info = infos[i];
             for (const auto& j : r->joints_)
                 if (j.name == info.name)
-                    return Error{ErrorCode::invalid_argument, file + ": joint '" + info.name +
+                    return Error{ErrorCode::invalid_argument, profile.at("devices." + slot.handle->instance()) + ": joint '" + info.name +
                                                                   "' is declared by two devices (" +
                                                                   j.actuator->instance() + " and " +
                                                                   slot.handle->instance() + ")"};
@@ -149,18 +153,18 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                     [&](const JointLimit& l) { return l.name == info.name; });
             if (lim == profile.joints.end())
                 return Error{ErrorCode::invalid_argument,
-                             file + ": joint '" + info.name + "' of device '" + slot.handle->instance() +
+                             profile.at("joints") + ": joint '" + info.name + "' of device '" + slot.handle->instance() +
                                  "' has no limits; add joints." + info.name +
                                  " = { min = ..., max = ... } (the kernel enforces them; the profile's joints: " +
                                  names_of(profile.joints, &JointLimit::name) + ")"};  // a misspelt one beside the joint it meant
             // Written so that NaN fails: it would switch a limit's check off.
             for (auto [key, v] : {std::pair{"max_velocity", lim->max_velocity}, std::pair{"max_current", lim->max_current}})
                 if (!(v >= 0 && v <= DBL_MAX))
-                    return Error{ErrorCode::invalid_argument, file + ": joints." + info.name + "." + key + " is " +
+                    return Error{ErrorCode::invalid_argument, profile.at("joints." + info.name + "." + key) + " is " +
                                                                   fmt(v) + ", expected a number >= 0"};
             if (!(lim->min >= info.min_position && lim->max <= info.max_position))
                 return Error{ErrorCode::invalid_argument,
-                             file + ": joints." + info.name + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
+                             profile.at("joints." + info.name) + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
                                  "] are not within what the device allows [" + fmt(info.min_position) + ", " +
                                  fmt(info.max_position) + "] " + info.unit};
             Joint j;
@@ -181,14 +185,14 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
     }
     for (const auto& l : profile.joints)
         if (!r->find_joint(l.name))
-            return Error{ErrorCode::invalid_argument, file + ": joints." + l.name +
+            return Error{ErrorCode::invalid_argument, profile.at("joints." + l.name) +
                                                           " names no joint of any device (joints: " +
                                                           r->joint_names() + ")"};
     for (const auto& name : profile.record_joints) {
         auto* j = r->find_joint(name);
         if (!j || unusable_column(name))
             return Error{ErrorCode::invalid_argument,
-                         file + ": record_joints names '" + name + "', which is " +
+                         profile.at("record_joints." + std::to_string(&name - profile.record_joints.data() + 1)) + " is '" + name + "', which is " +
                              (j ? "no usable column (taken by a channel, listed twice, or with a space, comma or quote)"
                                 : "not a joint (joints: " + r->joint_names() + ")")};
         r->recorded_joints_.push_back(name);
@@ -200,10 +204,10 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
     for (const auto& spec : profile.controllers) {
         const auto* type = find_controller_type(spec.name);
         if (!type) {
-            return Error{ErrorCode::not_found, file + ": controllers." + spec.name + ": no such controller (known: " +
+            return Error{ErrorCode::not_found, profile.at("controllers." + spec.name) + ": no such controller (known: " +
                                                    names_of(controller_type_names(), std::identity{}) + ")"};
         }
-        auto params = validate_params(type->schema, spec.params, file + ": controllers." + spec.name);
+        auto params = validate_params(type->schema, spec.params, profile.at("controllers." + spec.name));
         if (!params) return params.error();
         r->controllers_.push_back({spec.name, type->create(*params), false});
     }

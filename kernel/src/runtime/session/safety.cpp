@@ -9,17 +9,16 @@
 namespace rollsense::runtime {
 
 Status Safety::open(const Profile& profile, const DigitalLines& lines) {
-    const std::string file = profile.path.string();
     if (profile.estop) {
         DigitalLine c{profile.estop->chip, profile.estop->line, profile.estop->active_low, "rollsense-estop"};
         if (!lines.open_input)
-            return {ErrorCode::invalid_argument, file + ": safety.estop: this program cannot open digital lines; "
+            return {ErrorCode::invalid_argument, profile.at("safety.estop") + ": this program cannot open digital lines; "
                                                         "run it with `rollsense run`, or remove safety.estop"};
         auto in = lines.open_input(c);
-        if (!in) return Status(in.error()).with_context(file + ": safety.estop");
+        if (!in) return Status(in.error()).with_context(profile.at("safety.estop"));
         estop_ = std::move(*in);
         auto active = estop_->is_active();
-        if (!active) return Status(active.error()).with_context(file + ": safety.estop");
+        if (!active) return Status(active.error()).with_context(profile.at("safety.estop"));
         if (*active)
             return {ErrorCode::cancelled, "the emergency stop (" + c.chip + " line " + std::to_string(c.line) +
                                               ") is asserted; release it before starting a run"};
@@ -27,10 +26,10 @@ Status Safety::open(const Profile& profile, const DigitalLines& lines) {
     if (profile.trigger) {
         DigitalLine c{profile.trigger->chip, profile.trigger->line, profile.trigger->active_low, "rollsense-trigger"};
         if (!lines.open_output)
-            return {ErrorCode::invalid_argument, file + ": safety.trigger: this program cannot open digital lines; "
+            return {ErrorCode::invalid_argument, profile.at("safety.trigger") + ": this program cannot open digital lines; "
                                                           "run it with `rollsense run`, or remove safety.trigger"};
         auto out = lines.open_output(c, false);
-        if (!out) return Status(out.error()).with_context(file + ": safety.trigger");
+        if (!out) return Status(out.error()).with_context(profile.at("safety.trigger"));
         trigger_ = std::move(*out);
     }
     return {};

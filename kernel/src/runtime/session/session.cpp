@@ -93,7 +93,7 @@ Status Session::prepare() {
             if (is_profile_path(key) && (s.message().find("'" + key.substr(key.rfind('.') + 1) + "'") != std::string::npos ||
                                          s.message().find(key) != std::string::npos))
                 return Status{ErrorCode::bad_setting, "--set " + key + "=" + format_param_value(value) + ": " + s.message()};
-        return Status{ErrorCode::parse_error, s.message()};
+        return Status{ErrorCode::bad_profile, s.message()};
     };
     auto profile = load_profile(options_.profile, options_.share_dir, options_.settings, options_.sandbox);
     if (!profile) return bad_profile(profile.status());
