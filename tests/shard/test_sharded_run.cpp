@@ -209,10 +209,11 @@ TEST_CASE("a shard killed outright is still resumed as that shard only", "[shard
     rt::TempDir dir;
     const auto shard = dir / "shard";
     const std::string big = "--set runs=1000 --set analyse=false ";
-    // Killed as soon as its first trials are on disk, long before its end.
+    // Killed as soon as its first trials are on disk, long before its end (the
+    // wait is long only so that a loaded machine still gets that far).
     const auto killed = rt::run_command(
         std::string(ROLLSENSE_BIN_DIR) + "/rollsense run " + rt::paper_experiment() + " --seed 11 -q --no-progress " +
-        big + "--shard 0/2 --out " + shard.string() + " & pid=$!; for i in $(seq 1 500); do [ -s " +
+        big + "--shard 0/2 --out " + shard.string() + " & pid=$!; for i in $(seq 1 3000); do [ -s " +
         (shard / "manifest.csv").string() + " ] && [ -d " + (shard / "trials").string() +
         " ] && break; sleep 0.02; done; kill -9 $pid; wait $pid; true");
     INFO(killed.output);

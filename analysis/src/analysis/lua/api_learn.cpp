@@ -220,7 +220,8 @@ int l_analyse(lua_State* L) {
     eo.params = first.spec.params;
     const auto& rows = result->rows;
     // A series model prepared with a time axis outside the paper's timing rule
-    // is for comparison only: no model records that rule, so none is deployed.
+    // is for comparison only (its timing names a cylinder's diameter without
+    // sensing its shape): it is evaluated, never deployed.
     const bool deployable = !(first.input == ClassifierInput::series &&
                               request.inputs.series.time_axis != series::TimeAxis::contact);
     std::filesystem::path model_path;
