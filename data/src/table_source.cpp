@@ -102,9 +102,16 @@ TableSource::TableSource(std::string file, std::string_view text) : file_(std::m
         std::vector<Token> value;    // the value's tokens, while it may still be a literal
     };
     std::vector<Frame> open;
-    const auto record = [this](const std::string& path, int line) {
+    // Key paths are stored whole, so text Lua would still accept (nesting up to
+    // its limit under long names, then many fields) could ask for gigabytes:
+    // past this budget the scan gives up, and every error names the file only.
+    std::size_t path_budget = std::size_t{16} << 20;
+    const auto record = [this, &path_budget](const std::string& path, int line) {
+        if (path.size() > path_budget) return false;
+        path_budget -= path.size();
         auto [it, fresh] = sites_.try_emplace(path, Site{line, 0, {}});
         if (!fresh) it->second = Site{};  // written twice: which one holds the value is not in the text
+        return true;
     };
     const auto finish = [this](Frame& f) {  // the field's value ends: keep it when it is a plain literal
         auto it = sites_.find(f.prefix + f.key);
@@ -142,7 +149,10 @@ TableSource::TableSource(std::string file, std::string_view text) : file_(std::m
                 f.key = std::to_string(++f.index);
                 --k;  // the token is the value's first
             }
-            record(f.prefix + f.key, t.line);
+            if (!record(f.prefix + f.key, t.line)) {
+                sites_.clear();
+                return;
+            }
             continue;
         }
         if (f.brackets == 0 && (is(t, ",") || is(t, ";") || is(t, "}"))) {

@@ -87,3 +87,18 @@ TEST_CASE("nearest_site and key_named_in", "[table_source]") {
     CHECK(*rollsense::key_named_in("joint: set cell_angles too", keys) == "joint");  // the first named
     CHECK_FALSE(rollsense::key_named_in("joints are wrong", keys));  // a word, not a part of one
 }
+
+// Fuzzing review: key paths are kept whole, so a file nesting tables under long
+// names and then writing many fields asked for memory quadratic in its size.
+TEST_CASE("a file whose key paths would take too much memory gives no lines, not gigabytes", "[table_source]") {
+    const std::string name(2000, 'k');
+    std::string text = "return { small = 1, ";
+    for (int level = 0; level < 150; ++level) text += name + " = { ";  // paths of 300,000 bytes
+    for (int field = 0; field < 200; ++field) text += "f" + std::to_string(field) + " = 1, ";
+    for (int level = 0; level < 150; ++level) text += "} ";
+    text += "}";
+    const TableSource src("big.lua", text);
+    CHECK(src.where("small", nullptr).empty());  // gave up: the caller names the file only
+    const TableSource fits("ok.lua", "return { small = 1, " + name + " = { f = 2 } }");
+    CHECK(fits.where("small", nullptr) == "ok.lua:1");
+}
