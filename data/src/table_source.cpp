@@ -168,8 +168,13 @@ TableSource::TableSource(std::string file, std::string_view text) : file_(std::m
 }
 
 std::string TableSource::where(const std::string& path, const ParamValue* now) const {
+    // A key written twice may hold a value set since, elsewhere: not this file's
+    // to claim. A value written as an expression (0/0, setting(...)) cannot be
+    // compared: it is taken as written (a later statement in another file that
+    // changes it is not seen; docs/scripting.md says so).
     const auto holds_value = [](const Site& s, const ParamValue* value) {
-        if (!value || s.kind == 0) return true;
+        if (!value) return true;
+        if (s.kind == 0) return s.line > 0;
         if (s.kind == 's') return std::get_if<std::string>(value) && *std::get_if<std::string>(value) == s.text;
         if (s.kind == 'b') return std::get_if<bool>(value) && (*std::get_if<bool>(value) ? "true" : "false") == s.text;
         const double written = std::strtod(s.text.c_str(), nullptr);

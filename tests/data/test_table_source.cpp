@@ -102,3 +102,13 @@ TEST_CASE("a file whose key paths would take too much memory gives no lines, not
     const TableSource fits("ok.lua", "return { small = 1, " + name + " = { f = 2 } }");
     CHECK(fits.where("small", nullptr) == "ok.lua:1");
 }
+
+// Review: a key written twice named its file as the place of a value that a
+// statement elsewhere had set since.
+TEST_CASE("a key written twice is not known to hold the table's value", "[table_source]") {
+    const TableSource src("b.lua", "local a = { rate = 30 }\nreturn { rate = 31.1, port = setting('port', 'x') }");
+    const ParamValue later = -5.0;
+    CHECK(src.where("rate", nullptr) == "b.lua");  // asked without a value: written here, line unknown
+    CHECK(src.where("rate", &later).empty());      // with one: the caller names the file that set it
+    CHECK(src.where("port", &later) == "b.lua:2"); // an expression is taken as written
+}

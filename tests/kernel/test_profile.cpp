@@ -283,3 +283,14 @@ TEST_CASE("a content error names the file and line where the key is written", "[
         CHECK(p.error().message == p_lua + ": control_rate_hz = 0: must be > 0 (the control loop's rate in Hz)");
     }
 }
+
+// Review: the sites of a table that holds itself were noted along every path
+// to depth 8 (6^8 for six such keys): memory without bound before the check
+// that refuses the unknown keys.
+TEST_CASE("a profile table that holds itself is refused at once, not walked without end", "[profile][sites]") {
+    kt::TempDir dir;
+    auto p = load_text(dir, "local t = {}\nt.k1 = t\nt.k2 = t\nt.k3 = t\nt.k4 = t\nt.k5 = t\nt.k6 = t\n"
+                            "t.k7 = t\nt.k8 = t\nt.k9 = t\nreturn t\n");
+    REQUIRE_FALSE(p.ok());
+    CHECK_THAT(p.error().message, Catch::Contains(": unknown key (known here: "));
+}

@@ -3,9 +3,10 @@
 // scan for the file:line its errors name ("sim.lua:7: sample_rate_hz = -5: ...").
 // The scan knows Lua's tokens (comments, strings, long brackets), not its
 // statements: a key path is that of the constructors' nesting, counted from the
-// outermost one. Whatever it cannot be sure of gives no line, never a wrong one:
-// a path written twice in the file, one it does not write, and a value that is
-// no longer what the file wrote there (set later by an assignment or a --set).
+// outermost one. What it cannot be sure of gives no line: a path written twice
+// in the file, one it does not write, and a literal that is no longer what the
+// file wrote there (set later by an assignment or a --set). A value written as
+// an expression cannot be compared, and is placed where it is written.
 #pragma once
 
 #include <filesystem>

@@ -304,7 +304,7 @@ Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, cons
         std::vector<std::size_t> every(table.rows);
         for (std::size_t i = 0; i < every.size(); ++i) every[i] = i;
         auto fixed = tuning_folds(rule, table.y, table.class_names, every, options.folds, options.seed);
-        if (!fixed) return Status(fixed.error()).with_context("the tuning folds (" + rule.describe() + ")");
+        if (!fixed) return Status(fixed.error()).with_context("the tuning folds");  // the error names the scheme
         auto space = tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier);
         if (!space) return space.error();
         BayesOptOptions bo = options.bayes;

@@ -362,9 +362,12 @@ void note_sites(lua_State* L, const LoadState& st, const TableSource* src, std::
                 int depth, std::map<std::string, std::string>& out) {
     if (auto it = st.sources.find(lua_topointer(L, -1)); it != st.sources.end()) src = &it->second, in_src.clear();
     for (lua_pushnil(L); lua_next(L, -2); lua_pop(L, 1)) {
+        // Bounded: a table reached by many paths (itself, a shared one) would give paths without end.
+        if (out.size() >= 10000) return lua_pop(L, 2);
         lua_pushvalue(L, -2);  // a copy: lua_tostring would turn a number key into a string under lua_next
         const std::string key = lua_tostring(L, -1) ? lua_tostring(L, -1) : "?";
         lua_pop(L, 1);
+        if (key.size() > 256) continue;  // no key of a profile is that long: not worth a site
         auto now = lua_to_param(L, -1, path);
         out[path + key] = src->where(in_src + key, now ? &*now : nullptr);  // "": set later, not by that file
         if (lua_istable(L, -1) && depth < 8) note_sites(L, st, src, in_src + key + ".", path + key + ".", depth + 1, out);
