@@ -301,19 +301,20 @@ Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, cons
             groups = std::move(g).value();
             rule = {&options.schemes.front(), &groups};
         }
-        std::vector<std::size_t> every(table.rows);
-        for (std::size_t i = 0; i < every.size(); ++i) every[i] = i;
-        auto fixed = tuning_folds(rule, table.y, table.class_names, every, options.folds, options.seed);
-        if (!fixed) return Status(fixed.error()).with_context("the tuning folds");  // the error names the scheme
         auto space = tuning_space(factory, options.params, table.rows, table.cols(), options.space, options.classifier);
         if (!space) return space.error();
-        BayesOptOptions bo = options.bayes;
-        bo.seed = options.seed;
-        auto s = bayes_optimize(*space, tuning_objective(table, *fixed, factory), options.params, bo);
+        TuningSetup setup;
+        setup.factory = factory;
+        setup.params = options.params;
+        setup.space = std::move(space).value();
+        setup.folds = options.folds;
+        setup.seed = options.seed;
+        setup.bayes = options.bayes;
+        auto s = search_fixed_partition(table, rule, setup);
         if (!s) return s.error();
-        out.params = s->best_params();
-        out.search = std::move(s).value();
-        out.tuning_folds = std::to_string(fixed->k) + "-fold, " + rule.describe();
+        out.params = s->search.best_params();
+        out.search = std::move(s->search);
+        out.tuning_folds = std::to_string(s->folds.k) + "-fold, " + rule.describe();
     }
     auto model = train_classifier(table, factory, out.params);
     if (!model) return model.error();

@@ -63,7 +63,8 @@ Objective tuning_objective(const FeatureTable& table, const TuningFolds& folds, 
     };
 }
 
-Result<TunedCv> tune_fixed_partition(const FeatureTable& table, const TuningFoldRule& rule, const TuningSetup& setup) {
+Result<FixedSearch> search_fixed_partition(const FeatureTable& table, const TuningFoldRule& rule,
+                                           const TuningSetup& setup) {
     auto fixed = tuning_folds(rule, table.y, table.class_names, all_rows(table.rows), setup.folds, setup.seed);
     if (!fixed) return Status(fixed.error()).with_context("the optimiser's partition");
     BayesOptOptions bo = setup.bayes;
@@ -78,9 +79,15 @@ Result<TunedCv> tune_fixed_partition(const FeatureTable& table, const TuningFold
                    std::to_string(bo.evaluations) + " evaluations)");
     auto search = bayes_optimize(setup.space, tuning_objective(table, *fixed, setup.factory), setup.params, bo);
     if (!search) return search.error();
+    return FixedSearch{std::move(fixed).value(), std::move(search).value()};
+}
+
+Result<TunedCv> tune_fixed_partition(const FeatureTable& table, const TuningFoldRule& rule, const TuningSetup& setup) {
+    auto fixed = search_fixed_partition(table, rule, setup);
+    if (!fixed) return fixed.error();
     TunedCv tuned;
-    tuned.search = std::move(search).value();
-    auto cv = cross_validate(table, fixed->fold, fixed->k, setup.factory, tuned.search.best_params());
+    tuned.search = std::move(fixed->search);
+    auto cv = cross_validate(table, fixed->folds.fold, fixed->folds.k, setup.factory, tuned.search.best_params());
     if (!cv) return cv.error();
     tuned.same_folds_accuracy = cv->accuracy();
     tuned.confusion = confusion(table.y, cv->predicted, table.class_names);

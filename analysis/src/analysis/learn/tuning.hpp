@@ -93,8 +93,16 @@ struct TuningSetup {
     std::function<void(const std::string&)> say;  // progress lines (may be empty)
 };
 
-// The paper's protocol: optimisation on one fixed partition of every table
-// row (seed `setup.seed`), the figure scored on the same folds.
+// Bayesian optimisation on one fixed partition of every table row (seed
+// `setup.seed`): the partition and the search. The deployed model's tuning.
+struct FixedSearch {
+    TuningFolds folds;
+    BayesOptResult search;
+};
+Result<FixedSearch> search_fixed_partition(const FeatureTable& table, const TuningFoldRule& rule,
+                                           const TuningSetup& setup);
+
+// The paper's protocol: search_fixed_partition, the figure scored on the same folds.
 Result<TunedCv> tune_fixed_partition(const FeatureTable& table, const TuningFoldRule& rule, const TuningSetup& setup);
 
 // Nested CV on nested_partitions(): tuning inside each outer training fold,
