@@ -6,15 +6,17 @@
 --   rollsense run scripts/paper_experiment.lua --seed 11 --out runs/paper11 -q     (the training recording)
 --   rollsense run scripts/examples/identify_early.lua --seed 23 --out runs/early --set train=runs/paper11
 --
--- 1. Trains one model per fraction f of the nominal roll (10 %, 20 %, ... 100 %)
---    on the prefixes of the training recording (rs.prefix_models).
+-- 1. Trains one model per fraction f of the nominal roll after the contact's
+--    onset (10 %, 20 %, ... 100 %) on the prefixes of the training recording
+--    (rs.prefix_models): time runs from the contact, the paper's timing rule.
 -- 2. For each object and speed, `runs` times: an early-stopping roll (the
 --    finger holds as soon as the rule fires) and the same trial again (same id,
 --    same seed) rolled fully and identified by the full-roll model (the
 --    reference accuracy, paired).
--- The rule: at every new sample, the model of the largest trained fraction
--- the recording has reached classifies the recording so far (the series rule,
--- with the contact it has seen so far); stop when its top score is ≥
+-- The rule: at every new sample after the contact's onset, the model of the
+-- largest trained fraction the recording has reached since the onset
+-- classifies the recording so far (the series rule, with the contact it has
+-- seen so far); stop when its top score is ≥
 -- `threshold` with the same answer for `k` samples in a row. A roll on which
 -- it never fires ends normally and is identified by the full-roll model.
 --
@@ -41,7 +43,8 @@ rs.settings{
   k = { default = 3, kind = "integer", min = 1, help = "samples in a row the same sure answer must hold" },
   -- The earliest prefix models are sure and wrong too often (their
   -- cross-validated accuracy is below 50 % up to 40 % of the roll, docs/identification.md).
-  from = { default = 0.5, kind = "number", min = 0, max = 1, help = "no stop before this share of the nominal roll" },
+  from = { default = 0.5, kind = "number", min = 0, max = 1,
+           help = "no stop before this share of the nominal roll after the contact's onset" },
   classifier = { default = "minirocket", kind = "string", help = "a series classifier for the prefix models" },
 }
 
@@ -55,7 +58,8 @@ local from = rs.setting("from")
 local classifier = rs.setting("classifier")
 rs.on_cleanup(etroll.park)
 
--- 1. The prefix models, and what their fractions are fractions of.
+-- 1. The prefix models, and what their fractions are fractions of (per speed,
+-- the nominal samples from the contact's onset to the end of a recording).
 local trained = rs.prefix_models{ dataset = train, classifier = classifier }
 local models = {}
 for _, m in ipairs(trained.models) do
@@ -74,7 +78,7 @@ for _, speed in ipairs(speeds) do
   end
 end
 
--- The model of the largest trained fraction that `samples` has reached (nil below the first).
+-- The model of the largest trained fraction that `samples` (since the onset) has reached (nil below the first).
 local function model_for(samples, nominal)
   local chosen
   for _, m in ipairs(models) do
@@ -83,8 +87,16 @@ local function model_for(samples, nominal)
   return chosen
 end
 
+-- Samples recorded since the contact's onset (the full-roll model's rule
+-- finds it, as rs.prefix_models did), or nil before the contact.
+local function since_onset(n)
+  local onset = full_model.clf:contact_onset()
+  return onset and n - onset
+end
+
 -- One roll under the stopping rule. Returns the answer (or nil), whether the
--- rule stopped the roll, the roll's seconds and the fraction of the nominal roll recorded.
+-- rule stopped the roll, the roll's seconds and the fraction of the nominal
+-- roll after the onset recorded.
 local function early_roll(speed, nominal)
   local seen, streak, last, answer = 0, 0, nil, nil
   local t0 = rs.now()
@@ -92,7 +104,8 @@ local function early_roll(speed, nominal)
     local n = rs.recorded().samples
     if n == seen then return false end
     seen = n
-    local m = n >= from * nominal and model_for(n, nominal)
+    local after = since_onset(n)
+    local m = after and after >= from * nominal and model_for(after, nominal)
     local a = m and m.clf:identify{ open_end = true }
     if not a then streak, last = 0, nil return false end
     if a.scores[a.object] >= threshold then
@@ -109,7 +122,7 @@ local function early_roll(speed, nominal)
     local a = full_model.clf:identify()
     answer = a and a.object
   end
-  return answer, stopped, seconds, samples / nominal
+  return answer, stopped, seconds, (since_onset(samples) or 0) / nominal
 end
 
 local function full_roll(speed)

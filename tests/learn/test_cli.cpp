@@ -157,7 +157,8 @@ TEST_CASE("rollsense evaluate: a feature and a series classifier side by side, w
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("input: features") && Catch::Contains("input: series") &&
-                             Catch::Contains("before the roll ends") && Catch::Contains("outside the paper's timing rule"));
+                             Catch::Contains("before the roll ends") && Catch::Contains("cut relative to the contact") &&
+                             Catch::Contains("crossing-speed information"));
     const auto j = rollsense::testing::JsonReader::parse([&] {
         std::ifstream in(dir / "eval" / "evaluation.json");
         return std::string(std::istreambuf_iterator<char>(in), {});
@@ -224,7 +225,7 @@ std::size_t count_of(const std::string& hay, const std::string& needle) {
 }
 }  // namespace
 
-TEST_CASE("-o never overwrites a file of the dataset being read", "[learn][cli]") {
+TEST_CASE("evaluate and train -o never overwrite a file of the dataset being read", "[learn][cli]") {
     const auto dir = make_dataset();
     const auto ds = dir / "dataset";
     fs::create_directory_symlink(ds, dir / "link");

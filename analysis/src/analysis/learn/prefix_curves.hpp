@@ -10,20 +10,21 @@
 
 namespace rollsense::learn {
 
-// A speed's nominal recording length: what a full recording at that speed
-// lasts, known before the roll (here the median over the dataset's trials of
-// that speed), so a live run can cut its prefixes the same way.
+// A speed's nominal length after the contact's onset: how long a recording
+// at that speed goes on once the object first touches the array, known before
+// the roll (here the median over the dataset's trials of that speed), so a
+// live run that sees the onset can cut its prefixes the same way.
 struct NominalLength {
     std::string speed;
-    double samples = 0.0;  // median sample count
-    double seconds = 0.0;  // median recorded duration (last − first timestamp)
-    std::size_t trials = 0;
+    double samples = 0.0;  // median samples from the onset to the end of the recording
+    double seconds = 0.0;  // median seconds from the onset to the last timestamp
+    std::size_t trials = 0;  // the speed's trials with an onset (the medians' population)
 };
 
 // One point of a curve: the out-of-fold predictions at one fraction.
 struct PrefixPoint {
     double fraction = 0.0;
-    double seconds = 0.0;          // per-speed curves: fraction × the speed's nominal seconds; 0 overall
+    double seconds = 0.0;          // per-speed curves: fraction × the speed's nominal seconds (after the onset); 0 overall
     std::size_t total = 0;         // test predictions asked for (trials × repetitions)
     std::size_t correct = 0;
     std::size_t no_decision = 0;   // the prefix gave the classifier no input (counted wrong)
@@ -54,9 +55,10 @@ struct PrefixCurves {
 
 // The statement every presentation of the curves carries.
 inline constexpr const char* kPrefixTimingNote =
-    "Early curves are outside the paper's timing rule in one respect: whether a contact has finished by a given "
-    "fraction of the roll depends on how fast the object crosses the array (its size and the speed), so a prefix "
-    "carries some crossing-speed information that a full, contact-normalised trial does not.";
+    "Prefixes are cut relative to the contact (its onset plus a share of the roll after it), as the paper's timing "
+    "rule asks; one caveat remains: how much of the contact a prefix shows depends on how fast the object crosses "
+    "the array (its size and the speed), so a prefix carries some crossing-speed information that a full, "
+    "contact-normalised trial does not.";
 
 // What to compute: the fractions, and how many of the evaluation's partitions
 // (the default: one k-fold per fraction).

@@ -9,6 +9,7 @@
 #include "analysis/learn/cross_validation.hpp"
 #include "analysis/learn/parallel_for.hpp"
 #include "analysis/series/model_rule.hpp"
+#include "analysis/series/onset.hpp"
 #include "analysis/series/series_table.hpp"
 
 namespace rollsense::learn {
@@ -19,14 +20,6 @@ double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t m = v.size() / 2;
     return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-// The samples a prefix keeps: fraction × the speed's nominal length, never
-// more than the trial has; f ≥ 1 keeps the whole recording.
-std::size_t prefix_samples(double fraction, double nominal, std::size_t samples) {
-    if (fraction >= 1.0) return samples;
-    const auto n = static_cast<std::size_t>(std::llround(fraction * nominal));
-    return std::min(n, samples);
 }
 
 // The recordings of `records`, loaded on `threads` threads; the first error names the file.
@@ -71,21 +64,42 @@ Status check_fractions(const std::vector<double>& fractions) {
 
 }  // namespace
 
-std::vector<NominalLength> nominal_lengths(const std::vector<TrialRecord>& records,
-                                           const std::vector<TrialData>& data) {
+std::size_t prefix_samples(double fraction, std::optional<std::size_t> onset, double nominal, std::size_t samples) {
+    if (fraction >= 1.0) return samples;
+    if (!onset) return 0;
+    const auto after = static_cast<std::size_t>(std::llround(fraction * nominal));
+    return std::min(*onset + after, samples);
+}
+
+PrefixCuts prefix_cuts(const std::vector<TrialRecord>& records, const std::vector<TrialData>& data,
+                       std::span<const std::size_t> channels, const series::SeriesSettings& settings) {
+    PrefixCuts out;
+    out.onset.resize(records.size());
+    series::SeriesSettings whole = settings;
+    whole.prefix = 0;
     std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by_speed;
     for (std::size_t i = 0; i < records.size(); ++i) {
+        out.onset[i] = series::contact_onset(data[i], channels, whole);
         auto& [samples, seconds] = by_speed[records[i].info.speed];
-        samples.push_back(static_cast<double>(data[i].samples()));
-        seconds.push_back(data[i].time.size() > 1 ? data[i].time.back() - data[i].time.front() : 0.0);
+        if (!out.onset[i]) continue;  // never touched: no length after an onset to count
+        const std::size_t o = *out.onset[i];
+        samples.push_back(static_cast<double>(data[i].samples() - o));
+        seconds.push_back(data[i].time.size() > o ? data[i].time.back() - data[i].time[o] : 0.0);
     }
-    std::vector<NominalLength> out;
-    for (auto& [speed, v] : by_speed) out.push_back({speed, median(v.first), median(v.second), v.first.size()});
+    for (auto& [speed, v] : by_speed)
+        out.nominal.push_back({speed, median(v.first), median(v.second), v.first.size()});
     // Numeric speed labels in ascending order ("10" < "15" < "20" < "100").
-    std::stable_sort(out.begin(), out.end(), [](const NominalLength& a, const NominalLength& b) {
+    std::stable_sort(out.nominal.begin(), out.nominal.end(), [](const NominalLength& a, const NominalLength& b) {
         return a.speed.size() != b.speed.size() ? a.speed.size() < b.speed.size() : a.speed < b.speed;
     });
+    std::map<std::string, double> nominal_of;
+    for (const auto& nl : out.nominal) nominal_of[nl.speed] = nl.samples;
+    for (const auto& r : records) out.nominal_samples.push_back(nominal_of.at(r.info.speed));
     return out;
+}
+
+std::size_t PrefixCuts::keep(std::size_t trial, double fraction, std::size_t samples) const {
+    return prefix_samples(fraction, onset[trial], nominal_samples[trial], samples);
 }
 
 Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, const Evaluation& ev,
@@ -122,7 +136,8 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
     out.fractions = options.fractions;
     out.folds = ev.plan.folds;
     out.repeats = std::clamp(options.repeats, 1, static_cast<int>(ev.plan.repeats()));
-    out.nominal = nominal_lengths(records, data);
+    const PrefixCuts cuts = prefix_cuts(records, data, channel_idx, inputs.series);
+    out.nominal = cuts.nominal;
     std::map<std::string, const NominalLength*> nominal_of;
     for (const auto& nl : out.nominal) nominal_of[nl.speed] = &nl;
 
@@ -141,7 +156,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
     for (double f : options.fractions) {
         if (options.progress) {
             char buf[96];
-            std::snprintf(buf, sizeof buf, "prefixes: %.0f %% of the nominal roll", 100.0 * f);
+            std::snprintf(buf, sizeof buf, "prefixes: onset + %.0f %% of the nominal roll after it", 100.0 * f);
             options.progress(buf);
         }
         // Each trial's prefix through both input steps (the same rules as the full trials).
@@ -152,8 +167,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
         std::vector<Status> errors(n);
         parallel_for(n, options.threads, [&](std::size_t i) {
             const TrialData& d = data[i];
-            const std::size_t keep =
-                prefix_samples(f, nominal_of.at(records[i].info.speed)->samples, d.samples());
+            const std::size_t keep = cuts.keep(i, f, d.samples());
             if (need_features && keep > 0) {
                 features::FeatureExtractor extractor(feature_settings);
                 std::array<std::span<const double>, features::kChannels> ch;
@@ -289,9 +303,8 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
     const std::vector<TrialData>& data = *loaded;
 
     PrefixModels out;
-    out.nominal = nominal_lengths(records, data);
-    std::map<std::string, double> nominal_samples;
-    for (const auto& nl : out.nominal) nominal_samples[nl.speed] = nl.samples;
+    const PrefixCuts cuts = prefix_cuts(records, data, channel_idx, inputs.series);
+    out.nominal = cuts.nominal;
     std::set<std::string> objects;
     for (const auto& r : records) objects.insert(r.info.object);
     const std::vector<std::string> class_names(objects.begin(), objects.end());
@@ -301,7 +314,7 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
         std::vector<Status> errors(records.size());
         parallel_for(records.size(), inputs.threads, [&](std::size_t i) {
             series::SeriesSettings s = inputs.series;
-            const std::size_t keep = prefix_samples(f, nominal_samples.at(records[i].info.speed), data[i].samples());
+            const std::size_t keep = cuts.keep(i, f, data[i].samples());
             s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
             auto p = series::prepare_series(data[i], channel_idx, s);
             if (!p) errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
@@ -349,11 +362,12 @@ std::string format_prefix_curves(const PrefixCurves& pc) {
     std::string out;
     char buf[256];
     std::snprintf(buf, sizeof buf,
-                  "\nidentification before the roll ends (%d x %d-fold on the same partitions; prefix = fraction of "
-                  "the nominal recording length at the trial's speed; no decision counts as wrong):\n",
+                  "\nidentification before the roll ends (%d x %d-fold on the same partitions; prefix = the recording up "
+                  "to the contact's onset plus a fraction of the nominal length after the onset at the trial's speed; "
+                  "no decision counts as wrong):\n",
                   pc.repeats, pc.folds);
     out += buf;
-    out += "  nominal lengths (median over the trials of each speed):";
+    out += "  nominal lengths after the onset (median over the trials of each speed):";
     for (const auto& nl : pc.nominal) {
         std::snprintf(buf, sizeof buf, " speed %s %.0f samples / %.2f s;", nl.speed.c_str(), nl.samples, nl.seconds);
         out += buf;

@@ -22,6 +22,7 @@
 #include "runtime/lua/lua_values.hpp"
 #include "analysis/report/report.hpp"
 #include "analysis/series/model_rule.hpp"
+#include "analysis/series/onset.hpp"
 #include "analysis/series/prepare.hpp"
 
 namespace rollsense::runtime::lua_api {
@@ -457,6 +458,28 @@ int l_identify(lua_State* L) {
     return 1;
 }
 
+// clf:contact_onset() → how many samples the recording so far holds before
+// the contact was first seen (series::contact_onset, with the series rule the
+// model records), or nil while no sensor has risen yet. A script that stops
+// early measures its share of the roll from here, as rs.prefix_models cuts
+// the prefixes its models were trained on: samples − onset of the nominal
+// length after the onset.
+int l_contact_onset(lua_State* L) {
+    auto& clf = check_classifier(L, 1);
+    if (clf->input() != ClassifierInput::series)
+        return luaL_error(L, "contact_onset: the model takes features; the onset is read with a series model's rule "
+                             "(e.g. a minirocket model)");
+    Session& s = Session::of(L);
+    auto columns = recording_channels(s);
+    check(L, Status(columns.status()).with_context("contact_onset"));
+    auto rule = series::model_rule(*clf, "the model of rs.classifier");
+    check(L, Status(rule.status()).with_context("contact_onset"));
+    const auto onset = series::contact_onset(s.recorded(), *columns, rule->settings);
+    if (!onset) lua_pushnil(L);
+    else lua_pushinteger(L, static_cast<lua_Integer>(*onset));
+    return 1;
+}
+
 // clf:predict({f1, ..., f13}) → prediction table
 int l_predict(lua_State* L) {
     auto& clf = check_classifier(L, 1);
@@ -485,6 +508,7 @@ int l_classes(lua_State* L) {
 
 void register_learn(lua_State* L) {
     static const luaL_Reg methods[] = {{"identify", l_identify}, {"predict", l_predict}, {"classes", l_classes},
+                                       {"contact_onset", l_contact_onset},
                                        {nullptr, nullptr}};
     luaL_newmetatable(L, kClassifierMeta);
     protect_metatable(L);
