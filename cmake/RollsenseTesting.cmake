@@ -7,6 +7,16 @@
 #   ROLLSENSE_SHARE_DIR, ROLLSENSE_BIN_DIR.
 function(rollsense_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBRARIES;DEPENDS" ${ARGN})
+  # A test name starting with '-' reaches Catch as an option ("-o NAME" names
+  # its report file), so ctest would run every test of the binary as that one.
+  foreach(src IN LISTS ARG_SOURCES)
+    get_filename_component(path "${src}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+    file(STRINGS "${path}" dashed REGEX "TEST_CASE\\(\"-")
+    if(dashed)
+      message(FATAL_ERROR "${path}: a TEST_CASE name starts with '-' (${dashed}): Catch reads it as an option; "
+                          "start the name with a word")
+    endif()
+  endforeach()
   add_executable(${name} ${ARG_SOURCES})
   # rollsense_hands: the controllers the stock E-TRoll profiles name, as the program has them.
   target_link_libraries(${name} PRIVATE Catch2::Catch2WithMain rollsense_test_support rollsense_hands ${ARG_LIBRARIES})

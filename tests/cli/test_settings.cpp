@@ -324,7 +324,7 @@ TEST_CASE("run-config.csv records what decides the trials; --resume refuses any 
     CHECK(same.output.find("0 trials saved, 6 already on disk") != std::string::npos);
 }
 
-TEST_CASE("--out holding files that are not a dataset is refused, with or without --resume, and nothing is touched") {
+TEST_CASE("run --out holding files that are not a dataset is refused, with or without --resume, and nothing is touched") {
     TempDir dir("rollsense-resume");
     const auto mine = dir / "mine";
     for (const char* name : {"report.html", "model.rsm", "evaluation.txt", "trials/C1-v10-r001.csv"})
