@@ -97,19 +97,69 @@ function seconds(s) {
 }
 function count(id, n) { $(id).textContent = String(Number($(id).textContent) + n); }
 
+// The header's notice: what the page waits for, or why it stopped ("" hides it).
+function notice(text, bad) {
+  $("notice").textContent = text;
+  $("notice").hidden = !text;
+  $("notice").className = bad ? "bad" : "";
+}
+const failed = (e) => notice(`${e.message}: reload the page to try again`, true);
+
+// ---------------------------------------------------------------- busy ------
+// The server serves a few viewers at once and answers any more with 503 and
+// Retry-After (live/src/live/http_server.cpp). fetch() resolves on a 503 like
+// on any answer, and EventSource gives up for good on one, so a page that met
+// a full server stayed blank until reloaded. Instead it waits as the server
+// asks, says so meanwhile, and asks again.
+const RETRY_DEFAULT_S = 2, RETRY_MAX_S = 30;
+
+// fetch(url, options) until the server has room: the answer when it is ok;
+// any other answer or a network error throws, saying what it was.
+async function get(url, options) {
+  for (let waited = false; ; waited = true) {
+    const r = await fetch(url, options).catch((e) => { throw new Error(`${url}: ${e.message}`); });
+    if (r.ok) {
+      if (waited) notice("");
+      return r;
+    }
+    const text = (await r.text()).trim();  // empty for HEAD
+    if (r.status !== 503) throw new Error(`${url}: ${r.status} ${r.statusText}` + (text ? ` (${text})` : ""));
+    // Seconds (an HTTP date, which this server never sends, gets the default);
+    // capped, so a wrong header cannot park the page for hours.
+    const after = Number(r.headers.get("Retry-After"));
+    const s = after > 0 ? Math.min(after, RETRY_MAX_S) : RETRY_DEFAULT_S;
+    const most = text.match(/^(\d+) viewers/);  // the server's "8 viewers at once at most: ..."
+    notice(`busy: ${most ? most[1] + " viewers at most" : "no room for another viewer"}, retrying in ${s} s`);
+    await new Promise((wake) => setTimeout(wake, s * 1000));
+  }
+}
+
 // ---------------------------------------------------------------- live ------
 // ?events=N: stop following the stream after N events, leaving the page as it
 // is then (a snapshot: a headless browser's --dump-dom or --screenshot waits
 // for every connection to end).
 function live() {
-  const source = new EventSource("events");
   const limit = Number(new URLSearchParams(location.search).get("events")) || Infinity;
-  let received = 0;
-  const on = (name, fn) => source.addEventListener(name, (e) => {
-    count("n-events", 1);
-    fn(JSON.parse(e.data));
-    if (++received >= limit) { source.close(); draw(); }
-  });
+  let received = 0, source = null;
+  const handlers = [];
+  const on = (name, fn) => handlers.push([name, fn]);
+  const connect = () => {
+    source = new EventSource("events");
+    for (const [name, fn] of handlers)
+      source.addEventListener(name, (e) => {
+        count("n-events", 1);
+        fn(JSON.parse(e.data));
+        if (++received >= limit) { source.close(); draw(); }
+      });
+    // A broken connection EventSource opens again by itself (readyState
+    // CONNECTING). An answer other than a stream closes it for good without
+    // saying which: HEAD of the same URL tells, waiting while the server is
+    // full, and then the page connects anew (a late joiner is sent the run,
+    // trial and state again; the same trial is not started over).
+    source.onerror = () => {
+      if (source.readyState === EventSource.CLOSED) get("events", { method: "HEAD" }).then(connect, failed);
+    };
+  };
   on("run", (r) => {
     $("run").textContent = `${r.script} on ${r.profile}: ${r.outcome}` + (r.message ? ` — ${r.message}` : "");
     $("run").className = r.outcome === "failed" || r.outcome === "cancelled" ? "bad" : "";
@@ -152,6 +202,7 @@ function live() {
     $("result").textContent = `${r.trial}: ${r.object} (` + ranked.map(([c, v]) => `${c} ${v.toFixed(2)}`).join(", ") + ")";
   });
   on("lag", (l) => count("n-lost", l.missed));
+  connect();
 }
 
 // ---------------------------------------------------------------- view ------
@@ -161,19 +212,19 @@ async function view(info) {
   $("fig-currents").hidden = true;
   $("side").hidden = true;
   $("trials").hidden = false;
-  const trials = await (await fetch("dataset/trials.json")).json();
+  const trials = await (await get("dataset/trials.json")).json();
   const list = $("trial-list");
   for (const tr of trials) {
     const li = document.createElement("li");
     li.textContent = tr.id;
     li.title = `object ${tr.object}, speed ${tr.speed}, ${tr.samples} samples`;
-    li.onclick = () => show(tr.id, li);
+    li.onclick = () => show(tr.id, li).catch(failed);
     list.appendChild(li);
   }
-  if (trials.length) show(trials[0].id, list.firstChild);
+  if (trials.length) await show(trials[0].id, list.firstChild);
 }
 async function show(id, li) {
-  const d = await (await fetch("dataset/trial/" + encodeURIComponent(id) + ".json")).json();
+  const d = await (await get("dataset/trial/" + encodeURIComponent(id) + ".json")).json();
   document.querySelectorAll("nav li.selected").forEach((e) => e.classList.remove("selected"));
   li.classList.add("selected");
   previous = present;
@@ -183,4 +234,4 @@ async function show(id, li) {
   redraw();
 }
 
-fetch("info.json").then((r) => r.json()).then((info) => (info.mode === "view" ? view(info) : live()));
+get("info.json").then((r) => r.json()).then((info) => (info.mode === "view" ? view(info) : live())).catch(failed);
