@@ -5,7 +5,10 @@
 //     writes into the DOM, rising; a screenshot with plotted pixels);
 //   - a client that stops reading and one that is killed do not stall the run
 //     (it ends with every trial saved);
-//   - other paths get 404, other methods 405, a malformed request 400.
+//   - other paths get 404, other methods 405, a malformed request 400;
+//   - [busy] a page that meets a full server (every client slot taken, the
+//     server answers 503 with Retry-After) says so, waits and asks again, and
+//     goes live once there is room: for its first fetch and for its stream.
 // Run by tests/live/with_chromium.sh, which installs Chromium when it may.
 #include <catch2/catch.hpp>
 
@@ -14,13 +17,19 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <fstream>
+#include <functional>
+#include <map>
+#include <mutex>
 #include <regex>
 #include <sstream>
 #include <thread>
 
 #include "etroll_bus.hpp"
 #include "http_client.hpp"
+#include "live/http_server.hpp"
 #include "png_image.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
@@ -28,6 +37,7 @@
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
+using rollsense::testing::connect_local;
 using rollsense::testing::http_get;
 using rollsense::testing::status_of;
 
@@ -51,6 +61,12 @@ long points_drawn(const std::string& dom) {
     if (std::regex_search(dom, m, std::regex("id=\"plot-channels\"[^>]*data-points=\"([0-9]+)\""))) return std::stol(m[1]);
     return -1;
 }
+// The opening tag and the text of the element with this id ("" when there is none).
+std::string element(const std::string& dom, const std::string& id) {
+    std::smatch m;
+    if (std::regex_search(dom, m, std::regex("<[a-z]+ id=\"" + id + "\"[^>]*>[^<]*"))) return m[0];
+    return {};
+}
 
 // The command line of headless Chromium for `args` and `url`; its own log
 // (dbus and GPU complaints in a container) goes to chromium.log, not into the
@@ -67,17 +83,15 @@ std::string chromium(const fs::path& work, const std::string& args, const std::s
     return c + " " + args + " " + url + " 2>>" + (work / "chromium.log").string() + ")";
 }
 
-}  // namespace
+const std::string kEventsRequest = "GET /events HTTP/1.1\r\nHost: x\r\n\r\n";
 
-TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clients cannot stall the run",
-          "[live][browser]") {
-    auto emu = etroll_bus::start();
-    const rollsense::testing::TempDir tmp("rollsense-live");
-    const fs::path log = tmp.path() / "run.txt";
+// `rollsense run tests/live/live_trials.lua --live=0` on the emulated bus at
+// `device` (its stderr in `log`): the run's pid.
+pid_t start_run(const fs::path& work, const fs::path& log, const std::string& device) {
     const std::string exe = std::string(ROLLSENSE_BIN_DIR) + "/rollsense";
     const std::string script = std::string(ROLLSENSE_SOURCE_DIR) + "/tests/live/live_trials.lua";
-    const std::string out = (tmp.path() / "out").string();
-    const std::string device = "dxl_device=" + emu->device();
+    const std::string out = (work / "out").string();
+    const std::string dxl = "dxl_device=" + device;
     // This tests the view, not the bus's deadlines: a reply timeout of 250 ms
     // (not 30) keeps a CI machine busy with other builds from failing the run.
     const std::string patience = "devices.hand.params.timeout_ms=250";
@@ -87,28 +101,244 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
         const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         ::dup2(fd, 2);
         ::execl(exe.c_str(), exe.c_str(), "run", script.c_str(), "--profile", "etroll-emulated", "--set",
-                device.c_str(), "--set", patience.c_str(), "--out", out.c_str(), "--live=0", "--no-progress", static_cast<char*>(nullptr));
+                dxl.c_str(), "--set", patience.c_str(), "--out", out.c_str(), "--live=0", "--no-progress", static_cast<char*>(nullptr));
         ::_exit(127);
     }
-    struct Reap {
-        pid_t pid;
-        ~Reap() {
-            if (pid > 0 && ::kill(pid, SIGKILL) == 0) ::waitpid(pid, nullptr, 0);
-        }
-    } reap_run{run};
+    return run;
+}
 
-    // The address it prints (port 0: any free one).
-    std::uint16_t port = 0;
-    std::string url;
-    for (int i = 0; i < 400 && port == 0; ++i) {
+// Kills the run at the end of the test unless it was waited for (pid 0).
+struct Reap {
+    pid_t pid;
+    ~Reap() {
+        if (pid > 0 && ::kill(pid, SIGKILL) == 0) ::waitpid(pid, nullptr, 0);
+    }
+};
+
+// The address the run prints (port 0: any free one); port stays 0 if it prints none.
+std::string wait_for_url(const fs::path& log, std::uint16_t& port) {
+    for (int i = 0; i < 400; ++i) {
         std::smatch m;
         const auto text = read_file(log);
         if (std::regex_search(text, m, std::regex("live view: (http://127\\.0\\.0\\.1:([0-9]+)/)"))) {
-            url = m[1];
             port = static_cast<std::uint16_t>(std::stoi(m[2]));
+            return m[1];
         }
-        if (port == 0) std::this_thread::sleep_for(25ms);
+        std::this_thread::sleep_for(25ms);
     }
+    return {};
+}
+
+// Whether a trial records (samples in the stream) within 90 s.
+bool wait_for_samples(std::uint16_t port) {
+    const auto give_up = Clock::now() + 90s;
+    while (Clock::now() < give_up) {
+        const int fd = connect_local(port);
+        if (fd < 0) return false;
+        (void)::send(fd, kEventsRequest.data(), kEventsRequest.size(), MSG_NOSIGNAL);
+        const bool sampling =
+            rollsense::testing::read_reply(fd, 1 << 16, 1000ms).find("event: sample") != std::string::npos;
+        ::close(fd);
+        if (sampling) return true;
+        std::this_thread::sleep_for(200ms);
+    }
+    return false;
+}
+
+bool send_all(int fd, const char* data, std::size_t size) {
+    while (size > 0) {
+        const ssize_t n = ::send(fd, data, size, MSG_NOSIGNAL);
+        if (n <= 0) return false;
+        data += n;
+        size -= static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
+// Event streams that take every client slot of the server and read all they
+// are sent, so that it keeps them: while they are open, it answers anyone
+// else 503. Called from the relay's threads, so no Catch2 assertions: false
+// when it could not within a minute.
+class SlotHolders {
+public:
+    explicit SlotHolders(std::uint16_t port) : port_(port) {}
+    ~SlotHolders() { release(); }
+
+    bool take_all() {
+        const auto give_up = Clock::now() + 60s;
+        while (fds_.size() < static_cast<std::size_t>(rollsense::live::HttpServer::kMaxClients)) {
+            if (Clock::now() > give_up) return false;
+            const int fd = connect_local(port_);
+            if (fd < 0) return false;
+            std::string head;
+            if (send_all(fd, kEventsRequest.data(), kEventsRequest.size()))
+                while (head.find("\r\n\r\n") == std::string::npos) {
+                    pollfd p{fd, POLLIN, 0};
+                    char buf[4096];
+                    const ssize_t n = ::poll(&p, 1, 5000) > 0 ? ::recv(fd, buf, sizeof buf, 0) : 0;
+                    if (n <= 0) break;
+                    head.append(buf, static_cast<std::size_t>(n));
+                }
+            if (status_of(head) != 200) {  // a slot not free yet (a request of the page ending): again
+                ::close(fd);
+                std::this_thread::sleep_for(100ms);
+                continue;
+            }
+            fds_.push_back(fd);
+            readers_.emplace_back([fd] {
+                for (char buf[4096]; ::recv(fd, buf, sizeof buf, 0) > 0;) {
+                }
+            });
+        }
+        return true;
+    }
+
+    // Closes them and waits until the server has noticed (it checks every
+    // 250 ms) and answers again.
+    bool release() {
+        if (fds_.empty()) return true;
+        for (const int fd : fds_) ::shutdown(fd, SHUT_RDWR);
+        for (auto& t : readers_) t.join();
+        for (const int fd : fds_) ::close(fd);
+        fds_.clear();
+        readers_.clear();
+        std::this_thread::sleep_for(1s);
+        for (const auto give_up = Clock::now() + 30s; Clock::now() < give_up; std::this_thread::sleep_for(100ms))
+            if (status_of(http_get(port_, "/info.json")) == 200) return true;
+        return false;
+    }
+
+private:
+    std::uint16_t port_;
+    std::vector<int> fds_;
+    std::vector<std::thread> readers_;
+};
+
+// A TCP relay between headless Chromium and the live view's server, so that
+// the test chooses the moment the server is full: the page is loaded through
+// it (its URLs are relative, so all its requests come this way), every byte
+// passes unchanged both ways (the server's own answers, 503 included), and
+// before forwarding a request it calls `gate` with the request's method and
+// target, one at a time, which may take or free the server's slots first.
+class Relay {
+public:
+    using Gate = std::function<void(const std::string& method, const std::string& target)>;
+
+    Relay(std::uint16_t server, Gate gate) : server_(server), gate_(std::move(gate)) {
+        listen_fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        sockaddr_in a{};
+        a.sin_family = AF_INET;
+        a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        socklen_t len = sizeof a;
+        REQUIRE(::bind(listen_fd_, reinterpret_cast<sockaddr*>(&a), len) == 0);
+        REQUIRE(::listen(listen_fd_, 16) == 0);
+        ::getsockname(listen_fd_, reinterpret_cast<sockaddr*>(&a), &len);
+        port_ = ntohs(a.sin_port);
+        acceptor_ = std::thread([this] { accept_loop(); });
+    }
+    ~Relay() {
+        stopping_ = true;
+        acceptor_.join();
+        for (auto& t : connections_) t.join();
+        ::close(listen_fd_);
+    }
+
+    std::string url() const { return "http://127.0.0.1:" + std::to_string(port_) + "/"; }
+    // The statuses the server answered the requests for `target` with, in order.
+    std::vector<int> statuses(const std::string& target) {
+        std::lock_guard lock(mutex_);
+        std::vector<int> s;
+        for (const auto& [t, status] : answers_)
+            if (t == target) s.push_back(status);
+        return s;
+    }
+
+private:
+    void accept_loop() {
+        while (!stopping_) {
+            pollfd p{listen_fd_, POLLIN, 0};
+            if (::poll(&p, 1, 100) <= 0) continue;
+            const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+            if (fd >= 0) connections_.emplace_back([this, fd] { relay(fd); });
+        }
+    }
+
+    // One connection: its request head, the gate, then bytes both ways until
+    // both ends have closed (a side's end of input is passed on as shutdown).
+    void relay(int browser) {
+        std::string head;
+        char buf[16384];
+        while (head.find("\r\n\r\n") == std::string::npos) {
+            pollfd p{browser, POLLIN, 0};
+            if (stopping_ || ::poll(&p, 1, 100) < 0) return (void)::close(browser);
+            if (p.revents == 0) continue;  // a connection Chromium opened ahead, idle so far
+            const ssize_t n = ::recv(browser, buf, sizeof buf, 0);
+            if (n <= 0) return (void)::close(browser);
+            head.append(buf, static_cast<std::size_t>(n));
+        }
+        std::istringstream line(head);
+        std::string method, target;
+        line >> method >> target;
+        {
+            std::lock_guard lock(gate_mutex_);
+            gate_(method, target);
+        }
+        const int server = connect_local(server_);
+        if (server < 0 || !send_all(server, head.data(), head.size())) {
+            if (server >= 0) ::close(server);
+            return (void)::close(browser);
+        }
+        pollfd p[2] = {{browser, POLLIN, 0}, {server, POLLIN, 0}};
+        std::string answer;  // its first bytes, for the status
+        while (!stopping_ && (p[0].fd >= 0 || p[1].fd >= 0)) {
+            if (::poll(p, 2, 100) < 0) break;
+            bool broken = false;
+            for (int i = 0; i < 2 && !broken; ++i) {
+                if (p[i].fd < 0 || p[i].revents == 0) continue;
+                const int to = i == 0 ? server : browser;
+                const ssize_t n = ::recv(p[i].fd, buf, sizeof buf, 0);
+                if (n <= 0) {
+                    ::shutdown(to, SHUT_WR);
+                    p[i].fd = -1;
+                    continue;
+                }
+                if (i == 1 && answer.size() < 12) {
+                    answer.append(buf, static_cast<std::size_t>(n));
+                    if (answer.size() >= 12) {
+                        std::lock_guard lock(mutex_);
+                        answers_.emplace_back(target, status_of(answer));
+                    }
+                }
+                broken = !send_all(to, buf, static_cast<std::size_t>(n));
+            }
+            if (broken) break;
+        }
+        ::close(server);
+        ::close(browser);
+    }
+
+    std::uint16_t server_;
+    Gate gate_;
+    int listen_fd_ = -1;
+    std::uint16_t port_ = 0;
+    std::atomic<bool> stopping_{false};
+    std::mutex gate_mutex_, mutex_;
+    std::vector<std::pair<std::string, int>> answers_;
+    std::vector<std::thread> connections_;
+    std::thread acceptor_;
+};
+
+}  // namespace
+
+TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clients cannot stall the run",
+          "[live][browser]") {
+    auto emu = etroll_bus::start();
+    const rollsense::testing::TempDir tmp("rollsense-live");
+    const fs::path log = tmp.path() / "run.txt";
+    const pid_t run = start_run(tmp.path(), log, emu->device());
+    Reap reap_run{run};
+    std::uint16_t port = 0;
+    const std::string url = wait_for_url(log, port);
     INFO(read_file(log));
     REQUIRE(port != 0);
 
@@ -127,7 +357,7 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
     REQUIRE(stalled >= 0);
     const int small = 4096;
     ::setsockopt(stalled, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
-    const std::string events = "GET /events HTTP/1.1\r\nHost: x\r\n\r\n";
+    const std::string& events = kEventsRequest;
     REQUIRE(::send(stalled, events.data(), events.size(), MSG_NOSIGNAL) > 0);
     const pid_t killed = ::fork();
     REQUIRE(killed >= 0);
@@ -139,16 +369,7 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
     }
 
     // Wait until the first trial records (samples in the stream).
-    bool sampling = false;
-    const auto give_up = Clock::now() + 90s;
-    while (!sampling && Clock::now() < give_up) {
-        const int fd = rollsense::testing::connect_local(port);
-        REQUIRE(fd >= 0);
-        (void)::send(fd, events.data(), events.size(), MSG_NOSIGNAL);
-        sampling = rollsense::testing::read_reply(fd, 1 << 16, 1000ms).find("event: sample") != std::string::npos;
-        ::close(fd);
-        if (!sampling) std::this_thread::sleep_for(200ms);
-    }
+    const bool sampling = wait_for_samples(port);
     ::kill(killed, SIGKILL);
     ::waitpid(killed, nullptr, 0);
     REQUIRE(sampling);
@@ -206,4 +427,81 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
     CHECK(WIFEXITED(status));
     CHECK(WEXITSTATUS(status) == 0);
     CHECK_THAT(read_file(log), Catch::Contains("done: 2 trials saved"));
+}
+
+// The server serves HttpServer::kMaxClients clients at once and answers any
+// more with 503 and Retry-After: 2. A browser's EventSource gives up for good
+// on such an answer, and fetch() resolves on it, so the page has to wait and
+// ask again by itself. Chromium loads the page through a relay that takes
+// every slot of the server (with streams that read) just before the page's
+// first request for info.json or for the event stream, so that the server
+// itself answers 503; in the second part it frees them when the page asks
+// for the same target the third time.
+// Chromium's virtual time (--virtual-time-budget) runs the page's waits at
+// once when nothing else is pending, so the test waits for nothing.
+TEST_CASE("rollsense run --live: a page that finds every client slot taken says so, retries and goes live",
+          "[live][browser][busy]") {
+    auto emu = etroll_bus::start();
+    const rollsense::testing::TempDir tmp("rollsense-live-busy");
+    const fs::path log = tmp.path() / "run.txt";
+    Reap reap_run{start_run(tmp.path(), log, emu->device())};  // killed at the end: its trials do not matter here
+    std::uint16_t port = 0;
+    wait_for_url(log, port);
+    INFO(read_file(log));
+    REQUIRE(port != 0);
+    REQUIRE(wait_for_samples(port));
+    const std::string most = std::to_string(rollsense::live::HttpServer::kMaxClients);
+
+    // One run for both (sections would start it twice, and its first trial
+    // records only some seconds after the start). While the server stays
+    // full, the page says so and asks again every Retry-After seconds.
+    {
+        SlotHolders holders(port);
+        std::atomic<bool> held{true};
+        int asked = 0;
+        Relay relay(port, [&](const std::string&, const std::string& target) {
+            if (target == "/info.json" && ++asked == 1) held = holders.take_all();
+        });
+        // 10 s of the page's (virtual) time: about five tries 2 s apart.
+        const auto dump = rollsense::testing::run_command(
+            chromium(tmp.path(), "--virtual-time-budget=10000 --dump-dom", relay.url()));
+        INFO(dump.output.substr(0, 4000));
+        REQUIRE(held);
+        const auto answers = relay.statuses("/info.json");
+        CHECK(answers.size() >= 2);
+        CHECK(answers.size() <= 10);
+        CHECK(std::all_of(answers.begin(), answers.end(), [](int status) { return status == 503; }));
+        const auto shown = element(dump.output, "notice");
+        CHECK_THAT(shown, Catch::Contains("busy: " + most + " viewers at most, retrying in 2 s"));
+        CHECK_THAT(shown, !Catch::Contains("hidden"));
+        CHECK(dom_count(dump.output, "n-events") == 0);
+    }
+
+    // Once there is room, the page goes live: after a refused info.json and a
+    // refused event stream.
+    REQUIRE(wait_for_samples(port));
+    {
+        SlotHolders holders(port);
+        std::atomic<bool> held{true};
+        std::map<std::string, int> asked;
+        Relay relay(port, [&](const std::string&, const std::string& target) {
+            if (target != "/info.json" && target != "/events") return;
+            const int n = ++asked[target];
+            if (n == 1) held = held && holders.take_all();
+            if (n == 3) held = held && holders.release();
+        });
+        const auto dump = rollsense::testing::run_command(
+            chromium(tmp.path(), "--virtual-time-budget=30000 --dump-dom", "'" + relay.url() + "?events=60'"));
+        INFO(dump.output.substr(0, 4000));
+        REQUIRE(held);
+        // info.json: refused, refused after 2 s, answered; the stream: refused
+        // (EventSource closes for good), HEAD refused, HEAD answered 2 s later, the stream.
+        CHECK(relay.statuses("/info.json") == std::vector<int>{503, 503, 200});
+        CHECK(relay.statuses("/events") == std::vector<int>{503, 503, 200, 200});
+        CHECK(dom_count(dump.output, "n-events") == 60);
+        CHECK(dom_count(dump.output, "n-samples") > 0);
+        CHECK(points_drawn(dump.output) > 0);
+        CHECK(dump.output.find("waiting for the first trial") == std::string::npos);
+        CHECK_THAT(element(dump.output, "notice"), Catch::Contains("hidden"));
+    }
 }
