@@ -55,10 +55,10 @@ struct PrefixCurves {
 
 // The statement every presentation of the curves carries.
 inline constexpr const char* kPrefixTimingNote =
-    "Prefixes are cut relative to the contact (its onset plus a share of the roll after it), as the paper's timing "
-    "rule asks; one caveat remains: how much of the contact a prefix shows depends on how fast the object crosses "
-    "the array (its size and the speed), so a prefix carries some crossing-speed information that a full, "
-    "contact-normalised trial does not.";
+    "Prefixes are cut a share of the roll after the contact's onset, so time runs from the contact; but the cut is a "
+    "fixed time after it, so how much of the contact a prefix shows depends on how fast the object crosses the array "
+    "(its size and the speed), which the paper's rule keeps out of full, contact-normalised trials: early accuracy "
+    "can exceed the full-roll accuracy for that reason and is not comparable with it.";
 
 // What to compute: the fractions, and how many of the evaluation's partitions
 // (the default: one k-fold per fraction).
