@@ -7,14 +7,15 @@
 --   rollsense run scripts/examples/identify_early.lua --seed 23 --out runs/early --set train=runs/paper11
 --
 -- 1. Trains one model per fraction f of the nominal roll after the contact's
---    onset (10 %, 20 %, ... 100 %) on the prefixes of the training recording
---    (rs.prefix_models): time runs from the contact, the paper's timing rule.
+--    onset (10 %, 20 %, ... 100 %), counted on the contact's own clock, on the
+--    prefixes of the training recording (rs.prefix_models): timing relative
+--    to the contact, the paper's rule.
 -- 2. For each object and speed, `runs` times: an early-stopping roll (the
 --    finger holds as soon as the rule fires) and the same trial again (same id,
 --    same seed) rolled fully and identified by the full-roll model (the
 --    reference accuracy, paired).
--- The rule: at every new sample after the contact's onset, the model of the
--- largest trained fraction the recording has reached since the onset
+-- The rule: at every new sample once the contact's clock runs, the model of
+-- the largest trained fraction the recording has reached on that clock
 -- classifies the recording so far (the series rule, with the contact it has
 -- seen so far); stop when its top score is ≥
 -- `threshold` with the same answer for `k` samples in a row. A roll on which
@@ -44,7 +45,7 @@ rs.settings{
   -- The earliest prefix models are sure and wrong too often (their
   -- cross-validated accuracy is below 50 % up to 40 % of the roll, docs/identification.md).
   from = { default = 0.5, kind = "number", min = 0, max = 1,
-           help = "no stop before this share of the nominal roll after the contact's onset" },
+           help = "no stop before this share of the nominal roll after the contact's onset (on its clock)" },
   classifier = { default = "minirocket", kind = "string", help = "a series classifier for the prefix models" },
 }
 
@@ -59,7 +60,8 @@ local classifier = rs.setting("classifier")
 rs.on_cleanup(etroll.park)
 
 -- 1. The prefix models, and what their fractions are fractions of (per speed,
--- the nominal samples from the contact's onset to the end of a recording).
+-- the nominal roll from the contact's onset to the end of a recording, in the
+-- contact's units).
 local trained = rs.prefix_models{ dataset = train, classifier = classifier }
 local models = {}
 for _, m in ipairs(trained.models) do
@@ -78,20 +80,22 @@ for _, speed in ipairs(speeds) do
   end
 end
 
--- The model of the largest trained fraction that `samples` (since the onset) has reached (nil below the first).
-local function model_for(samples, nominal)
+-- The model of the largest trained fraction `progress` has reached (nil below the first).
+local function model_for(progress)
   local chosen
   for _, m in ipairs(models) do
-    if samples >= m.fraction * nominal then chosen = m end
+    if progress >= m.fraction then chosen = m end
   end
   return chosen
 end
 
--- Samples recorded since the contact's onset (the full-roll model's rule
--- finds it, as rs.prefix_models did), or nil before the contact.
-local function since_onset(n)
-  local onset = full_model.clf:contact_onset()
-  return onset and n - onset
+-- The share of the nominal roll after the onset that `n` samples have
+-- reached on the contact's clock (the full-roll model's rule reads it, as
+-- rs.prefix_models did), or nil before the clock runs (no onset, or the first
+-- sensor not passed yet).
+local function progress(n, nominal_units)
+  local onset, unit = full_model.clf:contact_clock()
+  return unit and (n - onset) / (unit * nominal_units)
 end
 
 -- One roll under the stopping rule. Returns the answer (or nil), whether the
@@ -104,8 +108,8 @@ local function early_roll(speed, nominal)
     local n = rs.recorded().samples
     if n == seen then return false end
     seen = n
-    local after = since_onset(n)
-    local m = after and after >= from * nominal and model_for(after, nominal)
+    local p = progress(n, nominal)
+    local m = p and p >= from and model_for(p)
     local a = m and m.clf:identify{ open_end = true }
     if not a then streak, last = 0, nil return false end
     if a.scores[a.object] >= threshold then
@@ -122,7 +126,7 @@ local function early_roll(speed, nominal)
     local a = full_model.clf:identify()
     answer = a and a.object
   end
-  return answer, stopped, seconds, (since_onset(samples) or 0) / nominal
+  return answer, stopped, seconds, progress(samples, nominal) or 0
 end
 
 local function full_roll(speed)
@@ -154,7 +158,7 @@ local by_speed = {}
 local total, done = #objects * #speeds * runs, 0
 for _, object in ipairs(objects) do
   for _, speed in ipairs(speeds) do
-    local nominal = trained.nominal[speed].samples
+    local nominal = trained.nominal[speed].units
     for repetition = 1, runs do
       local e_answer, stopped, e_s, e_f = trial(object, speed, repetition,
         function() return early_roll(speed, nominal) end)

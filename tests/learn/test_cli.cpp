@@ -157,8 +157,8 @@ TEST_CASE("rollsense evaluate: a feature and a series classifier side by side, w
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("input: features") && Catch::Contains("input: series") &&
-                             Catch::Contains("before the roll ends") && Catch::Contains("time runs from the contact") &&
-                             Catch::Contains("not comparable"));
+                             Catch::Contains("before the roll ends") && Catch::Contains("the contact's own clock") &&
+                             Catch::Contains("timing is relative to the contact"));
     const auto j = rollsense::testing::JsonReader::parse([&] {
         std::ifstream in(dir / "eval" / "evaluation.json");
         return std::string(std::istreambuf_iterator<char>(in), {});
@@ -176,6 +176,8 @@ TEST_CASE("rollsense evaluate: a feature and a series classifier side by side, w
     }
     const auto& pc = j["prefixes"];
     CHECK(pc["fractions"].arr().size() == 10);
+    REQUIRE_FALSE(pc["nominal"].arr().empty());
+    for (const auto& nl : pc["nominal"].arr()) CHECK(nl["units"].num() > 1.0);  // the roll outlasts its first unit
     REQUIRE(pc["classifiers"].arr().size() == 2);
     for (const auto& c : pc["classifiers"].arr()) {
         REQUIRE(c["points"].arr().size() == 10);

@@ -207,6 +207,7 @@ void write_prefixes(JsonWriter& w, const PrefixCurves& pc) {
             .key("speed").value(n.speed)
             .key("samples").value(n.samples)
             .key("seconds").value(n.seconds)
+            .key("units").value(n.units)
             .key("trials").value(static_cast<std::uint64_t>(n.trials))
             .end_object();
     w.end_array();

@@ -10,15 +10,18 @@
 
 namespace rollsense::learn {
 
-// A speed's nominal length after the contact's onset: how long a recording
-// at that speed goes on once the object first touches the array, known before
+// A speed's nominal roll after the contact's onset: how long a recording at
+// that speed goes on once the object first presses the array, known before
 // the roll (here the median over the dataset's trials of that speed), so a
-// live run that sees the onset can cut its prefixes the same way.
+// live run that reads the contact's clock can cut its prefixes the same way.
+// Prefixes are cut in `units` (the contact's own time); samples and seconds
+// are for reading the curves.
 struct NominalLength {
     std::string speed;
-    double samples = 0.0;  // median samples from the onset to the end of the recording
-    double seconds = 0.0;  // median seconds from the onset to the last timestamp
-    std::size_t trials = 0;  // the speed's trials with an onset (the medians' population)
+    double samples = 0.0;    // median samples from the onset to the end of the recording
+    double seconds = 0.0;    // median seconds from the onset to the last timestamp
+    double units = 0.0;      // median of those samples ÷ the trial's unit (series::ContactClock)
+    std::size_t trials = 0;  // the speed's trials with a unit (the medians' population)
 };
 
 // One point of a curve: the out-of-fold predictions at one fraction.
@@ -55,10 +58,9 @@ struct PrefixCurves {
 
 // The statement every presentation of the curves carries.
 inline constexpr const char* kPrefixTimingNote =
-    "Prefixes are cut a share of the roll after the contact's onset, so time runs from the contact; but the cut is a "
-    "fixed time after it, so how much of the contact a prefix shows depends on how fast the object crosses the array "
-    "(its size and the speed), which the paper's rule keeps out of full, contact-normalised trials: early accuracy "
-    "can exceed the full-roll accuracy for that reason and is not comparable with it.";
+    "Prefixes are cut on the contact's own clock: from the onset, in units of the time the first sensor takes to be "
+    "passed, so timing is relative to the contact and a faster crossing does not show more of it; the earliest cut "
+    "is where that unit is known.";
 
 // What to compute: the fractions, and how many of the evaluation's partitions
 // (the default: one k-fold per fraction).

@@ -64,42 +64,52 @@ Status check_fractions(const std::vector<double>& fractions) {
 
 }  // namespace
 
-std::size_t prefix_samples(double fraction, std::optional<std::size_t> onset, double nominal, std::size_t samples) {
+std::size_t prefix_samples(double fraction, const std::optional<series::ContactClock>& clock, double nominal_units,
+                           std::size_t samples) {
     if (fraction >= 1.0) return samples;
-    if (!onset) return 0;
-    const auto after = static_cast<std::size_t>(std::llround(fraction * nominal));
-    return std::min(*onset + after, samples);
+    if (!clock || !clock->unit) return 0;
+    const std::size_t unit = *clock->unit;
+    // Before the unit is known the cut cannot be placed: the earliest prefix ends at the sample that shows it.
+    const auto after = std::max<std::size_t>(static_cast<std::size_t>(std::llround(fraction * nominal_units *
+                                                                                    static_cast<double>(unit))),
+                                             unit + 1);
+    return std::min(clock->onset + after, samples);
 }
 
 PrefixCuts prefix_cuts(const std::vector<TrialRecord>& records, const std::vector<TrialData>& data,
                        std::span<const std::size_t> channels, const series::SeriesSettings& settings) {
     PrefixCuts out;
-    out.onset.resize(records.size());
+    out.clock.resize(records.size());
     series::SeriesSettings whole = settings;
     whole.prefix = 0;
-    std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by_speed;
+    struct Lengths {
+        std::vector<double> samples, seconds, units;
+    };
+    std::map<std::string, Lengths> by_speed;
     for (std::size_t i = 0; i < records.size(); ++i) {
-        out.onset[i] = series::contact_onset(data[i], channels, whole);
-        auto& [samples, seconds] = by_speed[records[i].info.speed];
-        if (!out.onset[i]) continue;  // never touched: no length after an onset to count
-        const std::size_t o = *out.onset[i];
-        samples.push_back(static_cast<double>(data[i].samples() - o));
-        seconds.push_back(data[i].time.size() > o ? data[i].time.back() - data[i].time[o] : 0.0);
+        out.clock[i] = series::contact_clock(data[i], channels, whole);
+        auto& l = by_speed[records[i].info.speed];
+        const auto& c = out.clock[i];
+        if (!c || !c->unit || *c->unit == 0) continue;  // no unit to count the roll in
+        const double after = static_cast<double>(data[i].samples() - c->onset);
+        l.samples.push_back(after);
+        l.seconds.push_back(data[i].time.size() > c->onset ? data[i].time.back() - data[i].time[c->onset] : 0.0);
+        l.units.push_back(after / static_cast<double>(*c->unit));
     }
-    for (auto& [speed, v] : by_speed)
-        out.nominal.push_back({speed, median(v.first), median(v.second), v.first.size()});
+    for (auto& [speed, l] : by_speed)
+        out.nominal.push_back({speed, median(l.samples), median(l.seconds), median(l.units), l.samples.size()});
     // Numeric speed labels in ascending order ("10" < "15" < "20" < "100").
     std::stable_sort(out.nominal.begin(), out.nominal.end(), [](const NominalLength& a, const NominalLength& b) {
         return a.speed.size() != b.speed.size() ? a.speed.size() < b.speed.size() : a.speed < b.speed;
     });
-    std::map<std::string, double> nominal_of;
-    for (const auto& nl : out.nominal) nominal_of[nl.speed] = nl.samples;
-    for (const auto& r : records) out.nominal_samples.push_back(nominal_of.at(r.info.speed));
+    std::map<std::string, double> units_of;
+    for (const auto& nl : out.nominal) units_of[nl.speed] = nl.units;
+    for (const auto& r : records) out.nominal_units.push_back(units_of.at(r.info.speed));
     return out;
 }
 
 std::size_t PrefixCuts::keep(std::size_t trial, double fraction, std::size_t samples) const {
-    return prefix_samples(fraction, onset[trial], nominal_samples[trial], samples);
+    return prefix_samples(fraction, clock[trial], nominal_units[trial], samples);
 }
 
 Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, const Evaluation& ev,
@@ -156,7 +166,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
     for (double f : options.fractions) {
         if (options.progress) {
             char buf[96];
-            std::snprintf(buf, sizeof buf, "prefixes: onset + %.0f %% of the nominal roll after it", 100.0 * f);
+            std::snprintf(buf, sizeof buf, "prefixes: %.0f %% of the nominal roll on the contact's clock", 100.0 * f);
             options.progress(buf);
         }
         // Each trial's prefix through both input steps (the same rules as the full trials).
@@ -363,13 +373,14 @@ std::string format_prefix_curves(const PrefixCurves& pc) {
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "\nidentification before the roll ends (%d x %d-fold on the same partitions; prefix = the recording up "
-                  "to the contact's onset plus a fraction of the nominal length after the onset at the trial's speed; "
-                  "no decision counts as wrong):\n",
+                  "to the contact's onset plus a fraction of the nominal roll after it, counted in the contact's own "
+                  "unit; no decision counts as wrong):\n",
                   pc.repeats, pc.folds);
     out += buf;
-    out += "  nominal lengths after the onset (median over the trials of each speed):";
+    out += "  nominal roll after the onset (median over the trials of each speed):";
     for (const auto& nl : pc.nominal) {
-        std::snprintf(buf, sizeof buf, " speed %s %.0f samples / %.2f s;", nl.speed.c_str(), nl.samples, nl.seconds);
+        std::snprintf(buf, sizeof buf, " speed %s %.2f units = %.0f samples / %.2f s;", nl.speed.c_str(), nl.units,
+                      nl.samples, nl.seconds);
         out += buf;
     }
     out.back() = '\n';

@@ -1,9 +1,10 @@
 // Accuracy against the share of the roll seen, for every classifier of an
-// evaluation, on its trials and its folds. A prefix is the recording up to
-// the contact's onset (series::contact_onset) plus fraction f of the nominal
-// length after the onset at the trial's speed (f = 1: the whole recording),
-// so that time runs from the contact, as the paper's timing rule asks. For each f the classifiers are trained on the
-// training folds' prefixes and tested on the test fold's prefixes; a prefix
+// evaluation, on its trials and its folds. A prefix is cut on the contact's
+// own clock (series::contact_clock): the recording up to the onset plus
+// fraction f of the nominal roll after it at the trial's speed, counted in the
+// trial's unit (f = 1: the whole recording), so that timing is relative to the
+// contact, as the paper's rule asks. For each f the classifiers are trained on
+// the training folds' prefixes and tested on the test fold's prefixes; a prefix
 // the input step cannot use (features: fewer than three valid peaks; series:
 // the series rule refuses it) gets no decision and counts as wrong.
 #pragma once
@@ -16,23 +17,26 @@
 
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/prefix_curves.hpp"
+#include "analysis/series/onset.hpp"
 
 namespace rollsense::learn {
 
 // The samples a prefix at `fraction` keeps of a recording of `samples`
-// samples whose contact was first seen at sample `onset`: the onset plus
-// fraction × `nominal` (the speed's nominal length after the onset), never
-// more than the recording has; fraction ≥ 1 keeps it all; a recording whose
-// contact never began keeps nothing (no decision).
-std::size_t prefix_samples(double fraction, std::optional<std::size_t> onset, double nominal, std::size_t samples);
+// samples with contact clock `clock`: the onset plus fraction ×
+// `nominal_units` (the speed's nominal roll after the onset, in units) × the
+// trial's unit, and at least up to the sample that shows the unit (before it
+// a live run cannot place the cut); never more than the recording has.
+// fraction ≥ 1 keeps it all; a recording without a unit keeps nothing (no decision).
+std::size_t prefix_samples(double fraction, const std::optional<series::ContactClock>& clock, double nominal_units,
+                           std::size_t samples);
 
-// Where the prefixes of loaded trials end: each trial's onset, found on
-// `channels` with `settings` (its min_amplitude), and per speed the nominal
-// length after the onset (medians over the speed's trials that have one).
+// Where the prefixes of loaded trials end: each trial's contact clock, found
+// on `channels` with `settings` (its min_amplitude), and per speed the nominal
+// roll after the onset (medians over the speed's trials that have a unit).
 struct PrefixCuts {
-    std::vector<std::optional<std::size_t>> onset;  // per trial
-    std::vector<NominalLength> nominal;             // per speed, in ascending order
-    std::vector<double> nominal_samples;            // per trial: its speed's nominal samples
+    std::vector<std::optional<series::ContactClock>> clock;  // per trial
+    std::vector<NominalLength> nominal;                      // per speed, in ascending order
+    std::vector<double> nominal_units;                       // per trial: its speed's nominal units
     std::size_t keep(std::size_t trial, double fraction, std::size_t samples) const;
 };
 PrefixCuts prefix_cuts(const std::vector<TrialRecord>& records, const std::vector<TrialData>& data,

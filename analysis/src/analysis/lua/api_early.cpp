@@ -42,7 +42,7 @@ std::vector<double> fractions_from(lua_State* L, int opts) {
 }
 
 // rs.prefix_models{ dataset = DIR, classifier = "minirocket", fractions = {0.1, ..., 1}, name = "prefix" }
-//   → { nominal = { ["10"] = {samples=, seconds=}, ... },
+//   → { nominal = { ["10"] = {samples=, seconds=, units=}, ... },   (the roll after the onset, per speed)
 //       models = { {fraction=, path=, trained=, refused=}, ... } }   (models saved as --out/NAME-f030.rsm;
 //       no path where the prefixes the series rule accepts show fewer than two objects)
 int l_prefix_models(lua_State* L) {
@@ -82,6 +82,8 @@ int l_prefix_models(lua_State* L) {
         lua_setfield(L, -2, "samples");
         lua_pushnumber(L, nl.seconds);
         lua_setfield(L, -2, "seconds");
+        lua_pushnumber(L, nl.units);
+        lua_setfield(L, -2, "units");
         lua_setfield(L, -2, nl.speed.c_str());
     }
     lua_setfield(L, -2, "nominal");

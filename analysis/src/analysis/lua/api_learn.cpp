@@ -458,26 +458,29 @@ int l_identify(lua_State* L) {
     return 1;
 }
 
-// clf:contact_onset() → how many samples the recording so far holds before
-// the contact was first seen (series::contact_onset, with the series rule the
-// model records), or nil while no sensor has risen yet. A script that stops
-// early measures its share of the roll from here, as rs.prefix_models cuts
-// the prefixes its models were trained on: samples − onset of the nominal
-// length after the onset.
-int l_contact_onset(lua_State* L) {
+// clf:contact_clock() → onset, unit: the contact's own clock in the recording
+// so far (series::contact_clock, with the series rule the model records):
+// the samples before the object first pressed the array, and the samples from
+// then until the first sensor it pressed was passed; each nil until known. A
+// script that stops early measures its share of the roll on this clock, as
+// rs.prefix_models cut the prefixes its models were trained on:
+// (samples − onset) ÷ (unit × the speed's nominal units).
+int l_contact_clock(lua_State* L) {
     auto& clf = check_classifier(L, 1);
     if (clf->input() != ClassifierInput::series)
-        return luaL_error(L, "contact_onset: the model takes features; the onset is read with a series model's rule "
+        return luaL_error(L, "contact_clock: the model takes features; the clock is read with a series model's rule "
                              "(e.g. a minirocket model)");
     Session& s = Session::of(L);
     auto columns = recording_channels(s);
-    check(L, Status(columns.status()).with_context("contact_onset"));
+    check(L, Status(columns.status()).with_context("contact_clock"));
     auto rule = series::model_rule(*clf, "the model of rs.classifier");
-    check(L, Status(rule.status()).with_context("contact_onset"));
-    const auto onset = series::contact_onset(s.recorded(), *columns, rule->settings);
-    if (!onset) lua_pushnil(L);
-    else lua_pushinteger(L, static_cast<lua_Integer>(*onset));
-    return 1;
+    check(L, Status(rule.status()).with_context("contact_clock"));
+    const auto clock = series::contact_clock(s.recorded(), *columns, rule->settings);
+    if (clock) lua_pushinteger(L, static_cast<lua_Integer>(clock->onset));
+    else lua_pushnil(L);
+    if (clock && clock->unit) lua_pushinteger(L, static_cast<lua_Integer>(*clock->unit));
+    else lua_pushnil(L);
+    return 2;
 }
 
 // clf:predict({f1, ..., f13}) → prediction table
@@ -508,7 +511,7 @@ int l_classes(lua_State* L) {
 
 void register_learn(lua_State* L) {
     static const luaL_Reg methods[] = {{"identify", l_identify}, {"predict", l_predict}, {"classes", l_classes},
-                                       {"contact_onset", l_contact_onset},
+                                       {"contact_clock", l_contact_clock},
                                        {nullptr, nullptr}};
     luaL_newmetatable(L, kClassifierMeta);
     protect_metatable(L);

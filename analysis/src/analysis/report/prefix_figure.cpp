@@ -38,7 +38,7 @@ std::string chart(const learn::PrefixCurves& pc, bool seconds_axis, const std::s
     svg.line(left, top, left, top + plot_h, axis);
     svg.text(left + plot_w / 2.0, top + plot_h + 38.0,
              seconds_axis ? "seconds after the onset (fraction \u00d7 the speed's nominal duration after it)"
-                          : "% of the nominal length after the onset at the trial's speed",
+                          : "% of the nominal roll after the onset, on the contact's clock",
              {12.0, Anchor::middle});
     double ly = top + 10.0;
     for (std::size_t c = 0; c < pc.classifiers.size(); ++c) {
@@ -68,12 +68,13 @@ std::string cell(const std::string& text) { return "<td class=\"num\">" + escape
 
 std::string prefix_section(const learn::PrefixCurves& pc) {
     std::string body = "<p class=\"note\"><strong>" + escape_xml(learn::kPrefixTimingNote) + "</strong></p>\n";
-    body += "<p>A prefix is the recording up to the contact's onset (the first sample at which a sensor reads the "
-            "object pressing) plus a fraction of the nominal length after the onset at the trial's speed (the median "
-            "over this dataset's trials of that speed:";
+    body += "<p>A prefix is cut on the contact's own clock: the recording up to the onset (the first sample at which "
+            "a sensor reads the object pressing) plus a fraction of the nominal roll after the onset at the trial's "
+            "speed, counted in the trial's unit (the time the first sensor takes to be passed; the median roll over "
+            "this dataset's trials of that speed:";
     for (const auto& n : pc.nominal)
-        body += " speed " + escape_xml(n.speed) + " " + fixed(n.samples, 0) + " samples, " + fixed(n.seconds, 2) +
-                "\u00a0s;";
+        body += " speed " + escape_xml(n.speed) + " " + fixed(n.units, 2) + " units, " + fixed(n.samples, 0) +
+                " samples, " + fixed(n.seconds, 2) + "\u00a0s;";
     body.back() = ')';
     body += ". For each fraction the classifiers are trained on the training folds' prefixes and tested on the test "
             "fold's (" + std::to_string(pc.repeats) + " \u00d7 " + std::to_string(pc.folds) +

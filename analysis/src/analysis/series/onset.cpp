@@ -17,14 +17,16 @@ bool valid_at(const TrialData& trial, std::span<const std::size_t> channels, std
 
 }  // namespace
 
-std::optional<std::size_t> contact_onset(const TrialData& trial, std::span<const std::size_t> channels,
-                                         const SeriesSettings& settings) {
+std::optional<ContactClock> contact_clock(const TrialData& trial, std::span<const std::size_t> channels,
+                                          const SeriesSettings& settings) {
     const std::size_t n = settings.prefix > 0 ? std::min(settings.prefix, trial.samples()) : trial.samples();
     for (std::size_t c : channels)
         if (c >= trial.channels.size() || trial.channels[c].size() < n) return std::nullopt;
     std::vector<std::array<double, kOnsetRestSamples>> first(channels.size());
     std::vector<double> rest(channels.size());
     std::size_t seen = 0;
+    std::optional<ContactClock> clock;
+    double top = 0.0;  // the rising channel's largest reading so far
     for (std::size_t i = 0; i < n; ++i) {
         if (!valid_at(trial, channels, i)) continue;
         if (seen < kOnsetRestSamples) {
@@ -37,10 +39,27 @@ std::optional<std::size_t> contact_onset(const TrialData& trial, std::span<const
                 }
             continue;
         }
-        for (std::size_t k = 0; k < channels.size(); ++k)
-            if (trial.channels[channels[k]][i] - rest[k] >= settings.min_amplitude) return i;
+        if (!clock) {
+            double largest = settings.min_amplitude;
+            for (std::size_t k = 0; k < channels.size(); ++k) {
+                const double rise = trial.channels[channels[k]][i] - rest[k];
+                if (rise >= largest) {
+                    largest = rise;
+                    clock = ContactClock{i, k, std::nullopt};
+                }
+            }
+            if (clock) top = trial.channels[channels[clock->channel]][i];
+            continue;
+        }
+        const double v = trial.channels[channels[clock->channel]][i];
+        top = std::max(top, v);
+        const double r = rest[clock->channel];
+        if (v <= r + 0.5 * (top - r)) {
+            clock->unit = i - clock->onset;
+            return clock;
+        }
     }
-    return std::nullopt;
+    return clock;
 }
 
 }  // namespace rollsense::series

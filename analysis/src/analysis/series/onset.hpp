@@ -1,13 +1,16 @@
-// The contact's onset, as a live run sees it: the first sample at which the
-// object is seen pressing, found from that sample and the ones before it only.
+// The contact's own clock, as a live run reads it: when the object first
+// presses the array (the onset), and how long the first sensor it presses
+// takes to be passed (the unit), both found from the samples up to them only.
 //
-// Identification before the roll ends cuts its prefixes from here, not from
-// record_start: the paper's timing rule puts time zero at the contact, never
-// at the roll or the clock. When the object first touches the array, relative
-// to the start of the recording, depends on where it sits and how large it
-// is; a prefix cut from record_start shows more of a contact that began
-// earlier, and so would let a classifier read the object from the onset's
-// timing rather than from its shape.
+// Identification before the roll ends cuts its prefixes on this clock, so
+// that timing is relative to the contact, as the paper's rule asks, in both
+// senses: time zero is the onset (never record_start: when the object touches,
+// relative to the roll's start, depends on where it sits and how large it is),
+// and time is counted in the unit (never in seconds or samples: a contact that
+// crosses the array faster would show more of itself by a fixed time, and the
+// crossing speed names a cylinder's diameter without sensing its shape; the
+// paper's features divide every duration by a channel's width for the same
+// reason).
 #pragma once
 
 #include <cstddef>
@@ -23,13 +26,23 @@ namespace rollsense::series {
 // at its first sample is one the series rule refuses anyway).
 inline constexpr std::size_t kOnsetRestSamples = 3;
 
-// The index of the first valid sample at which a channel of `channels`
-// (indices into trial.channels) lies settings.min_amplitude or more above its
-// resting level (the median of its first kOnsetRestSamples valid readings),
-// looking at samples [0, settings.prefix) when a prefix is set; nullopt when
-// no channel has risen so far (or the recording has too few valid samples
-// to know a resting level). Causal: appending samples never moves it.
-std::optional<std::size_t> contact_onset(const TrialData& trial, std::span<const std::size_t> channels,
-                                         const SeriesSettings& settings);
+struct ContactClock {
+    // The first valid sample at which a channel lies settings.min_amplitude or
+    // more above its resting level (the median of its first kOnsetRestSamples
+    // valid readings).
+    std::size_t onset = 0;
+    std::size_t channel = 0;  // position in `channels` of the channel that rose (the largest rise on a tie)
+    // Samples from the onset to the first valid sample at which that channel,
+    // past its maximum, has fallen back to half its rise above rest; nullopt
+    // until it has.
+    std::optional<std::size_t> unit;
+};
+
+// The clock of `trial` on `channels` (indices into trial.channels), reading
+// samples [0, settings.prefix) when a prefix is set; nullopt before the onset
+// (or when the recording has too few valid samples to know a resting level).
+// Causal: appending samples never moves the onset or a unit already found.
+std::optional<ContactClock> contact_clock(const TrialData& trial, std::span<const std::size_t> channels,
+                                          const SeriesSettings& settings);
 
 }  // namespace rollsense::series
