@@ -40,11 +40,12 @@ rs.settings{
   runs = { default = 5, kind = "integer", min = 1, help = "paired rolls of each object at each speed" },
   objects = { default = "C1,C2,C3,S1,S2,P1,P2,H1,H2", kind = "objects", help = "the objects to roll" },
   speeds = { default = "10,15,20", kind = "numbers", min = 1, help = "roll speeds (profile-velocity units)" },
-  threshold = { default = 0.4, kind = "number", min = 0, max = 1, help = "top score the prefix model must reach" },
-  k = { default = 3, kind = "integer", min = 1, help = "samples in a row the same sure answer must hold" },
-  -- The earliest prefix models are sure and wrong too often (their
-  -- cross-validated accuracy is below 50 % up to 40 % of the roll, docs/identification.md).
-  from = { default = 0.5, kind = "number", min = 0, max = 1,
+  -- Defaults chosen on a tuning run (seed 22, docs/identification.md): no
+  -- score threshold kept more of the full-roll accuracy than stopping at a
+  -- fixed share of the roll, and 30 % kept the most within 60 % of the roll time.
+  threshold = { default = 0, kind = "number", min = 0, max = 1, help = "top score the prefix model must reach" },
+  k = { default = 1, kind = "integer", min = 1, help = "samples in a row the same sure answer must hold" },
+  from = { default = 0.3, kind = "number", min = 0, max = 1,
            help = "no stop before this share of the nominal roll after the contact's onset (on its clock)" },
   classifier = { default = "minirocket", kind = "string", help = "a series classifier for the prefix models" },
 }

@@ -17,11 +17,11 @@ TEST_CASE("identify_early.lua stops rolls early and reports time and accuracy", 
     const auto run = rollsense::testing::run_rollsense(
         "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/examples/identify_early.lua --profile sim --seed 23 " +
         "--set train=" + rollsense::testing::stock_run_dir().string() +
-        " --set runs=1 --set objects=P1,H2,C1 --set speeds=10,20 --set threshold=0.3 --set k=2 --out " +
+        " --set runs=1 --set objects=P1,H2,C1 --set speeds=10,20 --set threshold=0.3 --set k=2 --set from=0.5 --out " +
         out.string());
     INFO(run.output);
     REQUIRE(run.status == 0);
-    CHECK_THAT(run.output, Catch::Contains("early identification: threshold 0.30, k 2"));
+    CHECK_THAT(run.output, Catch::Contains("early identification: threshold 0.30, k 2, from 50 %"));
     CHECK_THAT(run.output, Catch::Contains("all          6 rolls"));
     CHECK(std::filesystem::exists(out / "prefix-f100.rsm"));
 
