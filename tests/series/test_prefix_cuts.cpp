@@ -1,17 +1,19 @@
 // Where identification before the roll ends cuts its prefixes: on the
-// contact's own clock (series::contact_clock), as the paper's timing rule
-// asks: from the onset, never from record_start, and in the contact's unit,
-// never in samples or seconds. The clock is read causally, as a live run
-// reads it. A contact that begins later gives the same prefix rows, and so
-// does a contact that crosses the array more slowly.
+// contact's own clock (series/contact_clock.hpp), as the paper's timing rule
+// asks: from the half-way rise of the first clear bump, never from
+// record_start, and in units of that bump's width, never in samples or
+// seconds. The clock is read causally, as a live run reads it, and is
+// scale-free: a contact that begins later, presses harder or crosses more
+// slowly gives the same prefix rows.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "analysis/learn/prefix_evaluation.hpp"
-#include "analysis/series/onset.hpp"
+#include "analysis/series/contact_clock.hpp"
 #include "analysis/series/prepare.hpp"
 #include "synthetic.hpp"
 
@@ -31,6 +33,14 @@ TrialRecord record(const std::string& id, const std::string& speed) {
     return r;
 }
 
+series::ContactClock clock_of(const TrialData& t, std::size_t prefix = 0) {
+    series::SeriesSettings s;
+    s.prefix = prefix;
+    const auto c = series::contact_clock(t, kAll, s);
+    REQUIRE(c);
+    return *c;
+}
+
 series::PreparedSeries prefix_of(const TrialData& t, std::size_t keep) {
     series::SeriesSettings s;
     s.prefix = keep;
@@ -46,87 +56,120 @@ double max_abs_diff(const std::vector<double>& a, const std::vector<double>& b) 
     return d;
 }
 
-// Rows of two trials that differ (or one refused and the other not).
-bool told_apart(const series::PreparedSeries& a, const series::PreparedSeries& b) {
-    return a.ok != b.ok || (a.ok && max_abs_diff(a.values, b.values) > 1e-3);
+bool told_apart(const series::PreparedSeries& a, const series::PreparedSeries& b, double by) {
+    return a.ok != b.ok || (a.ok && max_abs_diff(a.values, b.values) > by);
 }
 
 }  // namespace
 
-TEST_CASE("the contact's clock: the onset where a channel rises, the unit where it has been passed", "[series][prefix]") {
+TEST_CASE("the contact's clock: from the first clear bump's half-way rise, in units of its width", "[series][prefix]") {
+    // Channel 0's bump: centre 50 + 0.30 × 80 = 74, sigma 0.08 × 80 = 6.4, so
+    // half its height lies ±1.1774 sigma = ±7.54 samples from the centre.
     const TrialData t = make_trial({});
-    const series::SeriesSettings s;
-    const auto clock = series::contact_clock(t, kAll, s);
-    REQUIRE(clock);
-    const std::size_t onset = clock->onset;
-    CHECK(onset > 50);  // the contact begins at 50; the first bump needs a few samples to rise 0.03
-    CHECK(onset < 80);
-    CHECK(clock->channel == 0);  // the first bump is channel 0's
-    CHECK(t.channels[0][onset] - t.channels[0][0] >= s.min_amplitude);
-    for (std::size_t c = 0; c < 3; ++c) CHECK(t.channels[c][onset - 1] - t.channels[c][0] < s.min_amplitude);
-    REQUIRE(clock->unit);
-    const std::size_t passed = onset + *clock->unit;  // channel 0 fell back to half its rise: past its centre at 74
-    CHECK(passed > 74);
-    const double top = *std::max_element(t.channels[0].begin(), t.channels[0].end());
-    CHECK(t.channels[0][passed] <= 0.5 * top + 1e-12);
-    CHECK(t.channels[0][passed - 1] > 0.5 * top);
+    const auto c = clock_of(t);
+    CHECK(c.channel == 0);
+    CHECK(c.zero == Approx(74.0 - 7.54).margin(0.3));
+    CHECK(c.unit == Approx(2 * 7.54).margin(0.5));
+    CHECK(c.known_at == static_cast<std::size_t>(std::ceil(c.zero + c.unit)));
 
-    SECTION("causal: a live recording finds each where it happens, and not one sample earlier") {
-        series::SeriesSettings live = s;
-        live.prefix = passed + 1;
-        auto c = series::contact_clock(t, kAll, live);
-        REQUIRE(c);
-        CHECK(c->onset == onset);
-        CHECK(c->unit == clock->unit);
-        live.prefix = passed;
-        c = series::contact_clock(t, kAll, live);
-        REQUIRE(c);
-        CHECK(c->onset == onset);
-        CHECK_FALSE(c->unit);
-        live.prefix = onset;
-        CHECK_FALSE(series::contact_clock(t, kAll, live));
+    SECTION("causal: a recording that has just shown the fall finds it; one sample earlier it is not known") {
+        const auto live = clock_of(t, c.known_at + 1);
+        CHECK(live.zero == c.zero);
+        CHECK(live.unit == c.unit);
+        series::SeriesSettings s;
+        s.prefix = c.known_at;
+        CHECK_FALSE(series::contact_clock(t, kAll, s));
     }
-    SECTION("a recording whose sensors never rise has no clock") {
-        TrialData flat = t;
-        for (auto& ch : flat.channels) std::fill(ch.begin(), ch.end(), 0.5);
-        CHECK_FALSE(series::contact_clock(flat, kAll, s));
+    SECTION("scale-free: the same for a contact pressed half as hard") {
+        TrialData soft = t;
+        for (auto& ch : soft.channels)
+            for (double& v : ch) v *= 0.5;
+        const auto h = clock_of(soft);
+        CHECK(h.zero == Approx(c.zero).margin(1e-9));
+        CHECK(h.unit == Approx(c.unit).margin(1e-9));
     }
-    SECTION("invalid samples are skipped, not read as a rise") {
-        TrialData spiky = t;
-        spiky.channels[1][10] = 99.0;
-        spiky.valid[10] = 0;
-        const auto c = series::contact_clock(spiky, kAll, s);
-        REQUIRE(c);
-        CHECK(c->onset == onset);
-        CHECK(c->unit == clock->unit);
+    SECTION("scale-free: one and a half times as long for a contact 1.5 times as slow") {
+        const auto slow = clock_of(make_trial({.stretch = 1.5}));
+        CHECK(slow.unit == Approx(1.5 * c.unit).margin(0.5));
+        CHECK(slow.zero - 50.0 == Approx(1.5 * (c.zero - 50.0)).margin(0.5));  // the contact starts at 50
+    }
+    SECTION("a graze before the contact does not start it") {
+        TrialData grazed = t;
+        for (std::size_t i = 0; i < grazed.samples(); ++i) {
+            const double z = (static_cast<double>(i) - 40.0) / 2.0;
+            grazed.channels[1][i] += 0.05 * std::exp(-0.5 * z * z);  // 0.05 high, a few samples wide
+        }
+        const auto g = clock_of(grazed);
+        CHECK(g.channel == 0);
+        CHECK(g.zero == Approx(c.zero).margin(1e-9));
+    }
+    SECTION("reading noise moves it by a fraction of a sample") {
+        const auto noisy = clock_of(make_trial({.noise = 0.005, .seed = 7}));
+        CHECK(noisy.zero == Approx(c.zero).margin(0.5));
+        CHECK(noisy.unit == Approx(c.unit).margin(0.7));
+    }
+    SECTION("invalid samples are skipped, not read") {
+        TrialData gap = t;
+        gap.channels[0][70] = 99.0;
+        gap.valid[70] = 0;
+        const auto v = clock_of(gap);
+        CHECK(v.zero == Approx(c.zero).margin(1e-9));
+        CHECK(v.unit == Approx(c.unit).margin(1e-9));
+    }
+    SECTION("no clock without a clear bump") {
+        TrialData faint = t;
+        for (auto& ch : faint.channels)
+            for (double& v : ch) v *= 0.18;  // the highest bump rises 0.09: below kClockMinRise
+        series::SeriesSettings s;
+        CHECK_FALSE(series::contact_clock(faint, kAll, s));
     }
 }
 
-TEST_CASE("a prefix keeps the onset plus a fraction of the nominal roll in the trial's units", "[series][prefix]") {
-    const series::ContactClock clock{40, 0, 10};
-    CHECK(learn::prefix_samples(0.5, clock, 16.0, 200) == 120);   // 40 + 0.5 × 16 × 10
-    CHECK(learn::prefix_samples(0.05, clock, 16.0, 200) == 51);   // never before the unit is known (40 + 10 + 1)
-    CHECK(learn::prefix_samples(0.9, clock, 30.0, 200) == 200);   // never more than the recording has
-    CHECK(learn::prefix_samples(1.0, clock, 16.0, 200) == 200);   // the whole roll
-    CHECK(learn::prefix_samples(1.0, std::nullopt, 16.0, 200) == 200);
-    CHECK(learn::prefix_samples(0.5, std::nullopt, 16.0, 200) == 0);  // no contact: nothing to decide on
-    CHECK(learn::prefix_samples(0.5, series::ContactClock{40, 0, std::nullopt}, 16.0, 200) == 0);  // no unit
+TEST_CASE("a prefix ends where the clock's progress reaches its fraction, never before the clock is known",
+          "[series][prefix]") {
+    const series::ContactClock c{0, 40.3, 10.0, 52};
+    const double units = 6.0;
+    CHECK(learn::prefix_samples(0.5, c, units, 200) == 72);   // 40.3 + 30 = 70.3: samples 0..71 reach it
+    CHECK(learn::prefix_samples(0.05, c, units, 200) == 53);  // the clock is known at sample 52
+    CHECK(learn::prefix_samples(0.99, c, 30.0, 200) == 200);  // never more than the recording has
+    CHECK(learn::prefix_samples(1.0, c, units, 200) == 200);  // the whole roll
+    CHECK(learn::prefix_samples(1.0, std::nullopt, units, 200) == 200);
+    CHECK(learn::prefix_samples(0.5, std::nullopt, units, 200) == 0);  // no clock: nothing to decide on
+    // The live side (clock_progress, what clf:contact_progress returns) agrees sample for sample.
+    for (double f = 0.2; f < 1.0; f += 0.05) {
+        INFO("fraction " << f);
+        const std::size_t keep = learn::prefix_samples(f, c, units, 1000);
+        CHECK(series::clock_progress(c, units, keep) >= f);
+        CHECK(series::clock_progress(c, units, keep - 1) < f);
+    }
 }
 
-TEST_CASE("a contact that begins later gives the same prefixes (time runs from the onset)", "[series][prefix]") {
-    // Two rolls of one object at one speed; in the second the object first
-    // touches the array 20 samples later, and its recording is 20 samples
-    // longer, so the roll after the onset is the same.
+TEST_CASE("the nominal roll is one figure in clock units for every speed", "[series][prefix]") {
+    const std::vector<TrialRecord> records{record("a", "10"), record("b", "10"), record("c", "20")};
+    const std::vector<TrialData> data{make_trial({.samples = 200}), make_trial({.samples = 220}),
+                                      make_trial({.samples = 300})};
+    const learn::PrefixCuts cuts = learn::prefix_cuts(records, data, kAll, {});
+    const double unit = cuts.clock[0]->unit;
+    CHECK(cuts.units == Approx(series::clock_progress(*cuts.clock[1], 1.0, 220)));  // the median of the three
+    CHECK(cuts.units == Approx((219.0 - cuts.clock[1]->zero) / unit));
+    REQUIRE(cuts.nominal.size() == 2);
+    CHECK(cuts.nominal[0].speed == "10");
+    CHECK(cuts.nominal[0].trials == 2);
+    CHECK(cuts.nominal[1].trials == 1);
+    // The same fraction is the same number of units from the zero at both speeds.
+    CHECK(cuts.keep(0, 0.4, 200) == cuts.keep(2, 0.4, 300));
+}
+
+TEST_CASE("a contact that begins later gives the same prefixes (time runs from the contact)", "[series][prefix]") {
+    // In the second roll the object first touches the array 20 samples later,
+    // and its recording is 20 samples longer.
     const TrialData early = make_trial({.samples = 200, .contact_start = 50.0});
     const TrialData late = make_trial({.samples = 220, .contact_start = 70.0});
     const std::vector<TrialRecord> records{record("a", "10"), record("b", "10")};
     const learn::PrefixCuts cuts = learn::prefix_cuts(records, {early, late}, kAll, {});
     REQUIRE(cuts.clock[0]);
     REQUIRE(cuts.clock[1]);
-    CHECK(cuts.clock[1]->onset == cuts.clock[0]->onset + 20);
-    CHECK(cuts.clock[1]->unit == cuts.clock[0]->unit);
-    REQUIRE(cuts.nominal.size() == 1);
-    CHECK(cuts.nominal[0].trials == 2);
+    CHECK(cuts.clock[1]->zero == Approx(cuts.clock[0]->zero + 20.0));
 
     int told_apart_from_start = 0;
     for (double f : {0.3, 0.5, 0.7}) {
@@ -139,44 +182,38 @@ TEST_CASE("a contact that begins later gives the same prefixes (time runs from t
         REQUIRE(b.ok);
         CHECK(max_abs_diff(a.values, b.values) < 1e-9);
         // Cut from record_start instead (f × the median recording length, the
-        // rule before 2026-11-26), the later contact shows less of itself: a
-        // classifier could tell the placements apart by the onset's timing.
+        // rule before 2026-11-26), the later contact shows less of itself.
         const auto from_start = static_cast<std::size_t>(std::llround(f * 210.0));
-        if (told_apart(prefix_of(early, from_start), prefix_of(late, from_start))) ++told_apart_from_start;
+        if (told_apart(prefix_of(early, from_start), prefix_of(late, from_start), 1e-3)) ++told_apart_from_start;
     }
     CHECK(told_apart_from_start >= 2);
 }
 
 TEST_CASE("a contact that crosses the array more slowly gives the same prefixes (time runs in its unit)",
           "[series][prefix]") {
-    // One object's pattern crossing at two speeds of its own (a larger or a
-    // smaller object at one roll speed): the contact takes 1.5 times longer.
-    const TrialData fast = make_trial({.samples = 200, .contact_length = 80.0});
-    const TrialData slow = make_trial({.samples = 200, .contact_length = 80.0, .stretch = 1.5});
+    // One object's pattern crossing 1.5 times as slowly (a larger or a smaller
+    // object at one roll speed).
+    const TrialData fast = make_trial({.samples = 200});
+    const TrialData slow = make_trial({.samples = 200, .stretch = 1.5});
     const std::vector<TrialRecord> records{record("fast", "10"), record("slow", "10")};
     const learn::PrefixCuts cuts = learn::prefix_cuts(records, {fast, slow}, kAll, {});
     REQUIRE(cuts.clock[0]);
     REQUIRE(cuts.clock[1]);
-    REQUIRE(cuts.clock[0]->unit);
-    REQUIRE(cuts.clock[1]->unit);
-    CHECK(static_cast<double>(*cuts.clock[1]->unit) == Approx(1.5 * static_cast<double>(*cuts.clock[0]->unit)).margin(1.5));
 
     int told_apart_in_samples = 0;
     for (double f : {0.3, 0.4, 0.5}) {
         INFO("fraction " << f);
         const std::size_t keep_fast = cuts.keep(0, f, fast.samples());
-        const std::size_t keep_slow = cuts.keep(1, f, slow.samples());
-        const auto a = prefix_of(fast, keep_fast), b = prefix_of(slow, keep_slow);
+        const auto a = prefix_of(fast, keep_fast), b = prefix_of(slow, cuts.keep(1, f, slow.samples()));
         REQUIRE(a.ok);
         REQUIRE(b.ok);
-        // Whole samples: the cut and the onset move by up to a sample each.
-        CHECK(max_abs_diff(a.values, b.values) < 0.08);
-        // The same number of samples after the onset instead (a fixed time,
-        // the cut before this one), the slower contact shows less of itself:
-        // the crossing speed, hence the size, would be read from the prefix.
-        const std::size_t after = keep_fast - cuts.clock[0]->onset;
-        const auto c = prefix_of(slow, cuts.clock[1]->onset + after);
-        if (!c.ok || max_abs_diff(a.values, c.values) > 0.2) ++told_apart_in_samples;
+        CHECK(max_abs_diff(a.values, b.values) < 0.08);  // whole samples: each cut moves by up to one
+        // The same number of samples after the zero instead (a fixed time, the
+        // cut of 72f62aa), the slower contact shows less of itself: the
+        // crossing speed, hence the size, would be read from the prefix.
+        const auto after = static_cast<double>(keep_fast) - cuts.clock[0]->zero;
+        const auto same_time = static_cast<std::size_t>(std::llround(cuts.clock[1]->zero + after));
+        if (told_apart(a, prefix_of(slow, same_time), 0.2)) ++told_apart_in_samples;
     }
     CHECK(told_apart_in_samples == 3);
 }

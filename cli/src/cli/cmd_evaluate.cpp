@@ -278,9 +278,10 @@ options:
                       series; for measuring that leak only, and every output
                       says so (series classifiers only)
   --prefixes          also identify before the roll ends: for f = 10 %, 20 %,
-                      ... 100 % of the nominal recording length at the
-                      trial's speed (median over the dataset), train on the
-                      training folds' prefixes and test on the test fold's
+                      ... 100 % of the nominal roll on the contact's own
+                      clock (from the first clear bump's half-way rise, in
+                      units of its width; docs/identification.md), train on
+                      the training folds' prefixes and test on the test fold's
                       (one k-fold per fraction unless --repeats is given);
                       a prefix without input (bagged trees: < 3 valid peaks)
                       counts as wrong, shown as "no decision". Curves per

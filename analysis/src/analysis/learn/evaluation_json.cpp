@@ -201,13 +201,13 @@ void write_prefixes(JsonWriter& w, const PrefixCurves& pc) {
     write_numbers(w, pc.fractions);
     w.key("folds").value(pc.folds);
     w.key("repeats").value(pc.repeats);
+    w.key("units").value(pc.units);
     w.key("nominal").begin_array();
     for (const auto& n : pc.nominal)
         w.begin_object()
             .key("speed").value(n.speed)
             .key("samples").value(n.samples)
             .key("seconds").value(n.seconds)
-            .key("units").value(n.units)
             .key("trials").value(static_cast<std::uint64_t>(n.trials))
             .end_object();
     w.end_array();

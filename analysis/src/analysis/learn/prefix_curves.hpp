@@ -10,24 +10,20 @@
 
 namespace rollsense::learn {
 
-// A speed's nominal roll after the contact's onset: how long a recording at
-// that speed goes on once the object first presses the array, known before
-// the roll (here the median over the dataset's trials of that speed), so a
-// live run that reads the contact's clock can cut its prefixes the same way.
-// Prefixes are cut in `units` (the contact's own time); samples and seconds
-// are for reading the curves.
+// What a roll at one speed lasts after the clock's zero (series/contact_clock.hpp),
+// for reading the curves in samples and seconds (medians over the dataset's
+// trials of that speed with a clock). Prefixes are cut in clock units.
 struct NominalLength {
     std::string speed;
-    double samples = 0.0;    // median samples from the onset to the end of the recording
-    double seconds = 0.0;    // median seconds from the onset to the last timestamp
-    double units = 0.0;      // median of those samples ÷ the trial's unit (series::ContactClock)
-    std::size_t trials = 0;  // the speed's trials with a unit (the medians' population)
+    double samples = 0.0;    // median samples from the clock's zero to the end of the recording
+    double seconds = 0.0;    // median seconds from the clock's zero to the last timestamp
+    std::size_t trials = 0;  // the speed's trials with a clock (the medians' population)
 };
 
 // One point of a curve: the out-of-fold predictions at one fraction.
 struct PrefixPoint {
     double fraction = 0.0;
-    double seconds = 0.0;          // per-speed curves: fraction × the speed's nominal seconds (after the onset); 0 overall
+    double seconds = 0.0;          // per-speed curves: fraction × the speed's nominal seconds after the clock's zero; 0 overall
     std::size_t total = 0;         // test predictions asked for (trials × repetitions)
     std::size_t correct = 0;
     std::size_t no_decision = 0;   // the prefix gave the classifier no input (counted wrong)
@@ -52,15 +48,17 @@ struct PrefixCurve {
 struct PrefixCurves {
     std::vector<double> fractions;
     int folds = 0, repeats = 0;  // the evaluation's first `repeats` partitions
+    double units = 0.0;          // the nominal roll in clock units: what the fractions are fractions of
     std::vector<NominalLength> nominal;
     std::vector<PrefixCurve> classifiers;
 };
 
 // The statement every presentation of the curves carries.
 inline constexpr const char* kPrefixTimingNote =
-    "Prefixes are cut on the contact's own clock: from the onset, in units of the time the first sensor takes to be "
-    "passed, so timing is relative to the contact and a faster crossing does not show more of it; the earliest cut "
-    "is where that unit is known.";
+    "Prefixes are cut on the contact's own clock (from the half-way rise of the first clear bump, in units of its "
+    "full width at half maximum), so timing is relative to the contact and a faster crossing shows about the same "
+    "part of it; how well the first bump's width stands for the whole contact's length varies with the object, so "
+    "some crossing-speed information can remain.";
 
 // What to compute: the fractions, and how many of the evaluation's partitions
 // (the default: one k-fold per fraction).

@@ -9,7 +9,6 @@
 #include "analysis/learn/cross_validation.hpp"
 #include "analysis/learn/parallel_for.hpp"
 #include "analysis/series/model_rule.hpp"
-#include "analysis/series/onset.hpp"
 #include "analysis/series/series_table.hpp"
 
 namespace rollsense::learn {
@@ -64,16 +63,15 @@ Status check_fractions(const std::vector<double>& fractions) {
 
 }  // namespace
 
-std::size_t prefix_samples(double fraction, const std::optional<series::ContactClock>& clock, double nominal_units,
+std::size_t prefix_samples(double fraction, const std::optional<series::ContactClock>& clock, double units,
                            std::size_t samples) {
     if (fraction >= 1.0) return samples;
-    if (!clock || !clock->unit) return 0;
-    const std::size_t unit = *clock->unit;
-    // Before the unit is known the cut cannot be placed: the earliest prefix ends at the sample that shows it.
-    const auto after = std::max<std::size_t>(static_cast<std::size_t>(std::llround(fraction * nominal_units *
-                                                                                    static_cast<double>(unit))),
-                                             unit + 1);
-    return std::min(clock->onset + after, samples);
+    if (!clock) return 0;
+    // The fewest samples whose clock_progress reaches `fraction`, but never
+    // before the sample that showed the clock (before it no cut can be placed).
+    const double cut = clock->zero + fraction * units * clock->unit;
+    const std::size_t keep = std::max(clock->known_at, static_cast<std::size_t>(std::ceil(cut))) + 1;
+    return std::min(keep, samples);
 }
 
 PrefixCuts prefix_cuts(const std::vector<TrialRecord>& records, const std::vector<TrialData>& data,
@@ -82,34 +80,34 @@ PrefixCuts prefix_cuts(const std::vector<TrialRecord>& records, const std::vecto
     out.clock.resize(records.size());
     series::SeriesSettings whole = settings;
     whole.prefix = 0;
-    struct Lengths {
-        std::vector<double> samples, seconds, units;
-    };
-    std::map<std::string, Lengths> by_speed;
+    std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by_speed;
+    std::vector<double> units;
     for (std::size_t i = 0; i < records.size(); ++i) {
         out.clock[i] = series::contact_clock(data[i], channels, whole);
-        auto& l = by_speed[records[i].info.speed];
+        auto& [samples, seconds] = by_speed[records[i].info.speed];
         const auto& c = out.clock[i];
-        if (!c || !c->unit || *c->unit == 0) continue;  // no unit to count the roll in
-        const double after = static_cast<double>(data[i].samples() - c->onset);
-        l.samples.push_back(after);
-        l.seconds.push_back(data[i].time.size() > c->onset ? data[i].time.back() - data[i].time[c->onset] : 0.0);
-        l.units.push_back(after / static_cast<double>(*c->unit));
+        if (!c) continue;  // no clock to count the roll on
+        const auto zero = static_cast<std::size_t>(std::ceil(c->zero));
+        samples.push_back(static_cast<double>(data[i].samples() - zero));
+        seconds.push_back(data[i].time.size() > zero ? data[i].time.back() - data[i].time[zero] : 0.0);
+        units.push_back(series::clock_progress(*c, 1.0, data[i].samples()));
     }
-    for (auto& [speed, l] : by_speed)
-        out.nominal.push_back({speed, median(l.samples), median(l.seconds), median(l.units), l.samples.size()});
+    out.units = median(units);
+    for (auto& [speed, v] : by_speed)
+        out.nominal.push_back({speed, median(v.first), median(v.second), v.first.size()});
     // Numeric speed labels in ascending order ("10" < "15" < "20" < "100").
     std::stable_sort(out.nominal.begin(), out.nominal.end(), [](const NominalLength& a, const NominalLength& b) {
         return a.speed.size() != b.speed.size() ? a.speed.size() < b.speed.size() : a.speed < b.speed;
     });
-    std::map<std::string, double> units_of;
-    for (const auto& nl : out.nominal) units_of[nl.speed] = nl.units;
-    for (const auto& r : records) out.nominal_units.push_back(units_of.at(r.info.speed));
     return out;
 }
 
 std::size_t PrefixCuts::keep(std::size_t trial, double fraction, std::size_t samples) const {
-    return prefix_samples(fraction, clock[trial], nominal_units[trial], samples);
+    return prefix_samples(fraction, clock[trial], units, samples);
+}
+
+std::size_t PrefixCuts::series_prefix(std::size_t trial, double fraction, std::size_t samples) const {
+    return fraction >= 1.0 ? 0 : std::max<std::size_t>(keep(trial, fraction, samples), 1);
 }
 
 Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, const Evaluation& ev,
@@ -148,6 +146,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
     out.repeats = std::clamp(options.repeats, 1, static_cast<int>(ev.plan.repeats()));
     const PrefixCuts cuts = prefix_cuts(records, data, channel_idx, inputs.series);
     out.nominal = cuts.nominal;
+    out.units = cuts.units;
     std::map<std::string, const NominalLength*> nominal_of;
     for (const auto& nl : out.nominal) nominal_of[nl.speed] = &nl;
 
@@ -197,7 +196,7 @@ Result<PrefixCurves> prefix_curves(const std::filesystem::path& dataset_dir, con
             }
             if (need_series) {
                 series::SeriesSettings s = inputs.series;
-                s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
+                s.prefix = cuts.series_prefix(i, f, d.samples());
                 auto p = series::prepare_series(d, channel_idx, s);
                 if (!p) {
                     errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
@@ -315,6 +314,7 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
     PrefixModels out;
     const PrefixCuts cuts = prefix_cuts(records, data, channel_idx, inputs.series);
     out.nominal = cuts.nominal;
+    out.units = cuts.units;
     std::set<std::string> objects;
     for (const auto& r : records) objects.insert(r.info.object);
     const std::vector<std::string> class_names(objects.begin(), objects.end());
@@ -324,8 +324,7 @@ Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_di
         std::vector<Status> errors(records.size());
         parallel_for(records.size(), inputs.threads, [&](std::size_t i) {
             series::SeriesSettings s = inputs.series;
-            const std::size_t keep = cuts.keep(i, f, data[i].samples());
-            s.prefix = f >= 1.0 ? 0 : std::max<std::size_t>(keep, 1);
+            s.prefix = cuts.series_prefix(i, f, data[i].samples());
             auto p = series::prepare_series(data[i], channel_idx, s);
             if (!p) errors[i] = Status(p.error()).with_context("trial " + records[i].info.id);
             else if (p->ok) values[i] = std::move(p->values);
@@ -373,14 +372,14 @@ std::string format_prefix_curves(const PrefixCurves& pc) {
     char buf[256];
     std::snprintf(buf, sizeof buf,
                   "\nidentification before the roll ends (%d x %d-fold on the same partitions; prefix = the recording up "
-                  "to the contact's onset plus a fraction of the nominal roll after it, counted in the contact's own "
-                  "unit; no decision counts as wrong):\n",
+                  "to a fraction of the nominal roll on the contact's own clock; no decision counts as wrong):\n",
                   pc.repeats, pc.folds);
     out += buf;
-    out += "  nominal roll after the onset (median over the trials of each speed):";
+    std::snprintf(buf, sizeof buf, "  nominal roll %.2f clock units (median over the trials); after the clock's zero:",
+                  pc.units);
+    out += buf;
     for (const auto& nl : pc.nominal) {
-        std::snprintf(buf, sizeof buf, " speed %s %.2f units = %.0f samples / %.2f s;", nl.speed.c_str(), nl.units,
-                      nl.samples, nl.seconds);
+        std::snprintf(buf, sizeof buf, " speed %s %.0f samples / %.2f s;", nl.speed.c_str(), nl.samples, nl.seconds);
         out += buf;
     }
     out.back() = '\n';

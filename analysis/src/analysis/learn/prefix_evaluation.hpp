@@ -1,10 +1,10 @@
 // Accuracy against the share of the roll seen, for every classifier of an
 // evaluation, on its trials and its folds. A prefix is cut on the contact's
-// own clock (series::contact_clock): the recording up to the onset plus
-// fraction f of the nominal roll after it at the trial's speed, counted in the
-// trial's unit (f = 1: the whole recording), so that timing is relative to the
-// contact, as the paper's rule asks. For each f the classifiers are trained on
-// the training folds' prefixes and tested on the test fold's prefixes; a prefix
+// own clock (series/contact_clock.hpp): the recording up to fraction f of the
+// nominal roll, counted in the trial's clock units from the clock's zero
+// (f = 1: the whole recording), so that timing is relative to the contact, as
+// the paper's rule asks. For each f the classifiers are trained on the
+// training folds' prefixes and tested on the test fold's prefixes; a prefix
 // the input step cannot use (features: fewer than three valid peaks; series:
 // the series rule refuses it) gets no decision and counts as wrong.
 #pragma once
@@ -17,27 +17,30 @@
 
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/prefix_curves.hpp"
-#include "analysis/series/onset.hpp"
+#include "analysis/series/contact_clock.hpp"
 
 namespace rollsense::learn {
 
 // The samples a prefix at `fraction` keeps of a recording of `samples`
-// samples with contact clock `clock`: the onset plus fraction ×
-// `nominal_units` (the speed's nominal roll after the onset, in units) × the
-// trial's unit, and at least up to the sample that shows the unit (before it
-// a live run cannot place the cut); never more than the recording has.
-// fraction ≥ 1 keeps it all; a recording without a unit keeps nothing (no decision).
-std::size_t prefix_samples(double fraction, const std::optional<series::ContactClock>& clock, double nominal_units,
+// samples with clock `clock`: the fewest whose series::clock_progress (with a
+// nominal roll of `units`) reaches `fraction`, and at least up to the sample
+// that showed the clock (before it a live run cannot place the cut); never
+// more than the recording has. fraction ≥ 1 keeps it all; a recording without
+// a clock keeps nothing (no decision).
+std::size_t prefix_samples(double fraction, const std::optional<series::ContactClock>& clock, double units,
                            std::size_t samples);
 
-// Where the prefixes of loaded trials end: each trial's contact clock, found
-// on `channels` with `settings` (its min_amplitude), and per speed the nominal
-// roll after the onset (medians over the speed's trials that have a unit).
+// Where the prefixes of loaded trials end: each trial's clock, found on
+// `channels`, and the nominal roll in clock units (the median over the trials
+// with a clock of the roll from the clock's zero to the recording's end: one
+// figure for every speed, since the clock's unit already scales with it).
 struct PrefixCuts {
     std::vector<std::optional<series::ContactClock>> clock;  // per trial
-    std::vector<NominalLength> nominal;                      // per speed, in ascending order
-    std::vector<double> nominal_units;                       // per trial: its speed's nominal units
+    double units = 0.0;
+    std::vector<NominalLength> nominal;                      // per speed, for reading the curves
     std::size_t keep(std::size_t trial, double fraction, std::size_t samples) const;
+    // SeriesSettings::prefix for that cut (0: the whole recording).
+    std::size_t series_prefix(std::size_t trial, double fraction, std::size_t samples) const;
 };
 PrefixCuts prefix_cuts(const std::vector<TrialRecord>& records, const std::vector<TrialData>& data,
                        std::span<const std::size_t> channels, const series::SeriesSettings& settings);
@@ -59,7 +62,8 @@ struct PrefixModel {
     ClassifierPtr model;      // empty when the accepted prefixes show fewer than two objects
 };
 struct PrefixModels {
-    std::vector<NominalLength> nominal;  // what the fractions are fractions of, per speed
+    double units = 0.0;                  // the nominal roll in clock units: what the fractions are fractions of
+    std::vector<NominalLength> nominal;  // per speed, for reading
     std::vector<PrefixModel> models;     // in the order of `fractions`
 };
 Result<PrefixModels> train_prefix_models(const std::filesystem::path& dataset_dir,

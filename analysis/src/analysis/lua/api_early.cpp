@@ -42,7 +42,8 @@ std::vector<double> fractions_from(lua_State* L, int opts) {
 }
 
 // rs.prefix_models{ dataset = DIR, classifier = "minirocket", fractions = {0.1, ..., 1}, name = "prefix" }
-//   → { nominal = { ["10"] = {samples=, seconds=, units=}, ... },   (the roll after the onset, per speed)
+//   → { units = U,   (the nominal roll in clock units: what the fractions are fractions of)
+//       nominal = { ["10"] = {samples=, seconds=}, ... },   (per speed, after the clock's zero, for reading)
 //       models = { {fraction=, path=, trained=, refused=}, ... } }   (models saved as --out/NAME-f030.rsm;
 //       no path where the prefixes the series rule accepts show fewer than two objects)
 int l_prefix_models(lua_State* L) {
@@ -75,6 +76,8 @@ int l_prefix_models(lua_State* L) {
     check(L, trained.status());
 
     lua_newtable(L);
+    lua_pushnumber(L, trained->units);
+    lua_setfield(L, -2, "units");
     lua_newtable(L);
     for (const auto& nl : trained->nominal) {
         lua_newtable(L);
@@ -82,8 +85,6 @@ int l_prefix_models(lua_State* L) {
         lua_setfield(L, -2, "samples");
         lua_pushnumber(L, nl.seconds);
         lua_setfield(L, -2, "seconds");
-        lua_pushnumber(L, nl.units);
-        lua_setfield(L, -2, "units");
         lua_setfield(L, -2, nl.speed.c_str());
     }
     lua_setfield(L, -2, "nominal");

@@ -22,7 +22,7 @@
 #include "runtime/lua/lua_values.hpp"
 #include "analysis/report/report.hpp"
 #include "analysis/series/model_rule.hpp"
-#include "analysis/series/onset.hpp"
+#include "analysis/series/contact_clock.hpp"
 #include "analysis/series/prepare.hpp"
 
 namespace rollsense::runtime::lua_api {
@@ -458,29 +458,27 @@ int l_identify(lua_State* L) {
     return 1;
 }
 
-// clf:contact_clock() → onset, unit: the contact's own clock in the recording
-// so far (series::contact_clock, with the series rule the model records):
-// the samples before the object first pressed the array, and the samples from
-// then until the first sensor it pressed was passed; each nil until known. A
-// script that stops early measures its share of the roll on this clock, as
-// rs.prefix_models cut the prefixes its models were trained on:
-// (samples − onset) ÷ (unit × the speed's nominal units).
-int l_contact_clock(lua_State* L) {
+// clf:contact_progress(units) → the share of a nominal roll of `units` clock
+// units that the recording so far has reached on the contact's own clock
+// (series::contact_clock, read with the series rule the model records), or
+// nil before the clock is known. The same figure rs.prefix_models cut the
+// prefixes its models were trained on with (pass its `units`).
+int l_contact_progress(lua_State* L) {
     auto& clf = check_classifier(L, 1);
+    const double units = luaL_checknumber(L, 2);
+    if (!(units > 0.0)) return luaL_error(L, "contact_progress: units must be > 0 (rs.prefix_models returns them)");
     if (clf->input() != ClassifierInput::series)
-        return luaL_error(L, "contact_clock: the model takes features; the clock is read with a series model's rule "
-                             "(e.g. a minirocket model)");
+        return luaL_error(L, "contact_progress: the model takes features; the clock is read with a series model's "
+                             "rule (e.g. a minirocket model)");
     Session& s = Session::of(L);
     auto columns = recording_channels(s);
-    check(L, Status(columns.status()).with_context("contact_clock"));
+    check(L, Status(columns.status()).with_context("contact_progress"));
     auto rule = series::model_rule(*clf, "the model of rs.classifier");
-    check(L, Status(rule.status()).with_context("contact_clock"));
+    check(L, Status(rule.status()).with_context("contact_progress"));
     const auto clock = series::contact_clock(s.recorded(), *columns, rule->settings);
-    if (clock) lua_pushinteger(L, static_cast<lua_Integer>(clock->onset));
+    if (clock) lua_pushnumber(L, series::clock_progress(*clock, units, s.recorded().samples()));
     else lua_pushnil(L);
-    if (clock && clock->unit) lua_pushinteger(L, static_cast<lua_Integer>(*clock->unit));
-    else lua_pushnil(L);
-    return 2;
+    return 1;
 }
 
 // clf:predict({f1, ..., f13}) → prediction table
@@ -511,7 +509,7 @@ int l_classes(lua_State* L) {
 
 void register_learn(lua_State* L) {
     static const luaL_Reg methods[] = {{"identify", l_identify}, {"predict", l_predict}, {"classes", l_classes},
-                                       {"contact_clock", l_contact_clock},
+                                       {"contact_progress", l_contact_progress},
                                        {nullptr, nullptr}};
     luaL_newmetatable(L, kClassifierMeta);
     protect_metatable(L);

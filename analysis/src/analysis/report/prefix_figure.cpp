@@ -15,8 +15,8 @@ const char* const kDashes[] = {"", "6 3", "2 3", "8 3 2 3"};
 std::string chart(const learn::PrefixCurves& pc, bool seconds_axis, const std::string& id) {
     const double left = 55.0, right = 190.0, top = 20.0, plot_w = 480.0, plot_h = 260.0;
     Svg svg(left + plot_w + right, top + plot_h + 55.0, id,
-            seconds_axis ? "Accuracy against seconds of rolling after the contact's onset"
-                         : "Accuracy against the share of the roll after the contact's onset");
+            seconds_axis ? "Accuracy against seconds of rolling after the clock's zero"
+                         : "Accuracy against the share of the roll on the contact's clock");
     double x_max = 1.0;
     if (seconds_axis) {
         x_max = 0.0;
@@ -37,8 +37,8 @@ std::string chart(const learn::PrefixCurves& pc, bool seconds_axis, const std::s
     svg.line(left, top + plot_h, left + plot_w, top + plot_h, axis);
     svg.line(left, top, left, top + plot_h, axis);
     svg.text(left + plot_w / 2.0, top + plot_h + 38.0,
-             seconds_axis ? "seconds after the onset (fraction \u00d7 the speed's nominal duration after it)"
-                          : "% of the nominal roll after the onset, on the contact's clock",
+             seconds_axis ? "seconds after the clock's zero (fraction \u00d7 the speed's nominal duration after it)"
+                          : "% of the nominal roll, on the contact's clock",
              {12.0, Anchor::middle});
     double ly = top + 10.0;
     for (std::size_t c = 0; c < pc.classifiers.size(); ++c) {
@@ -68,13 +68,13 @@ std::string cell(const std::string& text) { return "<td class=\"num\">" + escape
 
 std::string prefix_section(const learn::PrefixCurves& pc) {
     std::string body = "<p class=\"note\"><strong>" + escape_xml(learn::kPrefixTimingNote) + "</strong></p>\n";
-    body += "<p>A prefix is cut on the contact's own clock: the recording up to the onset (the first sample at which "
-            "a sensor reads the object pressing) plus a fraction of the nominal roll after the onset at the trial's "
-            "speed, counted in the trial's unit (the time the first sensor takes to be passed; the median roll over "
-            "this dataset's trials of that speed:";
+    body += "<p>A prefix is cut on the contact's own clock: the recording up to a fraction of the nominal roll "
+            "(" + fixed(pc.units, 2) + " clock units, the median over this dataset's trials), counted from the "
+            "half-way rise of the first clear bump in units of its full width at half maximum (after the clock's "
+            "zero, a roll lasts in the median:";
     for (const auto& n : pc.nominal)
-        body += " speed " + escape_xml(n.speed) + " " + fixed(n.units, 2) + " units, " + fixed(n.samples, 0) +
-                " samples, " + fixed(n.seconds, 2) + "\u00a0s;";
+        body += " speed " + escape_xml(n.speed) + " " + fixed(n.samples, 0) + " samples, " + fixed(n.seconds, 2) +
+                "\u00a0s;";
     body.back() = ')';
     body += ". For each fraction the classifiers are trained on the training folds' prefixes and tested on the test "
             "fold's (" + std::to_string(pc.repeats) + " \u00d7 " + std::to_string(pc.folds) +
@@ -82,10 +82,10 @@ std::string prefix_section(const learn::PrefixCurves& pc) {
             "three valid peaks; MiniRocket: refused by the series rule) is \u201cno decision\u201d and counts as "
             "wrong.</p>\n";
     body += "<figure>\n" + chart(pc, false, "fig-prefix-fraction") +
-            "<figcaption>Accuracy against the share of the roll after the onset; thick: all speeds, thin dashed: per "
+            "<figcaption>Accuracy against the share of the roll on the contact's clock; thick: all speeds, thin dashed: per "
             "speed.</figcaption>\n</figure>\n";
     body += "<figure>\n" + chart(pc, true, "fig-prefix-seconds") +
-            "<figcaption>Accuracy against seconds of rolling after the onset, per classifier and speed.</figcaption>\n</figure>\n";
+            "<figcaption>Accuracy against seconds of rolling after the clock's zero, per classifier and speed.</figcaption>\n</figure>\n";
     body += "<table class=\"numbers\" id=\"prefix-table\"><thead><tr><th>classifier</th><th>speed</th>";
     for (double f : pc.fractions) body += "<th>" + fixed(100.0 * f, 0) + "\u00a0%</th>";
     body += "<th>95\u00a0% of full-roll accuracy at</th></tr></thead><tbody>\n";
