@@ -42,7 +42,7 @@ rs.settings{
   speeds = { default = "10,15,20", kind = "numbers", min = 1, help = "roll speeds (profile-velocity units)" },
   -- Defaults chosen on a tuning run (seed 22, docs/identification.md) for the
   -- most accuracy kept within 60 % of the roll time: only a fixed stop at 30 %
-  -- fits; the score rules kept more only by rolling 81-98 % of the time.
+  -- fits; the score rules kept more only by rolling 77-97 % of the time.
   threshold = { default = 0, kind = "number", min = 0, max = 1, help = "top score the prefix model must reach" },
   k = { default = 1, kind = "integer", min = 1, help = "samples in a row the same sure answer must hold" },
   from = { default = 0.3, kind = "number", min = 0, max = 1,

@@ -1,10 +1,9 @@
 // Where identification before the roll ends cuts its prefixes: on the
 // contact's own clock (series/contact_clock.hpp), as the paper's timing rule
-// asks: from the half-way rise of the first clear bump, never from
-// record_start, and in units of that bump's width, never in samples or
-// seconds. The clock is read causally, as a live run reads it, and is
-// scale-free: a contact that begins later, presses harder or crosses more
-// slowly gives the same prefix rows.
+// asks: from the half-way rise of the first bump of a touched sensor, never
+// from record_start, and in units of that bump's width, never in samples or
+// seconds. The clock is read causally, as a live run reads it; a contact that
+// begins later, presses harder or crosses more slowly gives the same prefix rows.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -62,7 +61,7 @@ bool told_apart(const series::PreparedSeries& a, const series::PreparedSeries& b
 
 }  // namespace
 
-TEST_CASE("the contact's clock: from the first clear bump's half-way rise, in units of its width", "[series][prefix]") {
+TEST_CASE("the contact's clock: from the first bump's half-way rise, in units of its width", "[series][prefix]") {
     // Channel 0's bump: centre 50 + 0.30 × 80 = 74, sigma 0.08 × 80 = 6.4, so
     // half its height lies ±1.1774 sigma = ±7.54 samples from the centre.
     const TrialData t = make_trial({});
@@ -93,20 +92,71 @@ TEST_CASE("the contact's clock: from the first clear bump's half-way rise, in un
         CHECK(slow.unit == Approx(1.5 * c.unit).margin(0.5));
         CHECK(slow.zero - 50.0 == Approx(1.5 * (c.zero - 50.0)).margin(0.5));  // the contact starts at 50
     }
-    SECTION("a graze before the contact does not start it") {
+    SECTION("a rise under the series rule's touch threshold (min_amplitude) does not start it") {
         TrialData grazed = t;
         for (std::size_t i = 0; i < grazed.samples(); ++i) {
             const double z = (static_cast<double>(i) - 40.0) / 2.0;
-            grazed.channels[1][i] += 0.05 * std::exp(-0.5 * z * z);  // 0.05 high, a few samples wide
+            grazed.channels[1][i] += 0.025 * std::exp(-0.5 * z * z);  // a graze 0.025 high, a few samples wide
         }
         const auto g = clock_of(grazed);
         CHECK(g.channel == 0);
         CHECK(g.zero == Approx(c.zero).margin(1e-9));
+        // One the rule counts as a touch does: the clock is the rule's.
+        series::SeriesSettings touchy;
+        touchy.min_amplitude = 0.02;
+        const auto on_graze = series::contact_clock(grazed, kAll, touchy);
+        REQUIRE(on_graze);
+        CHECK(on_graze->channel == 1);
+        CHECK(on_graze->zero < 40.0);
+    }
+    SECTION("scale-free near the threshold: a first bump 0.12 high, pressed 20 % less") {
+        TrialData firm = t;
+        for (auto& ch : firm.channels)
+            for (double& v : ch) v *= 0.12 / 0.45;
+        TrialData soft = firm;
+        for (auto& ch : soft.channels)
+            for (double& v : ch) v *= 0.8;
+        const auto a = clock_of(firm), b = clock_of(soft);
+        CHECK(b.channel == a.channel);
+        CHECK(b.zero == Approx(a.zero).margin(1e-9));
+        CHECK(b.unit == Approx(a.unit).margin(1e-9));
+    }
+    SECTION("a resting level away from zero, with one odd reading among the first three, changes nothing") {
+        TrialData raised = t;
+        for (auto& ch : raised.channels)
+            for (double& v : ch) v += 0.3;
+        raised.channels[0][0] = 0.9;
+        const auto r = clock_of(raised);
+        CHECK(r.zero == Approx(c.zero).margin(1e-9));
+        CHECK(r.unit == Approx(c.unit).margin(1e-9));
+    }
+    SECTION("a reading on the half level, as saved (9 digits) or as measured, gives the same clock") {
+        TrialData on_half = t;
+        const double half = 0.5 * *std::max_element(t.channels[0].begin(), t.channels[0].end());
+        on_half.channels[0][c.known_at] = half;  // the fall's sample lands exactly on the level
+        TrialData live = on_half;
+        live.channels[0][c.known_at] = half * (1.0 - 4e-10);  // the same reading before rounding to 9 digits
+        const auto a = clock_of(on_half), b = clock_of(live);
+        CHECK(a.known_at == b.known_at);
+        CHECK(b.zero == Approx(a.zero).margin(1e-6));
     }
     SECTION("reading noise moves it by a fraction of a sample") {
         const auto noisy = clock_of(make_trial({.noise = 0.005, .seed = 7}));
         CHECK(noisy.zero == Approx(c.zero).margin(0.5));
         CHECK(noisy.unit == Approx(c.unit).margin(0.7));
+    }
+    SECTION("an invalid sample at either crossing is stepped over") {
+        for (std::size_t bad : {static_cast<std::size_t>(std::floor(c.zero)),
+                                static_cast<std::size_t>(std::ceil(c.zero)), c.known_at - 1}) {
+            INFO("invalid sample " << bad);
+            TrialData g = t;
+            g.valid[bad] = 0;
+            g.channels[0][bad] = std::nan("");
+            const auto v = clock_of(g);
+            CHECK(v.channel == 0);
+            CHECK(v.zero == Approx(c.zero).margin(0.5));
+            CHECK(v.unit == Approx(c.unit).margin(1.0));
+        }
     }
     SECTION("invalid samples are skipped, not read") {
         TrialData gap = t;
@@ -116,10 +166,10 @@ TEST_CASE("the contact's clock: from the first clear bump's half-way rise, in un
         CHECK(v.zero == Approx(c.zero).margin(1e-9));
         CHECK(v.unit == Approx(c.unit).margin(1e-9));
     }
-    SECTION("no clock without a clear bump") {
+    SECTION("no clock without a touched sensor") {
         TrialData faint = t;
         for (auto& ch : faint.channels)
-            for (double& v : ch) v *= 0.18;  // the highest bump rises 0.09: below kClockMinRise
+            for (double& v : ch) v *= 0.05;  // the highest bump rises 0.025: no sensor touched
         series::SeriesSettings s;
         CHECK_FALSE(series::contact_clock(faint, kAll, s));
     }

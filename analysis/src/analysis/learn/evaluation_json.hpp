@@ -10,7 +10,7 @@
 namespace rollsense::learn {
 
 // Bumped whenever a field changes meaning or disappears (additions keep it).
-inline constexpr int kEvaluationJsonVersion = 2;  // 2: prefixes are cut from the contact's onset (docs/evaluation-json.md)
+inline constexpr int kEvaluationJsonVersion = 2;  // 2: prefixes are cut on the contact's own clock (docs/evaluation-json.md)
 
 std::string evaluation_json(const Evaluation& evaluation);
 

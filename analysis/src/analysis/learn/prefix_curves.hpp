@@ -55,10 +55,10 @@ struct PrefixCurves {
 
 // The statement every presentation of the curves carries.
 inline constexpr const char* kPrefixTimingNote =
-    "Prefixes are cut on the contact's own clock (from the half-way rise of the first clear bump, in units of its "
-    "full width at half maximum), so timing is relative to the contact and a faster crossing shows about the same "
-    "part of it; how well the first bump's width stands for the whole contact's length varies with the object, so "
-    "some crossing-speed information can remain.";
+    "Prefixes are cut on the contact's own clock (from the half-way rise of the first touched sensor's bump, in "
+    "units of its full width at half maximum), so timing is relative to the contact and a faster crossing shows "
+    "about the same part of it; how well that bump's width stands for the whole contact's length varies with the "
+    "object and with which sensor it is, so some crossing-speed information can remain.";
 
 // What to compute: the fractions, and how many of the evaluation's partitions
 // (the default: one k-fold per fraction).

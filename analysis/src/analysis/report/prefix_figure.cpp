@@ -70,7 +70,7 @@ std::string prefix_section(const learn::PrefixCurves& pc) {
     std::string body = "<p class=\"note\"><strong>" + escape_xml(learn::kPrefixTimingNote) + "</strong></p>\n";
     body += "<p>A prefix is cut on the contact's own clock: the recording up to a fraction of the nominal roll "
             "(" + fixed(pc.units, 2) + " clock units, the median over this dataset's trials), counted from the "
-            "half-way rise of the first clear bump in units of its full width at half maximum (after the clock's "
+            "half-way rise of the first touched sensor's bump in units of its full width at half maximum (after the clock's "
             "zero, a roll lasts in the median:";
     for (const auto& n : pc.nominal)
         body += " speed " + escape_xml(n.speed) + " " + fixed(n.samples, 0) + " samples, " + fixed(n.seconds, 2) +

@@ -51,13 +51,13 @@ std::optional<ContactClock> contact_clock(const TrialData& trial, std::span<cons
             const auto& x = trial.channels[channels[k]];
             top[k] = std::max(top[k], x[i]);
             const double half = rest[k] + 0.5 * (top[k] - rest[k]);
-            if (top[k] - rest[k] < kClockMinRise || x[i] >= half) continue;
+            if (top[k] - rest[k] < settings.min_amplitude || x[i] >= half - kClockHalfTolerance) continue;
             // Fell through half its maximum: the bump is complete. Its rise
             // through the same level is the last upward crossing before the top.
             const std::size_t prev = valid[valid.size() - 2];
             const double down = crossing(x[prev], x[i], prev, i, half);
             std::size_t j = valid.size() - 2;
-            while (j > 0 && x[valid[j]] >= half) --j;  // x[valid[j]] < half ≤ x[valid[j + 1]]
+            while (j > 0 && x[valid[j]] >= half - kClockHalfTolerance) --j;  // x[valid[j]] < half ≤ x[valid[j + 1]]
             const double up = crossing(x[valid[j]], x[valid[j + 1]], valid[j], valid[j + 1], half);
             if (down > up) return ContactClock{k, up, down - up, i};
         }

@@ -8,9 +8,12 @@
 // from record_start shows more of a contact that began earlier; one cut a
 // fixed time after the contact began shows more of a contact that crosses
 // faster. This clock counts time in a duration of the contact itself: the
-// full width at half maximum of the first clear bump (one sensor's reading as
-// the object passes over it), from its half-way rise. Both are scale-free: the
-// same for a bump twice as high, and twice as long for a bump twice as slow.
+// full width at half maximum of the first bump (one sensor's reading as the
+// object passes over it), from its half-way rise. For a given bump both are
+// scale-free: the same for it twice as high, twice as long for it twice as
+// slow. Which bump starts the clock is decided by the series rule's touch
+// threshold (min_amplitude), so a contact pressed much harder or softer can
+// start it on another sensor.
 #pragma once
 
 #include <cstddef>
@@ -24,10 +27,11 @@ namespace rollsense::series {
 // Samples a channel's resting level is read from: the recording's first
 // valid ones (the roll starts before the contact).
 inline constexpr std::size_t kClockRestSamples = 3;
-// A bump must rise this far above rest to start the clock: a graze before the
-// contact (a few hundredths) must not, a pressed sensor (about 0.1 to 0.4 in
-// the stock data; one trial of 1,350 has no channel reaching it) does.
-inline constexpr double kClockMinRise = 0.1;
+// A reading counts as fallen below half its bump's maximum only this far
+// below it: a saved trial holds readings to 9 significant digits, and a
+// quantised reading can sit exactly on the half level, so without it a live
+// run and its saved trial could see the fall one sample apart.
+inline constexpr double kClockHalfTolerance = 1e-6;
 
 struct ContactClock {
     std::size_t channel = 0;  // position in `channels` of the bump's channel
@@ -38,9 +42,9 @@ struct ContactClock {
 
 // The clock of `trial` on `channels` (indices into trial.channels), reading
 // samples [0, settings.prefix) when a prefix is set: the first channel whose
-// reading rises kClockMinRise or more above its resting level (the median of
-// its first kClockRestSamples valid readings) and then falls back below half
-// its maximum so far. nullopt until that has happened. Invalid samples are
+// reading rises settings.min_amplitude or more above its resting level (the
+// median of its first kClockRestSamples valid readings: the series rule's
+// test of a touched sensor) and then falls back below half its maximum so far. nullopt until that has happened. Invalid samples are
 // skipped. Causal: appending samples never changes a clock once found.
 std::optional<ContactClock> contact_clock(const TrialData& trial, std::span<const std::size_t> channels,
                                           const SeriesSettings& settings);
