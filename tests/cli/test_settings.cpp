@@ -93,7 +93,8 @@ TEST_CASE("run SCRIPT --help reads the settings under the run's --slice-limit-ms
     const auto greedy = run_rollsense("run " + shell_quoted(dir / "greedy.lua") + " --help --memory-limit-mb 16");
     INFO(greedy.output);
     CHECK(greedy.status != 0);
-    CHECK(greedy.output.find("greedy.lua: not enough memory: its top reached its memory cap (16 MB") != std::string::npos);
+    CHECK(greedy.output.find("greedy.lua:2: not enough memory: the script reached its memory cap (16 MB") != std::string::npos);
+    CHECK(greedy.output.find(" while its settings were read") != std::string::npos);
     CHECK(greedy.output.find("raise it with --memory-limit-mb MB") != std::string::npos);
     CHECK(greedy.output.find("usage: rollsense run") == std::string::npos);
     CHECK(run_rollsense("run " + kPaper + " --help --slice-limit-ms 0").status == 2);  // a bad limit: the command line

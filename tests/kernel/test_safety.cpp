@@ -64,15 +64,37 @@ end
 
 TEST_CASE("the memory cap stops a script that allocates without bound", "[sandbox]") {
     kt::TempDir dir;
-    auto o = kt::options_for(dir, "local t = {} for i = 1, 1e9 do t[i] = string.rep('x', 64) .. i end\n");
+    // The allocation that fails is on line 3, in a function the loop on line 5 calls.
+    auto o = kt::options_for(dir, "local t = {}\n"
+                                  "local function grow(i)\n"
+                                  "  t[i] = string.rep('x', 64) .. i\n"
+                                  "end\n"
+                                  "for i = 1, 1e9 do grow(i) end\n");
     o.sandbox.memory_bytes = 32u << 20;
     o.sandbox.max_slice_ms = 600000;  // a loaded machine must not turn this into a watchdog test
     rollsense::runtime::Session session(o);
     auto s = session.run();
     REQUIRE_FALSE(s.status.ok());
-    CHECK_THAT(s.status.message(), Catch::Contains("not enough memory"));
     // Review finding 14: the cap and the way out, not a bare "not enough memory".
-    CHECK_THAT(s.status.message(), Catch::Contains("its memory cap (32 MB") && Catch::Contains("--memory-limit-mb"));
+    CHECK_THAT(s.status.message(), Catch::Contains("not enough memory: the script reached its memory cap (32 MB") &&
+                                       Catch::Contains("--memory-limit-mb"));
+    // Lua's memory error carries no place: the allocator notes the line that asked (it was missing before).
+    CHECK_THAT(s.status.message(), Catch::Contains("script.lua:3: not enough memory"));
+}
+
+TEST_CASE("the memory cap's error names the script's line that called a binding", "[sandbox]") {
+    kt::TempDir dir;
+    // string.rep is C: the place is the script line that called it, through the C frame.
+    auto o = kt::options_for(dir, "local parts = {}\n"
+                                  "for i = 1, 1e9 do\n"
+                                  "  parts[i] = string.rep('y', 4096, tostring(i))\n"
+                                  "end\n");
+    o.sandbox.memory_bytes = 16u << 20;
+    o.sandbox.max_slice_ms = 600000;
+    rollsense::runtime::Session session(o);
+    auto s = session.run();
+    REQUIRE_FALSE(s.status.ok());
+    CHECK_THAT(s.status.message(), Catch::Contains("script.lua:3: not enough memory: the script reached its memory cap"));
 }
 
 TEST_CASE("a command outside the joint limits is refused and nothing moves", "[limits]") {

@@ -253,7 +253,7 @@ sandbox_test::ChildResult run_with_watchdog(kt::TempDir& dir, const std::string&
 }
 // Long C++ work done for the script, out of its slice as rs.analyse's is.
 int l_long_work(lua_State* L) {
-    runtime::lua_api::SliceGuard guard{runtime::Session::of(L).sandbox()};
+    runtime::lua_api::SliceGuard guard{runtime::Session::of(L).sandbox(), L};
     std::this_thread::sleep_for(std::chrono::milliseconds(900));
     return 0;
 }

@@ -131,3 +131,16 @@ TEST_CASE("a profile that loops or allocates without bound is stopped", "[sandbo
         CHECK_THAT(r.text, Catch::Contains("not enough memory") || Catch::Contains("without finishing"));
     }
 }
+
+// The memory error of Lua has no place; the allocator notes the line that asked (before: only the file).
+TEST_CASE("a profile past its memory cap is named with its line", "[sandbox][profile]") {
+    kt::TempDir dir;
+    kt::write_file(dir / "p.lua", "local s = 'x'\nwhile true do\n  s = s .. s\nend\nreturn {}\n");
+    runtime::SandboxLimits limits;
+    limits.memory_bytes = 32u << 20;
+    limits.max_slice_ms = 600000;  // doubling reaches the cap in some 25 steps; no clock is tested here
+    auto p = runtime::load_profile((dir / "p.lua").string(), ROLLSENSE_SHARE_DIR, {}, limits);
+    REQUIRE_FALSE(p);
+    CHECK_THAT(p.status().message(), Catch::Contains("p.lua:3: not enough memory") &&
+                                         Catch::Contains("memory cap of 32 MB"));
+}

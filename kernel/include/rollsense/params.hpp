@@ -86,5 +86,6 @@ Result<ParamSet> validate_params(const ParamSchema& schema, const std::map<std::
 
 // "3.5", "true", "[1, 2]", "'text'": the form used in messages and listings.
 std::string format_param_value(const ParamValue& value);
+std::string format_number(double d, int precision = 10);  // "nan", not the "-nan" of Lua's 0/0
 
 }  // namespace rollsense

@@ -93,13 +93,6 @@ std::string with_article(std::string_view noun) {
     return (vowel ? "an " : "a ") + std::string(noun);
 }
 
-std::string format_number(double d) {
-    std::ostringstream os;
-    os.precision(10);
-    os << (std::isnan(d) ? std::fabs(d) : d);  // "nan", not the "-nan" of Lua's 0/0
-    return os.str();
-}
-
 std::optional<std::string> check_range(const ParamSpec& spec, double x) {
     // A declared range takes finite numbers only: NaN would pass `<` and `>`, infinity a one-sided range.
     if (((spec.min || spec.max) && !std::isfinite(x)) || x < spec.min.value_or(x) || x > spec.max.value_or(x)) {
@@ -249,5 +242,12 @@ struct ValueFormatter {
 }  // namespace
 
 std::string format_param_value(const ParamValue& value) { return std::visit(ValueFormatter{}, value); }
+
+std::string format_number(double d, int precision) {
+    std::ostringstream os;
+    os.precision(precision);
+    os << (std::isnan(d) ? std::fabs(d) : d);
+    return os.str();
+}
 
 }  // namespace rollsense

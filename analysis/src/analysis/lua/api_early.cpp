@@ -70,7 +70,7 @@ int l_prefix_models(lua_State* L) {
         inputs.series.amplitude = *amp;
     }
     auto trained = [&] {
-        SliceGuard guard{s.sandbox()};
+        SliceGuard guard{s.sandbox(), L};
         return learn::train_prefix_models(dataset, prepared->front(), inputs, fractions);
     }();
     check(L, trained.status());

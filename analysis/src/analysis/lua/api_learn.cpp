@@ -102,7 +102,7 @@ void set_sd(lua_State* L, double sd) {
 
 int l_analyse(lua_State* L) {
     Session& s = Session::of(L);
-    SliceGuard guard{s.sandbox()};
+    SliceGuard guard{s.sandbox(), L};
     const int opts = 1;
     check_options(L, opts, "rs.analyse", {"model", "dataset", "tag", "folds", "repeats", "params", "optimize",
                                           "nested", "evaluations", "classifier", "classifiers", "trials",
@@ -322,7 +322,7 @@ int l_classifier_gc(lua_State* L) {
 // rs.classifier{ model = PATH, classifier = <share/analysis/defaults.csv> } → a loaded model
 int l_classifier(lua_State* L) {
     Session& s = Session::of(L);
-    SliceGuard guard{s.sandbox()};
+    SliceGuard guard{s.sandbox(), L};
     luaL_checktype(L, 1, LUA_TTABLE);
     check_options(L, 1, "rs.classifier", {"model", "classifier"});
     const std::string model = opt_field_string(L, 1, "model", "");

@@ -230,13 +230,11 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
     lua_setmetatable(L, -2);
     sandbox.set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
     if (auto s = sandbox.load_file(script); !s.ok()) return s.error();
-    sandbox.start_slice();
+    sandbox.start_slice(L);
     if (const int rc = lua_pcall(L, 0, 0, 0); rc != LUA_OK && lua_touserdata(L, -1) != &kStop) {
         const char* msg = lua_tostring(L, -1);
         std::string text = msg ? msg : "(error object is not a string)";
-        if (rc == LUA_ERRMEM)  // no place comes with it: the script, the cap, the way out
-            text = script.string() + ": " + text + ": its top reached " + sandbox.memory_cap() +
-                   " while its settings were read; raise it with --memory-limit-mb MB";
+        if (rc == LUA_ERRMEM) text = sandbox.memory_error(" while its settings were read");  // Lua's text has no place
         return Error{ErrorCode::invalid_argument, text};
     }
     std::sort(found.begin(), found.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });

@@ -10,11 +10,12 @@
 namespace rollsense::runtime::lua_api {
 
 struct SliceGuard {
-    explicit SliceGuard(Sandbox& s) : sandbox(s) { sandbox.end_slice(); }
-    ~SliceGuard() { sandbox.start_slice(); }
+    SliceGuard(Sandbox& s, lua_State* thread) : sandbox(s), running(thread) { sandbox.end_slice(); }
+    ~SliceGuard() { sandbox.start_slice(running); }
     SliceGuard(const SliceGuard&) = delete;
     SliceGuard& operator=(const SliceGuard&) = delete;
     Sandbox& sandbox;
+    lua_State* running;  // the thread whose slice resumes
 };
 
 }  // namespace rollsense::runtime::lua_api

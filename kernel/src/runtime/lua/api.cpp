@@ -170,21 +170,16 @@ bool l_wait_until(lua_State* L) {
     t.hold_predicate(ref);
     Wait w;
     w.kind = Wait::Kind::predicate;
-    int level = 1;  // the script's line that called it, through pcall and other C functions
-    for (lua_Debug ar; lua_getstack(L, level, &ar) && lua_getinfo(L, "l", &ar) && ar.currentline < 0;) ++level;
-    luaL_where(L, level);
-    const std::string where = lua_tostring(L, -1);
-    lua_pop(L, 1);
-    w.predicate = lua_predicate(s.sandbox(), ref, where.substr(0, where.find_last_not_of(": ") + 1));
+    // The script's line that called it, through pcall and other C functions.
+    w.predicate = lua_predicate(s.sandbox(), ref, script_line(L, 1));
     w.until = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
     w.what = "a condition";
     t.request(std::move(w));
     return true;
 }
 
-// rs.setting(key, default): a --set value (of the default's type where that is
-// a number or boolean: another is the command line's error), or the declared
-// default (rs.settings), or `default`. No default: required. In a namespace
+// rs.setting(key, default): a --set value (of the default's type where that is a number or boolean: another is the
+// command line's error), or the declared default (rs.settings), or `default`. No default: required. In a namespace
 // that declared its settings, an undeclared key is an error.
 int l_setting(lua_State* L) {
     const Settings& st = Session::of(L).settings();

@@ -22,13 +22,11 @@ template <bool (*request)(lua_State*), lua_KFunction k>
 int waiting(lua_State* L) {
     return request(L) ? lua_yieldk(L, 0, 0, k) : 0;
 }
-// Continuation that turns a cancelled or timed-out wait into an error and
-// returns nothing otherwise.
+// Continuation that turns a cancelled or timed-out wait into an error and returns nothing otherwise.
 int finish_wait(lua_State* L, int status, lua_KContext ctx);
 
-// On the metatable at the top of the stack: getmetatable() returns a string
-// and setmetatable() is refused, so a script cannot reach __gc or rewrite
-// methods of an object the kernel owns. Every userdata metatable sets this.
+// On the metatable at the top of the stack: getmetatable() returns a string and setmetatable() is refused, so a
+// script cannot reach __gc or rewrite methods of an object the kernel owns. Every userdata metatable sets this.
 inline void protect_metatable(lua_State* L) {
     lua_pushliteral(L, "rollsense object (protected metatable)");
     lua_setfield(L, -2, "__metatable");

@@ -11,8 +11,7 @@
 namespace rollsense::runtime {
 
 std::string error_text(lua_State* L, int index);
-// The same without calling __tostring (where hooks may be off: a cancel
-// could not stop a __tostring that loops).
+// The same without calling __tostring (where hooks may be off: a cancel could not stop a __tostring that loops).
 std::string error_text_raw(lua_State* L, int index);
 
 }  // namespace rollsense::runtime

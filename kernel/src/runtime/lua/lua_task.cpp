@@ -10,9 +10,8 @@
 namespace rollsense::runtime {
 namespace {
 
-// The error's text and the traceback, taken where the error was raised
-// (the kernel's pcall below unwinds the stack before the scheduler looks).
-// Called for the hook's cancel error with hooks off: no __tostring then.
+// The error's text and the traceback, taken where the error was raised (the kernel's pcall below unwinds the stack
+// before the scheduler looks). Called for the hook's cancel error with hooks off: no __tostring then.
 int task_message_handler(lua_State* L) {
     const std::string text = Sandbox::of(L).cancelled() ? error_text_raw(L, 1) : error_text(L, 1);
     luaL_traceback(L, L, text.c_str(), 1);
@@ -26,10 +25,9 @@ int task_body_k(lua_State* L, int status, lua_KContext) {
     return 0;
 }
 
-// Every task's body runs under this pcall. An error the hook raises leaves
-// hooks off until a pcall catches it; a coroutine that died of it would run
-// its `<close>` variables (when closed) with hooks off, and a looping
-// __close could not be stopped. Caught here, they run with hooks on.
+// Every task's body runs under this pcall. An error the hook raises leaves hooks off until a pcall catches it; a
+// coroutine that died of it would run its `<close>` variables (when closed) with hooks off, and a looping __close
+// could not be stopped. Caught here, they run with hooks on.
 int task_body(lua_State* L) {
     lua_pushcfunction(L, &task_message_handler);
     lua_insert(L, 1);
@@ -79,7 +77,7 @@ void LuaTask::release_predicate() {
 TaskStep LuaTask::resume(WaitOutcome last) {
     lua_State* main = sandbox_.state();
     outcome_ = last;
-    sandbox_.start_slice();
+    sandbox_.start_slice(thread_);
     int nres = 0;
     const int status = lua_resume(thread_, main, std::exchange(first_resume_, false) ? 1 : 0, &nres);
     sandbox_.end_slice();
@@ -89,13 +87,9 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     }
     if (status == LUA_OK) return TaskStep::done();
     // The text task_message_handler made; a memory error comes bare (no handler
-    // runs for it, its place is unknown): which cap, and the way out.
-    const std::string trace = error_text_raw(thread_, -1) +
-                              (status == LUA_ERRMEM ? ": the script reached " + sandbox_.memory_cap() +
-                                                          "; raise it with --memory-limit-mb MB"
-                                                    : "");
-    // The code a binding raised (a limit violation, a hardware fault) stays the
-    // script's error code.
+    // runs for it): the line the allocator noted, which cap, and the way out.
+    const std::string trace = status == LUA_ERRMEM ? sandbox_.memory_error() : error_text_raw(thread_, -1);
+    // The code a binding raised (a limit violation, a hardware fault) stays the script's error code.
     ErrorCode code = session_of(main)->take_raised_code();
     if (sandbox_.cancelled()) code = sandbox_.cancel_code();
     if (code == ErrorCode::ok) code = ErrorCode::script_error;
@@ -107,7 +101,7 @@ std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::stri
     return [&sandbox, ref, called_at = std::move(called_at)]() -> Result<bool> {
         lua_State* main = sandbox.state();
         lua_rawgeti(main, LUA_REGISTRYINDEX, ref);
-        sandbox.start_slice();
+        sandbox.start_slice(main);
         const int rc = lua_pcall(main, 0, 1, 0);
         sandbox.end_slice();
         if (rc != LUA_OK) {

@@ -30,8 +30,7 @@ public:
     // How the last wait ended, and what it was for (error messages).
     WaitOutcome outcome() const { return outcome_; }
     const std::string& waiting_for() const { return waiting_for_; }
-    // A wait_until condition (a registry reference) the task owns until its
-    // continuation releases it.
+    // A wait_until condition (a registry reference) the task owns until its continuation releases it.
     void hold_predicate(int ref);
     void release_predicate();
 
@@ -46,9 +45,8 @@ private:
     std::string waiting_for_;
 };
 
-// A wait_until condition as a C++ predicate: calls the Lua function `ref` on
-// the sandbox's main state; a Lua error is the predicate's error, naming
-// `called_at` ("file:line", where the script called rs.wait_until).
+// A wait_until condition as a C++ predicate: calls the Lua function `ref` on the sandbox's main state; a Lua error is
+// the predicate's error, naming `called_at` ("file:line", where the script called rs.wait_until).
 std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::string called_at);
 
 }  // namespace rollsense::runtime

@@ -85,7 +85,7 @@ void copy_library(lua_State* L, int env, const char* name, const char* const* ke
 }  // namespace
 
 Sandbox::Sandbox(SandboxLimits limits, std::vector<std::filesystem::path> module_path)
-    : limits_(limits), module_path_(std::move(module_path)), heap_{limits.memory_bytes} {
+    : limits_(limits), module_path_(std::move(module_path)), heap_{limits.memory_bytes, 0, nullptr, {}} {
     L_ = lua_newstate(&LuaHeap::allocate, &heap_);
     if (!L_) throw StatusError(Status(ErrorCode::io_error, "cannot create a Lua state (out of memory)"));
     *static_cast<Sandbox**>(lua_getextraspace(L_)) = this;  // inherited by every coroutine
@@ -107,7 +107,10 @@ void* LuaHeap::allocate(void* heap, void* ptr, std::size_t osize, std::size_t ns
         return nullptr;
     }
     // Past the cap: fail the allocation (freeing, as when the state closes, always works).
-    if (nsize > old && self->used + (nsize - old) > self->cap) return nullptr;
+    if (nsize > old && self->used + (nsize - old) > self->cap) {
+        if (self->running) self->refused_at = script_line(self->running, 0);
+        return nullptr;
+    }
     void* p = std::realloc(ptr, nsize);
     if (p) self->used = self->used - old + nsize;
     return p;
@@ -148,8 +151,7 @@ void Sandbox::build_environment() {
     lua_newtable(L);
     loaded_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
     env_ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
-    // The string metatable's __index is the real string library, which still
-    // has dump; point it at the sandbox copy.
+    // The string metatable's __index is the real string library, which still has dump; point it at the sandbox copy.
     lua_pushliteral(L, "");
     lua_getmetatable(L, -1);
     lua_rawgeti(L, LUA_REGISTRYINDEX, env_ref_);
@@ -295,7 +297,8 @@ void Sandbox::clear_cancel() {
     arm(L_);  // a wait_until condition may have left the main state's hook on every instruction
 }
 
-void Sandbox::start_slice() {
+void Sandbox::start_slice(lua_State* running) {
+    heap_.running = running;
     slice_start_ = wall_ms();
     in_lua_since_ms_.store(static_cast<std::int64_t>(slice_start_) + 1);  // never 0
 }
@@ -303,6 +306,17 @@ void Sandbox::start_slice() {
 std::string Sandbox::memory_cap() const {
     return "its memory cap (" + std::to_string(limits_.memory_bytes >> 20) + " MB, " +
            std::to_string(heap_.used >> 20) + " MB in use)";
+}
+
+std::string Sandbox::memory_error(const std::string& when) const {
+    return (heap_.refused_at.empty() ? "" : heap_.refused_at + ": ") + "not enough memory: the script reached " +
+           memory_cap() + when + "; raise it with --memory-limit-mb MB";
+}
+
+std::string script_line(lua_State* L, int level) {
+    for (lua_Debug ar; lua_getstack(L, level, &ar); ++level)
+        if (lua_getinfo(L, "Sl", &ar) && ar.currentline > 0) return std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
+    return "";
 }
 
 Status Sandbox::charge(std::size_t bytes, const std::string& what) const {

@@ -1,6 +1,6 @@
 // The Lua state a roll script runs in (ArduPilot-style sandbox):
 // - a memory-capped allocator (an allocation past the cap fails, which Lua
-//   reports as "not enough memory" at the script's line);
+//   reports as "not enough memory"; the allocator notes the script's line);
 // - a fresh environment with a whitelist: no io, no os.execute/remove/exit,
 //   no debug, no dofile/loadfile, no string.dump, no bytecode (load is text-only);
 // - `require` that finds only the rollsense module and text modules in the
@@ -22,7 +22,6 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +29,9 @@
 #include "runtime/session/cancellation.hpp"
 
 namespace rollsense::runtime {
+
+// "script.lua:12", the innermost Lua line at or below stack `level` of L ("" if none); allocates nothing in Lua.
+std::string script_line(lua_State* L, int level);
 
 struct SandboxLimits {
     std::size_t memory_bytes = 256u << 20;  // Lua heap cap
@@ -42,6 +44,8 @@ struct SandboxLimits {
 struct LuaHeap {
     std::size_t cap = 0;
     std::size_t used = 0;
+    lua_State* running = nullptr;  // the thread a slice runs: a refusal notes its line, which Lua's error lacks
+    std::string refused_at;        // "script.lua:12", the last refusal's line
     static void* allocate(void* heap, void* ptr, std::size_t osize, std::size_t nsize);
 };
 
@@ -76,8 +80,8 @@ public:
     void arm(lua_State* thread);
     // Called by the scheduler right before resuming Lua code, and right after
     // Lua hands control back (the cancel watchdog watches the gap).
-    void start_slice();
-    void end_slice() { in_lua_since_ms_.store(0); }
+    void start_slice(lua_State* running);
+    void end_slice() { in_lua_since_ms_.store(0); heap_.running = nullptr; }
     // Monotonic ms since Lua was entered, 0 when Lua is not running.
     std::int64_t in_lua_since_ms() const { return in_lua_since_ms_.load(); }
 
@@ -87,6 +91,8 @@ public:
 
     std::size_t memory_used() const { return heap_.used; }
     std::string memory_cap() const;  // "its memory cap (256 MB, 255 MB in use)"
+    // "s.lua:4: not enough memory: the script reached its memory cap (…)<when>; raise it with --memory-limit-mb MB"
+    std::string memory_error(const std::string& when = "") const;
     const SandboxLimits& limits() const { return limits_; }
 
     static Sandbox& of(lua_State* L);  // the sandbox owning a Lua thread

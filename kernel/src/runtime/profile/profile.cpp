@@ -425,6 +425,7 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
     std::unique_ptr<lua_State, LuaCloser> holder(lua_newstate(&LuaHeap::allocate, &budget.heap));
     if (!holder) return Error{ErrorCode::io_error, "cannot create a Lua state for profile " + p.path.string()};
     lua_State* L = holder.get();
+    budget.heap.running = L;  // a refusal notes the profile's line
     *static_cast<ProfileBudget**>(lua_getextraspace(L)) = &budget;
     lua_sethook(L, &budget_hook, LUA_MASKCOUNT, 10000);
     LoadState st{share_dir, &settings, 0, {}};
@@ -434,8 +435,9 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
     if (const int rc = lua_pcall(L, 1, 1, 0); rc != LUA_OK) {
         const char* msg = lua_tostring(L, -1);
         std::string text = msg ? msg : "(error object is not a string)";
+        const std::string& at = budget.heap.refused_at;  // Lua's memory error has no place: the line the allocator noted
         if (rc == LUA_ERRMEM)
-            text = p.path.string() + ": " + text + " (the profile went past the memory cap of " +
+            text = (at.empty() ? p.path.string() : at) + ": " + text + " (the profile went past the memory cap of " +
                    std::to_string(limits.memory_bytes >> 20) + " MB; --memory-limit-mb)";
         return Error{ErrorCode::parse_error, "profile " + text};
     }

@@ -4,18 +4,12 @@
 #include <cfloat>
 #include <cmath>
 #include <functional>
-#include <sstream>
 #include <utility>
 
 namespace rollsense::runtime {
 
 namespace {
-std::string fmt(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << (std::isnan(v) ? std::fabs(v) : v);  // "nan", not the "-nan" of Lua's 0/0
-    return os.str();
-}
+std::string fmt(double v) { return format_number(v, 6); }
 bool is_position_mode(ControlMode m) {
     return m == ControlMode::position || m == ControlMode::extended_position ||
            m == ControlMode::current_based_position;

@@ -150,8 +150,7 @@ Status Scheduler::run(TaskRole phase, double deadline, const std::string& over_d
         if (safety_.interrupt_flag().load() && !cancellation_.cancelled())
             cancel(cleanup ? "interrupted again during cleanup" : "interrupted by Ctrl-C or a SIGTERM/SIGHUP");
         if (cancellation_.cancelled()) cancel_waits();
-        // Ended tasks leave their slots: a script that spawns short tasks for
-        // hours does not grow this list.
+        // Ended tasks leave their slots: a script that spawns short tasks for hours does not grow this list.
         slots_.erase(std::remove_if(slots_.begin(), slots_.end(), [](const auto& s) { return !s->task; }), slots_.end());
         // Resume every task that is ready; spawned tasks join at the end.
         for (std::size_t i = 0; i < slots_.size(); ++i) {

@@ -1,7 +1,6 @@
 #include "runtime/session/session.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

@@ -70,8 +70,7 @@ public:
     explicit Session(SessionOptions options);
     ~Session();
 
-    // Load profile and plugins, open the dataset, run the script and its
-    // cleanup, leave the hand safe. Never throws.
+    // Load profile and plugins, open the dataset, run the script and its cleanup, leave the hand safe. Never throws.
     RunSummary run();
 
     // Prepare everything run() needs without running a script (tests).
