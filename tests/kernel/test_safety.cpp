@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "kernel_fixture.hpp"
+#include "log_capture.hpp"
 
 using namespace rollsense;
 
@@ -207,6 +208,30 @@ while true do pcall(rs.wait, 1000) end
     CHECK_THAT(s.status.message(), Catch::Contains("--time-limit"));
     CHECK(kt::read_file(o.out_dir / "cleanup.txt") == "ran");
     CHECK(s.run_time_s <= 5.0 + 1e-6);
+}
+
+// Review (user journeys) item 1: a cleanup that failed after a script that
+// succeeded was only logged, and the run said "ok" (exit 0) with the hand
+// perhaps not parked. Now it is the run's failure, printed once (by the caller).
+TEST_CASE("a cleanup that fails after a script that succeeded fails the run", "[safety]") {
+    struct Case { const char* cleanup; ErrorCode code; const char* says; };
+    for (const Case& c : {Case{"rs.nosuch()", ErrorCode::script_error, "script.lua:2: attempt to call a nil value"},
+                          Case{"while true do end", ErrorCode::limit_violation, "past --slice-limit-ms 300"}}) {
+        INFO(c.cleanup);
+        kt::TempDir dir;
+        auto o = kt::options_for(dir, std::string("local rs = require 'rollsense'\nrs.on_cleanup(function() ") +
+                                          c.cleanup + " end)\nrs.wait(10)\n");
+        o.sandbox.max_slice_ms = 300;
+        const rollsense::testing::LogCapture log;
+        rollsense::runtime::Session session(o);
+        auto s = session.run();
+        INFO(log.all());
+        REQUIRE_FALSE(s.status.ok());
+        CHECK(s.status.code() == c.code);
+        CHECK_THAT(s.status.message(), Catch::Contains("task 'cleanup'") && Catch::Contains(c.says));
+        CHECK(log.count(c.says) == 0);  // the caller prints the run's status: once
+        CHECK_THAT(kt::read_file(o.out_dir / "run-info.csv"), Catch::Contains("status,") && !Catch::Contains("status,ok"));
+    }
 }
 
 TEST_CASE("Ctrl-C cancels the script, runs its cleanup and leaves the hand safe", "[safety]") {

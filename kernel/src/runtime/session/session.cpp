@@ -163,7 +163,7 @@ RunSummary Session::run() {
             CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
                                     [this, wall_start](const std::string& why, ErrorCode code) { last_resort(why, code, wall_start); });
             s = run_main_chunk();
-            run_cleanup();
+            if (Status cleanup = run_cleanup(); s.ok()) s = cleanup;
         } catch (const std::bad_alloc&) {  // in the kernel's own work: the last resort needs no heap,
             const int sent = run_last_resort();  // then shutdown (below) tries the ordinary safe state
             s = Status(ErrorCode::limit_violation, "out of memory (std::bad_alloc) during the run; " +
@@ -262,19 +262,18 @@ Status Session::spawn(lua_State* L, int function_index, std::string name) {
     return {};
 }
 
-// However the script ended: stop the hand first if it failed, then let the
-// script's cleanup functions tidy up, on a fresh cancellation and time budget.
-// Their errors are logged; the run's status stays the script's. The script's
-// own failure is not logged here: it is the run's status, which the caller
-// prints (once) with its exit code.
-void Session::run_cleanup() {
-    if (!sandbox_) return;
+// However the script ended: stop the hand first if it failed, then let the script's cleanup functions tidy up, on a
+// fresh cancellation and time budget. After a failed script their errors are logged and the run's status stays the
+// script's; after one that succeeded, a failed cleanup (the hand perhaps not parked) is returned, the run's failure.
+// The run's status is not logged here: the caller prints it (once) with its exit code.
+Status Session::run_cleanup() {
+    if (!sandbox_) return {};
     if (!scheduler_->failure().ok()) {
         log_debug("kernel", "the script failed: hand to its safe state, then the cleanup functions");
         robot_->safe_state(now());
     }
     recorder_->abort_recording();
-    if (cleanup_refs_.empty()) return;
+    if (cleanup_refs_.empty()) return {};
     const Status main_failure = scheduler_->take_failure();
     sandbox_->clear_cancel();
     safety_.interrupt_flag().store(false);
@@ -290,11 +289,12 @@ void Session::run_cleanup() {
                                          " s)");
     // After a failure the hand is safe already (above); a cleanup step a device
     // refuses because that failure left it in the error state is no news.
-    if (!cleanup.ok())
-        log(main_failure.ok() || cleanup.code() != ErrorCode::state_error ? LogLevel::error : LogLevel::info, "kernel",
+    if (!cleanup.ok() && !main_failure.ok())
+        log(cleanup.code() != ErrorCode::state_error ? LogLevel::error : LogLevel::info, "kernel",
             "cleanup stopped: " + cleanup.message());
     (void)scheduler_->take_failure();
     scheduler_->fail(main_failure.ok() ? cleanup : main_failure);
+    return main_failure.ok() ? cleanup : Status{};
 }
 
 Status Session::record_start() {

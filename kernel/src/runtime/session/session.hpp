@@ -143,7 +143,7 @@ public:
 
 private:
     Status open_dataset();
-    void run_cleanup();
+    Status run_cleanup();
     void write_run_info(const Status& status, double wall_start);
     // The cancel watchdog's way out (its own thread): safe state (the prepared
     // last resort if the script's thread holds the devices), run-info, exit 130.
