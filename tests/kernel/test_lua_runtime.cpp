@@ -149,6 +149,32 @@ TEST_CASE("the waiting calls refuse bad arguments before any wait, naming the ca
     CHECK(out == "0 0.000 true true");
 }
 
+// Review (user journeys) item 6: Lua counts 0 and "off" as true, so j:torque(0)
+// switched a servo's torque on. A switch takes true or false only; and a move
+// whose `wait` option is refused has not moved (it was read after the command).
+TEST_CASE("a switch takes true or false only: torque 0 or off switches nothing on", "[lua][limits]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local f = rs.joint("finger")
+        f:torque(false)
+        local said = {}
+        for _, call in ipairs({ function() f:torque(0) end, function() f:torque("off") end, function() f:torque() end,
+                                function() rs.controller("palm", "off") end,
+                                function() f:move(10, { wait = 0 }) end }) do
+          local ok, err = pcall(call)
+          said[#said + 1] = tostring(ok) .. " " .. tostring(err)
+        end
+        rs.wait(50)  -- the state read next is the servo's, a control period later
+        rs.write_output("result.txt", tostring(f:state().torque) .. "\n" .. table.concat(said, "\n")))");
+    INFO(out);
+    CHECK(out.rfind("false\n", 0) == 0);  // torque still off
+    CHECK_THAT(out, Catch::Contains("script.lua:6: bad argument #1 to 'torque' (boolean expected, got number)"));
+    CHECK_THAT(out, Catch::Contains("bad argument #1 to 'torque' (boolean expected, got string)"));
+    CHECK_THAT(out, Catch::Contains("bad argument #1 to 'torque' (boolean expected, got no value)"));
+    CHECK_THAT(out, Catch::Contains("bad argument #2 to 'controller' (boolean expected, got string)"));
+    CHECK_THAT(out, Catch::Contains("option 'wait' must be true or false, not 0"));
+}
+
 TEST_CASE("recording samples sensors and joints at the profile's rate", "[lua]") {
     kt::TempDir dir;
     auto out = run_and_read(dir, R"(

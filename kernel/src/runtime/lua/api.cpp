@@ -119,7 +119,10 @@ double opt_field_number(lua_State* L, int table, const char* key, double fallbac
 }
 
 bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback) {
-    const bool v = push_option(L, table, key) ? lua_toboolean(L, -1) != 0 : fallback;
+    const bool given = push_option(L, table, key);
+    if (given && !lua_isboolean(L, -1))  // 0 and "off" are true in Lua: a switch takes true or false only
+        luaL_error(L, "option '%s' must be true or false, not %s", key, luaL_tolstring(L, -1, nullptr));
+    const bool v = given ? lua_toboolean(L, -1) != 0 : fallback;
     lua_pop(L, 1);
     return v;
 }

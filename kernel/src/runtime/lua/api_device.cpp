@@ -62,7 +62,7 @@ int l_recover(lua_State* L) {
 int l_controller(lua_State* L) {
     Session& s = Session::of(L);
     const char* name = luaL_checkstring(L, 1);
-    const bool on = lua_isnone(L, 2) ? true : lua_toboolean(L, 2) != 0;
+    const bool on = lua_isnone(L, 2) || (luaL_checktype(L, 2, LUA_TBOOLEAN), lua_toboolean(L, 2) != 0);  // not 0, "off"
     if (on) {
         auto st = s.robot().enable_controller(name, s.now());
         if (!st.ok()) raise_status(L, st);

@@ -68,6 +68,7 @@ bool l_move(lua_State* L) {
     const double goal = luaL_checknumber(L, 2);
     check_options(L, 3, "move", {"velocity", "acceleration", "mode", "current", "wait", "timeout_ms", "tolerance"});
     const auto [timeout, tolerance] = wait_options(L, 3, HUGE_VAL);  // checked before anything moves
+    const bool wait = opt_field_bool(L, 3, "wait", true);
     JointCommand c;
     c.mode = position_mode_of(j.info);
     c.position = goal;
@@ -83,7 +84,7 @@ bool l_move(lua_State* L) {
         c.mode = mode == "extended_position" ? ControlMode::extended_position : ControlMode::position;
     }
     command_or_raise(L, j, c);
-    if (!opt_field_bool(L, 3, "wait", true)) return false;
+    if (!wait) return false;
     char what[160];
     std::snprintf(what, sizeof what, "joint '%s' to reach %.3f %s", j.name.c_str(), goal, j.info.unit.c_str());
     return wait_arrival(L, {&j}, timeout < HUGE_VAL ? timeout : default_timeout(j, goal, j.command.profile_velocity,
@@ -114,6 +115,7 @@ int l_hold(lua_State* L) {
 int l_torque(lua_State* L) {
     Joint& j = check_joint(L, 1);
     JointCommand c = j.command;
+    luaL_checktype(L, 2, LUA_TBOOLEAN);  // 0 and "off" are true in Lua: they must not switch torque on
     c.torque_enabled = lua_toboolean(L, 2) != 0;
     if (c.torque_enabled) c.position = std::clamp(j.state.position, j.limit.min, j.limit.max);
     command_or_raise(L, j, c);
