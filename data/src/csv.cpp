@@ -56,11 +56,26 @@ Result<Reader> Reader::open(const std::filesystem::path& file) {
     return r;
 }
 
+std::string excerpt(std::string_view text, std::size_t limit) {
+    std::string out;
+    for (const char ch : text.substr(0, limit)) {
+        const auto u = static_cast<unsigned char>(ch);
+        if (u >= 0x20 && u < 0x7f) {
+            out.push_back(ch);
+        } else {
+            static const char hex[] = "0123456789abcdef";
+            out += {'\\', 'x', hex[u >> 4], hex[u & 15]};
+        }
+    }
+    return text.size() > limit ? out + "… (" + std::to_string(text.size()) + " bytes)" : out;
+}
+
 Result<std::size_t> Reader::column(std::string_view name) const {
     for (std::size_t i = 0; i < header_.size(); ++i)
         if (header_[i] == name) return i;
     std::string have;
-    for (const auto& h : header_) have += (have.empty() ? "" : ", ") + h;
+    for (std::size_t i = 0; i < header_.size() && i < 30; ++i) have += (i ? ", " : "") + excerpt(header_[i]);
+    if (header_.size() > 30) have += ", … (" + std::to_string(header_.size()) + " columns)";
     return Error{ErrorCode::parse_error,
                  path_.string() + ":1: no column '" + std::string(name) + "' in the header (columns: " + have + ")"};
 }
@@ -82,10 +97,17 @@ Result<bool> Reader::parse_record(std::vector<std::string>& fields) {
     std::string field;
     bool in_quotes = false, any = false, field_was_quoted = false;
     int c;
+    std::size_t bytes = 0;
     // The stream buffer directly: istream::get() costs a sentry per character.
     std::streambuf& in = *in_->rdbuf();
     while ((c = in.sbumpc()) != EOF) {
         any = true;
+        if (++bytes > kMaxRecordBytes || fields.size() >= kMaxRecordFields)
+            return Error{ErrorCode::parse_error,
+                         path_.string() + ":" + std::to_string(record_line_) + ": a record longer than " +
+                             (bytes > kMaxRecordBytes ? std::to_string(kMaxRecordBytes) + " bytes"
+                                                      : std::to_string(kMaxRecordFields) + " fields") +
+                             ": a damaged file, or not a CSV file of rollsense (restore it, or give the right file)"};
         if (in_quotes) {
             if (c == '"') {
                 if (in.sgetc() == '"') {
@@ -140,7 +162,7 @@ Result<bool> Reader::next(std::vector<std::string>& fields) {
 }
 
 std::string Reader::where(std::size_t column_index) const {
-    std::string col = column_index < header_.size() ? header_[column_index] : std::to_string(column_index + 1);
+    std::string col = column_index < header_.size() ? excerpt(header_[column_index]) : std::to_string(column_index + 1);
     return path_.string() + ":" + std::to_string(record_line_) + ": column '" + col + "'";
 }
 
@@ -174,9 +196,9 @@ Result<T> parse_whole(std::string_view text, T min, T max, const std::string& wh
     auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == text.data() + text.size() &&
                                                  (value < min || value > max)))
-        return Error{ErrorCode::parse_error, where + ": " + std::string(text) + " is out of range " + range};
+        return Error{ErrorCode::parse_error, where + ": " + excerpt(text) + " is out of range " + range};
     if (ec != std::errc() || ptr != text.data() + text.size())
-        return Error{ErrorCode::parse_error, where + ": '" + std::string(text) + "' is not a whole number in " + range};
+        return Error{ErrorCode::parse_error, where + ": '" + excerpt(text) + "' is not a whole number in " + range};
     return value;
 }
 }  // namespace
@@ -199,7 +221,7 @@ Result<double> parse_number(std::string_view text, const std::string& where) {
     if (*first == '+') ++first;
     auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), value);
     if (ec != std::errc() || ptr != text.data() + text.size())
-        return Error{ErrorCode::parse_error, where + ": '" + std::string(text) + "' is not a number"};
+        return Error{ErrorCode::parse_error, where + ": '" + excerpt(text) + "' is not a number"};
     return value;
 }
 

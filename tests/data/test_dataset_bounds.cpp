@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "../bagged_trees/address_space_limit.hpp"
+#include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "temp_dir.hpp"
 
@@ -118,4 +119,39 @@ TEST_CASE("a manifest.csv that is a folder is refused naming it, not thrown", "[
     REQUIRE_NOTHROW(w = DatasetWriter::open(dir / "ds", info, DatasetOpenMode::resume));
     REQUIRE_FALSE(w.ok());
     CHECK_THAT(w.error().message, Catch::Contains((dir / "ds" / "manifest.csv").string() + ": is a folder, not a CSV file"));
+}
+
+// Review (bad input) item 2: a 20 MB line of commas took 1 GB (a std::string
+// per empty field), and errors repeated a whole field or header, 5 MB of text
+// for one long number. A record is bounded, and quoted text is cut.
+TEST_CASE("a CSV record past its bounds is refused before it costs memory, and errors quote briefly", "[data][bounds]") {
+    TempDir dir;
+    write(dir / "ds" / "dataset-info.csv", kInfo);
+    for (const auto& [line, says] : {std::pair{std::string(20'000'000, ','), "longer than 10000 fields"},
+                                     std::pair{std::string(3'000'000, 'x'), "longer than 1048576 bytes"}}) {
+        INFO(says);
+        write(dir / "ds" / "manifest.csv", line + "\n");
+        // 256 MB: on main the line of commas took 1 GB.
+        const auto outcome = rollsense::testing::run_with_address_space_limit(std::size_t{256} << 20, [&] {
+            auto r = DatasetReader::open(dir / "ds");
+            return !r && r.status().message().find("manifest.csv:1: a record " + std::string(says)) != std::string::npos &&
+                   r.status().message().size() < 400;
+        });
+        CHECK(outcome == rollsense::testing::ChildOutcome::passed);
+    }
+    // A header of 5,000 long names, and a 100,000-digit number with a stray byte: quoted, not repeated.
+    std::string header = "trial_id";
+    for (int i = 0; i < 5000; ++i) header += "," + std::string(100, 'h');
+    write(dir / "ds" / "manifest.csv", header + "\n");
+    auto r = DatasetReader::open(dir / "ds");
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.status().message(), Catch::Contains("(5001 columns)"));
+    CHECK(r.status().message().size() < 4000);
+    write(dir / "ds" / "manifest.csv", manifest("trials/t1.csv", std::string(100000, '7') + "\x01"));
+    r = DatasetReader::open(dir / "ds");
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.status().message(), Catch::Contains("manifest.csv:2: column 'samples'") &&
+                                         Catch::Contains("… (100001 bytes)"));
+    CHECK(r.status().message().size() < 400);
+    CHECK(csv::excerpt("a\x01\xff") == "a\\x01\\xff");
 }
