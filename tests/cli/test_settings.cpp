@@ -80,6 +80,23 @@ TEST_CASE("run SCRIPT --help lists the settings of the script and its modules wi
     }
 }
 
+// Review (user journeys) item 2: reading the declarations stopped silently at
+// the first other rs.* call: demo_roll.lua's rs.on_cleanup hid its `object`,
+// and a script that waited first was said to declare nothing.
+TEST_CASE("run SCRIPT --help reads past rs.on_cleanup and names the call where it stopped") {
+    TempDir dir("rollsense-settings-stop");
+    const auto demo = run_rollsense("run " + script("demo_roll.lua") + " --help");
+    INFO(demo.output);
+    CHECK(demo.output.find("object=C2") != std::string::npos);
+    write_file(dir / "late.lua", "local rs = require 'rollsense'\nrs.wait(1)\nrs.settings{ runs = { default = 2 } }\n");
+    const auto late = run_rollsense("run " + shell_quoted(dir / "late.lua") + " --help");
+    INFO(late.output);
+    CHECK(late.status == 0);
+    CHECK(late.output.find("declares no settings before " + (dir / "late.lua").string() + ":2 (rs.wait)") !=
+          std::string::npos);
+    CHECK(late.output.find("declare them with rs.settings before it") != std::string::npos);
+}
+
 // Review (sandbox) item 8: the settings probe ran under the default limits, and its error came after the usage text.
 TEST_CASE("run SCRIPT --help reads the settings under the run's --slice-limit-ms and --memory-limit-mb") {
     TempDir dir("rollsense-settings-limits");

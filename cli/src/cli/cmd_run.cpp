@@ -96,16 +96,23 @@ runtime::SandboxLimits sandbox_limits_of(const Args& args) {
 int print_script_help(const std::vector<std::string>& positionals, const Args& args) {
     // The script's error alone, not after the whole usage text.
     std::optional<Result<std::vector<script_settings::Declaration>>> declared;
+    std::string stopped_at;  // where reading the declarations stopped: a call where trials could begin
     if (positionals.size() == 1)
-        declared = script_settings::declared_by(resolve_script(positionals[0]), share_dir(), sandbox_limits_of(args));
+        declared = script_settings::declared_by(resolve_script(positionals[0]), share_dir(), sandbox_limits_of(args),
+                                                &stopped_at);
     if (declared && !*declared) throw StatusError(Status{declared->error()});
     std::printf("%s\n\nexit codes (rollsense --help):\n%s", kHelp, exit_code_table().c_str());
     if (!declared) return kExitOk;
-    if ((*declared)->empty())
-        std::printf("\n%s declares no settings (rs.settings); its --set keys are not checked before it runs\n",
-                    positionals[0].c_str());
+    const char* script = positionals[0].c_str();
+    if ((*declared)->empty() && stopped_at.empty())
+        std::printf("\n%s declares no settings (rs.settings); its --set keys are not checked before it runs\n", script);
+    else if ((*declared)->empty())
+        std::printf("\n%s declares no settings before %s, where reading them stops (trials could begin there);\n"
+                    "declare them with rs.settings before it, so that --set is checked before anything runs\n",
+                    script, stopped_at.c_str());
     else
-        std::printf("\nsettings of %s (--set KEY=VALUE; default shown):\n%s", positionals[0].c_str(),
+        std::printf("\nsettings of %s (--set KEY=VALUE; default shown)%s:\n%s", script,
+                    stopped_at.empty() ? "" : (", declared before " + stopped_at).c_str(),
                     script_settings::describe(**declared).c_str());
     return kExitOk;
 }

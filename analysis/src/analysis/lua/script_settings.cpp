@@ -172,19 +172,25 @@ namespace {
 
 const char kStop = 0;  // its address marks "the script went past its declarations"
 
-std::vector<Declaration>& probe_of(lua_State* L) {
-    return *static_cast<std::vector<Declaration>*>(lua_touserdata(L, lua_upvalueindex(1)));
-}
+struct Probe {
+    std::vector<Declaration> found;
+    std::string stopped_at;  // "demo.lua:7 (rs.trial)": the call the probe stopped at
+};
 
-int probe_stop(lua_State* L) {
+Probe& probe_of(lua_State* L) { return *static_cast<Probe*>(lua_touserdata(L, lua_upvalueindex(1))); }
+
+int stop_at(lua_State* L, const std::string& call) {
+    probe_of(L).stopped_at = runtime::script_line(L, 1) + " (" + call + ")";
     lua_pushlightuserdata(L, const_cast<char*>(&kStop));
     return lua_error(L);
 }
 
+int probe_stop(lua_State* L) { return stop_at(L, std::string("rs.") + lua_tostring(L, lua_upvalueindex(2))); }
+
 int probe_settings(lua_State* L) {
     const bool module = lua_type(L, 1) == LUA_TSTRING;
     auto found = read_declarations(L, module ? 2 : 1, module ? lua_tostring(L, 1) : "");
-    auto& all = probe_of(L);
+    auto& all = probe_of(L).found;
     all.insert(all.end(), found.begin(), found.end());
     return 0;
 }
@@ -192,18 +198,27 @@ int probe_settings(lua_State* L) {
 // rs.setting while probing: the declared default (what a run without --set reads).
 int probe_setting(lua_State* L) {
     const std::string key = luaL_checkstring(L, 1);
-    for (const auto& d : probe_of(L))
+    for (const auto& d : probe_of(L).found)
         if (d.key == key && d.fallback) {
             runtime::push_param(L, *d.fallback);
             return 1;
         }
-    if (lua_gettop(L) < 2) return probe_stop(L);
+    if (lua_gettop(L) < 2) return stop_at(L, "rs.setting '" + key + "', undeclared, without a default");
     lua_settop(L, 2);
     return 1;
 }
 
+// Any other rs.* field: a function that stops the probe, naming itself and its
+// line; rs.on_cleanup only registers a function (scripts call it first), so it
+// does nothing here.
 int probe_index(lua_State* L) {
-    lua_pushcfunction(L, probe_stop);
+    if (lua_type(L, 2) == LUA_TSTRING && std::string_view(lua_tostring(L, 2)) == "on_cleanup") {
+        lua_pushcfunction(L, [](lua_State*) { return 0; });
+        return 1;
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    luaL_tolstring(L, 2, nullptr);  // the field's name
+    lua_pushcclosure(L, probe_stop, 2);
     return 1;
 }
 
@@ -211,21 +226,22 @@ int probe_index(lua_State* L) {
 
 Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
                                              const std::filesystem::path& share_dir,
-                                             const runtime::SandboxLimits& limits) {
-    std::vector<Declaration> found;
+                                             const runtime::SandboxLimits& limits, std::string* stopped_at) {
+    Probe probe;
     runtime::Sandbox sandbox(limits,
                              {script.parent_path().empty() ? std::filesystem::path(".") : script.parent_path(),
                               share_dir / "lua"});
     lua_State* L = sandbox.state();
     lua_newtable(L);
-    lua_pushlightuserdata(L, &found);
+    lua_pushlightuserdata(L, &probe);
     lua_pushcclosure(L, probe_settings, 1);
     lua_setfield(L, -2, "settings");
-    lua_pushlightuserdata(L, &found);
+    lua_pushlightuserdata(L, &probe);
     lua_pushcclosure(L, probe_setting, 1);
     lua_setfield(L, -2, "setting");
     lua_newtable(L);
-    lua_pushcfunction(L, probe_index);
+    lua_pushlightuserdata(L, &probe);
+    lua_pushcclosure(L, probe_index, 1);
     lua_setfield(L, -2, "__index");
     lua_setmetatable(L, -2);
     sandbox.set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
@@ -237,8 +253,9 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
         if (rc == LUA_ERRMEM) text = sandbox.memory_error(" while its settings were read");  // Lua's text has no place
         return Error{ErrorCode::invalid_argument, text};
     }
-    std::sort(found.begin(), found.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
-    return found;
+    std::sort(probe.found.begin(), probe.found.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
+    if (stopped_at) *stopped_at = probe.stopped_at;
+    return probe.found;
 }
 
 }  // namespace rollsense::script_settings

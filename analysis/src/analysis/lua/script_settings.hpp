@@ -55,11 +55,13 @@ std::string describe(const std::vector<Declaration>& declarations);
 
 // The settings a script declares, found without running it: its top is run
 // with a stand-in rollsense module that records rs.settings declarations
-// and stops at the first other rs.* call (that is where trials could begin).
+// and stops at the first other rs.* call (that is where trials could begin;
+// rs.on_cleanup only registers, and is passed), naming it in `stopped_at`
+// ("demo.lua:9 (rs.trial)", empty if the top ran to its end).
 // Its modules (require) load as in a run, so theirs are included.
 // Under the run's limits (`limits`: --slice-limit-ms, --memory-limit-mb).
 Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
                                              const std::filesystem::path& share_dir,
-                                             const runtime::SandboxLimits& limits);
+                                             const runtime::SandboxLimits& limits, std::string* stopped_at = nullptr);
 
 }  // namespace rollsense::script_settings
