@@ -522,12 +522,26 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     // anything there: a refused folder stays exactly as it was.
     std::optional<DatasetReader> on_disk;
     auto same_setup = [&](const DatasetInfo& old) -> Status {
-        if (old.seed == info.seed && old.profile == info.profile && old.channels == info.channels &&
-            old.joints == info.joints && old.sample_rate_hz == info.sample_rate_hz)
-            return {};
-        return {ErrorCode::bad_setting, dir.string() + " was recorded with another setup (profile '" + old.profile +
-                                                 "', seed " + std::to_string(old.seed) + "); resume it with the same "
-                                                 "--profile and --seed, or choose another folder with --out"};
+        std::string differ;  // each key that differs, with both values (review: only profile and seed were named)
+        auto compare = [&](const char* key, const std::string& was, const std::string& now) {
+            if (was != now)
+                differ += (differ.empty() ? "" : "; ") + std::string(key) + " was '" + was + "', this run's '" + now + "'";
+        };
+        auto words = [](const std::vector<std::string>& v) {
+            std::string out;
+            for (const auto& word : v) out += (out.empty() ? "" : " ") + word;
+            return out;
+        };
+        compare("profile", old.profile, info.profile);
+        compare("seed", std::to_string(old.seed), std::to_string(info.seed));
+        compare("channels", words(old.channels), words(info.channels));
+        compare("joints", words(old.joints), words(info.joints));
+        if (old.sample_rate_hz != info.sample_rate_hz)  // shortest round-trip text: two rates never print alike
+            compare("sample_rate_hz", csv::format_number(old.sample_rate_hz), csv::format_number(info.sample_rate_hz));
+        if (differ.empty()) return {};
+        return {ErrorCode::bad_setting, dir.string() + " was recorded with another setup (" + differ +
+                                                 "): resume it with the --profile, --seed and --set it was recorded "
+                                                 "with, or record into another folder with --out"};
     };
     if (mode == DatasetOpenMode::resume && exists) {
         if (auto s = check_resume_config(dir, info.run_config); !s.ok()) return s.error();

@@ -29,8 +29,13 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         // A profile file is compared by its content: "./hand.lua" and "/lab/hand.lua" are one profile.
         if (same(k) || (k == "profile" && same("profile_fnv1a"))) continue;
         const auto& [was, is] = values;
+        // A hash is no reason a user reads (review): say what it means.
+        const std::string edited = k == "script_fnv1a" || k == "profile_fnv1a"
+                                       ? std::string(" (the ") + (k[0] == 's' ? "script" : "profile") +
+                                             " was edited since it recorded: restore it, or record anew into another --out)"
+                                       : "";
         out.push_back(k + ": recorded " + (was ? "'" + *was + "'" : "(not given)") + ", this run " +
-                      (is ? "'" + *is + "'" : "(not given)"));
+                      (is ? "'" + *is + "'" : "(not given)") + edited);
     }
     return out;
 }

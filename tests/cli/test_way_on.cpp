@@ -134,3 +134,46 @@ TEST_CASE("the shipped speed sweep resumes; a script that records a trial on dis
     CHECK(twice.output.find("trial 'C1-v10-r001' is already in ") != std::string::npos);
     CHECK(twice.output.find("skip a recorded trial with 'if not rs.has_trial(id)'") != std::string::npos);
 }
+
+// Review (user journeys) item 3 and (bad input) item 3: the note that a resume
+// runs the same script came only after a Lua error, not after an API misuse;
+// a resume refused for an edited script named a hash; a refused setup named
+// the profile and seed when another key differed, and was followed by the
+// same refused command as "continue with".
+TEST_CASE("after a script's misuse, an edited script and another setup, the way on is one that works") {
+    TempDir dir("rollsense-cli-way-on-misuse");
+    const auto script = dir / "twice.lua";
+    write_file(script, R"(local rs = require "rollsense"
+local etroll = require "etroll"
+for r = 1, 2 do etroll.run_trial{ object = "C1", speed = 10, repetition = r } end
+rs.record_start()
+rs.record_start()
+)");
+    const auto out = dir / "out";
+    const auto failed = run_rollsense("run " + shell_quoted(script) + " --no-progress --out " + shell_quoted(out));
+    INFO(failed.output);
+    CHECK(failed.status != 0);
+    CHECK(failed.output.find("failed: 2 trials saved") != std::string::npos);
+    CHECK(failed.output.find("a resume runs the same script again and refuses an edited one") != std::string::npos);
+    CHECK(failed.output.find("continue with: rollsense run ") != std::string::npos);
+
+    write_file(script, read_file(script) + "-- fixed\n");
+    const auto edited = run_rollsense("run " + shell_quoted(script) + " --no-progress --resume --out " + shell_quoted(out));
+    INFO(edited.output);
+    CHECK(edited.status == 2);
+    CHECK(edited.output.find("the script was edited since it recorded: restore it, or record anew into another --out") !=
+          std::string::npos);
+
+    // The recorded sample rate differs from this run's: that key is named, and no resume is offered.
+    const std::string info = read_file(out / "dataset-info.csv");
+    const auto at = info.find("sample_rate_hz,");
+    REQUIRE(at != std::string::npos);
+    write_file(out / "dataset-info.csv", info.substr(0, at) + "sample_rate_hz,31.2" + info.substr(info.find('\n', at)));
+    write_file(script, read_file(script).substr(0, read_file(script).size() - std::string("-- fixed\n").size()));
+    const auto setup = run_rollsense("run " + shell_quoted(script) + " --no-progress --resume --out " + shell_quoted(out));
+    INFO(setup.output);
+    CHECK(setup.status == 2);
+    CHECK(setup.output.find("was recorded with another setup (sample_rate_hz was '31.2', this run's '31.1')") !=
+          std::string::npos);
+    CHECK(setup.output.find("continue with:") == std::string::npos);
+}

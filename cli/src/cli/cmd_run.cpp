@@ -256,8 +256,10 @@ int run(const std::vector<std::string>& argv) {
                              "would run the same analysis on them again)\nanalyse them with: %s (options such as "
                              "--folds, --classifier: their --help)\n",
                      trials_listed(*analysed), analysed->c_str(), analysis_commands(*analysed, o.out_dir).c_str());
-    else {
-        if (summary.status.code() == ErrorCode::script_error)  // review: the advice was a dead end for a script's own bug
+    // A refused setup or --set (bad_setting) fails the same way when resumed: its message names the way out.
+    else if (summary.status.code() != ErrorCode::bad_setting) {
+        // Review: the advice was a dead end for a script's own bug (an API misuse, a limit it commanded past, too).
+        if (!summary.cancelled && summary.status.code() != ErrorCode::io_error)
             std::fprintf(stderr, "a resume runs the same script again and refuses an edited one (run-config.csv): it "
                                  "helps when the cause was outside the script (the hand, an object, a device); a fixed "
                                  "script records into a new --out\n");
