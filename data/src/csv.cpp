@@ -51,6 +51,8 @@ Result<Reader> Reader::open(const std::filesystem::path& file) {
     r.in_ = std::move(in).value();
     auto got = r.read_record(r.header_);
     if (!got.ok()) return got.error();
+    // A UTF-8 byte-order mark (Excel's "CSV UTF-8" writes one) is not part of the first column's name.
+    if (!r.header_.empty() && r.header_[0].rfind("\xEF\xBB\xBF", 0) == 0) r.header_[0].erase(0, 3);
     if (!got.value() || (r.header_.size() == 1 && r.header_[0].empty()))
         return Error{ErrorCode::parse_error, file.string() + ":1: the file is empty (a header row is expected)"};
     return r;

@@ -133,14 +133,19 @@ Result<DatasetInfo> read_info(const fs::path& file) {
                                                          " Hz is not in (0, " + csv::format_number(kMaxSampleRateHz) +
                                                          "]"};
             info.sample_rate_hz = *v;
-        } else if (key == "channels") {
-            info.channels = split(value, ' ');
+        } else if (key == "channels" || key == "joints") {
+            // Column names: a name given twice would blame every trial file for the columns it lacks (review).
+            auto& names = key == "channels" ? info.channels : info.joints;
+            names = split(value, ' ');
+            std::unordered_set<std::string> seen;
+            for (const auto& name : names)
+                if (!seen.insert(name).second)
+                    return Error{ErrorCode::parse_error, reader->where(*val_col) + ": " + key + " names '" +
+                                                             csv::excerpt(name) + "' twice; each column once"};
         } else if (key == "channel_units") {
             info.channel_units = split(value, ' ');
         } else if (key == "identification_channels") {
             info.identification_channels = split(value, ' ');
-        } else if (key == "joints") {
-            info.joints = split(value, ' ');
         } else if (key == "profile") {
             info.profile = value;
         } else if (key == "seed") {

@@ -155,3 +155,22 @@ TEST_CASE("a CSV record past its bounds is refused before it costs memory, and e
     CHECK(r.status().message().size() < 400);
     CHECK(csv::excerpt("a\x01\xff") == "a\\x01\\xff");
 }
+
+// Review (bad input) items 5 and 6: a channel named twice in dataset-info.csv
+// blamed every trial file, and a UTF-8 byte-order mark (Excel's "CSV UTF-8")
+// made "no column 'trial_id' (columns: trial_id, ...)".
+TEST_CASE("a column named twice in dataset-info.csv is refused there; a byte-order mark is read past", "[data][bounds]") {
+    TempDir dir;
+    write(dir / "ds" / "trials" / "t1.csv", "time,ch1,valid\n0,1,1\n0.1,2,1\n");
+    write(dir / "ds" / "manifest.csv", "\xEF\xBB\xBF" + manifest("trials/t1.csv", "2"));
+    write(dir / "ds" / "dataset-info.csv", kInfo);
+    auto r = DatasetReader::open(dir / "ds");
+    REQUIRE(r);
+    CHECK(r->trials().front().info.id == "t1");
+    std::string info = kInfo;
+    info.replace(info.find("channels,ch1"), 12, "channels,ch1 ch2 ch1");
+    write(dir / "ds" / "dataset-info.csv", info);
+    r = DatasetReader::open(dir / "ds");
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.status().message(), Catch::Contains("dataset-info.csv:5: column 'value': channels names 'ch1' twice"));
+}
