@@ -111,6 +111,18 @@ TEST_CASE("predict takes one trial file, and a trial without clean peaks gets no
     REQUIRE(flat.status == 0);
     CHECK(flat.output.find("\"class\": null") != std::string::npos);
     CHECK(flat.output.find("low_amplitude") != std::string::npos);
+
+    // Review (bad input) item 7: a named trial file that cannot be read gave exit 0 and "no decision".
+    const std::string text = read_file(ds / "trials" / "C2-v15-r001.csv");
+    const auto fifth = text.find('\n', text.find('\n', text.find('\n', text.find('\n') + 1) + 1) + 1);
+    write_file(ds / "trials" / "C2-v15-r001.csv", text.substr(0, fifth + 1) + "0.5,1\n" + text.substr(text.find('\n', fifth + 1) + 1));
+    const auto torn = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " +
+                                    shell_quoted(ds / "trials" / "C2-v15-r001.csv"));
+    INFO(torn.output);
+    CHECK(torn.status == 3);
+    CHECK(torn.output.find("C2-v15-r001.csv:5: 2 fields") != std::string::npos);
+    CHECK(torn.output.find("restore the file, or record the trial again") != std::string::npos);
+    CHECK(torn.output.find("no decision") == std::string::npos);
 }
 
 TEST_CASE("predict warns when the input is unlike the training data") {

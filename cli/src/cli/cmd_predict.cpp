@@ -43,7 +43,9 @@ amplitude and the rest, docs/series-preparation.md). A trial whose peaks are
 not clean gets no decision, with the reason.
 
 TRIAL.csv must lie in a dataset's trials/ folder (its dataset-info.csv names
-the channels and the sample rate); DATASET classifies every trial of a dataset.
+the channels and the sample rate), and a TRIAL.csv that cannot be read is an
+error (exit 3); DATASET classifies every trial of a dataset (one that cannot
+be read gets no decision, with the reason).
 
 Warnings say when a trial is unlike the training data: another channel set or
 sample rate than the training dataset's, a feature outside the range seen in
@@ -413,6 +415,11 @@ int run(const std::vector<std::string>& argv) {
 
     auto input = open_input(pos[1]);
     if (!input) return fail(input.error(), kExitConfig);
+    // One named trial that cannot be read is the input's error, not a trial without a decision (review: exit 0).
+    if (std::error_code ec; !fs::is_directory(pos[1], ec))
+        if (auto data = input->dataset.load(input->trials.front()); !data)
+            return fail(Error{data.error().code, data.error().message + "; restore the file, or record the trial again"},
+                        kExitConfig);
 
     const auto named_training = args.options("--training");  // an existing folder (Args)
     const fs::path training_dir = named_training.empty() ? fs::absolute(model).parent_path()
