@@ -177,3 +177,22 @@ rs.record_start()
           std::string::npos);
     CHECK(setup.output.find("continue with:") == std::string::npos);
 }
+
+// Review (bad input) item 4: an empty run-info.csv refused a resume as a bad
+// command line (exit 2) with no way out.
+TEST_CASE("a resume refused for an unreadable run-info.csv is the dataset's error and names the way out") {
+    TempDir dir("rollsense-cli-way-on-run-info");
+    const auto out = dir / "out";
+    const std::string run = "run " + kPaper + kFour + " --set analyse=false -q --out " + shell_quoted(out);
+    REQUIRE(run_rollsense(run).status == 0);
+    write_file(out / "run-info.csv", "");
+    const auto refused = run_rollsense(run + " --resume");
+    INFO(refused.output);
+    CHECK(refused.status == 3);
+    CHECK(count_of(refused.output, "run-info.csv:1: the file is empty") == 1);
+    CHECK(refused.output.find("move it aside (e.g. to run-info.damaged.csv) and resume again") != std::string::npos);
+    fs::rename(out / "run-info.csv", out / "run-info.damaged.csv");
+    const auto resumed = run_rollsense(run + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+}

@@ -363,6 +363,14 @@ TEST_CASE("a report made inside the recording run shows that run's provenance, n
         REQUIRE(html.ok());
         CHECK_THAT(*html, Catch::Contains("No run-info.csv"));
     }
+    // Review (bad input) item 4: an empty run-info.csv failed the report after its evaluation.
+    SECTION("an unreadable run-info.csv is said on the page; the report is made") {
+        std::ofstream(in.dataset_dir / "run-info.csv") << "";
+        auto html = render_report(in);
+        REQUIRE(html.ok());
+        CHECK_THAT(*html, Catch::Contains("run-info.csv could not be read: ") &&
+                              Catch::Contains("run-info.csv:1: the file is empty"));
+    }
 }
 
 TEST_CASE("the paper comparison says n/a where there is nothing to count, never a made-up 0",

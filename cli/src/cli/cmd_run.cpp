@@ -170,7 +170,11 @@ int run(const std::vector<std::string>& argv) {
         if (!parsed) throw UsageError(parsed.error().message);
         o.shard = *parsed;
     }
-    if (auto st = check_out_folder(o.out_dir, o.resume, o.shard); !st) throw UsageError(st.message());
+    if (auto st = check_out_folder(o.out_dir, o.resume, o.shard); !st) {
+        if (st.code() == ErrorCode::invalid_argument) throw UsageError(st.message());
+        std::fprintf(stderr, "rollsense run: %s\n", st.error().describe().c_str());  // a damaged dataset: 3, or 5
+        return exit_code_for(st.code(), kExitConfig);
+    }
     // The options that decide what is recorded: in run-config.csv and in the resume command.
     std::vector<std::pair<std::string, std::string>> deciding;
     if (!args.option("--profile").empty()) deciding.emplace_back("--profile", args.option("--profile"));

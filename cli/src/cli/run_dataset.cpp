@@ -74,7 +74,10 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
     std::optional<std::string> recorded;  // "K/N"; empty: a whole run; none: not known
     if (fs::exists(dir / "run-info.csv", ec)) {
         auto info = csv::read_key_values(dir / "run-info.csv");
-        if (!info) return info.error();
+        if (!info)  // the dataset's error (3, or 5), not the command line's; provenance only, so it can be moved aside
+            return Error{info.error().code, "cannot resume " + dir.string() + ": its run-info.csv names the shard it "
+                                            "holds and cannot be read (" + info.error().message + "); move it aside "
+                                            "(e.g. to run-info.damaged.csv) and resume again"};
         recorded = "";
         for (const auto& [key, value] : *info)
             if (key == "shard") recorded = value;

@@ -85,8 +85,11 @@ learn::EvaluationFiles evaluation_files_of(const std::filesystem::path& page) {
 Result<std::string> render_report(const ReportInputs& in) {
     auto dataset = DatasetReader::open(in.dataset_dir);
     if (!dataset) return dataset.error();
+    // Provenance only: an unreadable run-info.csv is said on the page, not a reason to lose an evaluation that may
+    // have taken hours (review: the report failed after the cross-validation).
     auto run_info = read_run_info(in.dataset_dir);
-    if (!run_info) return run_info.error();
+    const std::string run_info_problem = run_info ? "" : run_info.error().message;
+    if (!run_info) run_info = csv::KeyValues{};
     // The first classifier's figures fill the paper's sections; a comparison
     // of several gets its own section.
     const learn::EvaluationReport& ev = in.evaluation.primary();
@@ -193,6 +196,9 @@ Result<std::string> render_report(const ReportInputs& in) {
                key_value_table(in.recording_run);
     else if (!run_info->empty())
         prov = "<h3>Recording (run-info.csv)</h3>\n" + key_value_table(*run_info);
+    else if (!run_info_problem.empty())
+        prov = "<h3>Recording (run-info.csv)</h3>\n<p class=\"note\">run-info.csv could not be read: " +
+               escape_xml(run_info_problem) + "</p>\n";
     else
         prov = "<h3>Recording (run-info.csv)</h3>\n<p class=\"note\">No run-info.csv: the dataset was not recorded "
                "by rollsense run.</p>\n";
