@@ -147,6 +147,20 @@ TEST_CASE("a missing plugin and a missing profile say where they were looked for
     CHECK_THAT(p.error().message, Catch::Contains("sim"));
 }
 
+// Review (user journeys) item 7: a mistyped include said only "cannot open
+// .../etroll-joint.lua", and a relative include was read from the working
+// folder, not beside the profile that includes it.
+TEST_CASE("include names the including line and the profiles there; a relative path is beside the includer", "[profile]") {
+    kt::TempDir dir;
+    kt::write_file(dir / "profiles/joints.lua", "return { finger = { min = -50, max = 50 } }\n");
+    auto p = load_text(dir, "local j = include('joints.lua')\nlocal k = include('jionts')\nreturn {}\n");
+    REQUIRE_FALSE(p.ok());
+    CHECK_THAT(p.error().message, Catch::Contains("p.lua:2: include: profile 'jionts' not found at ") &&
+                                      Catch::Contains("(profiles here: ") && Catch::Contains("joints"));
+    // The first include, relative, was found beside p.lua (this test's working folder is elsewhere).
+    CHECK_THAT(p.error().message, !Catch::Contains("p.lua:1:"));
+}
+
 TEST_CASE("a syntax error in a profile gives file and line", "[profile]") {
     kt::TempDir dir;
     auto p = load_text(dir, "return {\n  clock = \"virtual\"\n  devices = {}\n}\n");

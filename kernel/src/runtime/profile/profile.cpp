@@ -54,21 +54,28 @@ bool is_profile_path(const std::string& key) {
     return entries.count(key.substr(0, key.find('.'))) > 0;  // an entry (sample_rate_hz) or a path under one
 }
 
-fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir) {
+fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir, const fs::path& base) {
     if (name.find('/') != std::string::npos || (name.size() > 4 && name.substr(name.size() - 4) == ".lua"))
-        return fs::path(name);
+        return base.empty() || fs::path(name).is_absolute() ? fs::path(name) : base / name;
     return share_dir / "profiles" / (name + ".lua");
 }
 
 namespace {
 
+// "profile 'x' not found at P (profiles here: a, b)", for --profile and include().
+std::string profile_not_found(const std::string& name, const fs::path& path, const fs::path& share_dir) {
+    std::string known;
+    for (std::error_code ec; const auto& e : fs::directory_iterator(share_dir / "profiles", ec))
+        if (e.path().extension() == ".lua") known += (known.empty() ? "" : ", ") + e.path().stem().string();
+    return "profile '" + name + "' not found at " + path.string() + (known.empty() ? "" : " (profiles here: " + known + ")");
+}
+
 struct LuaCloser {
     void operator()(lua_State* L) const { lua_close(L); }
 };
 
-// The same two limits a script runs under: a heap cap (an allocation past it
-// fails: "not enough memory") and a wall-time budget checked from an
-// instruction hook, for the whole evaluation of the profile and its includes.
+// The same two limits a script runs under: a heap cap (an allocation past it fails: "not enough memory") and a
+// wall-time budget checked from an instruction hook, for the whole evaluation of the profile and its includes.
 struct ProfileBudget {
     LuaHeap heap;
     double max_ms = 0;
@@ -102,7 +109,11 @@ int lua_include(lua_State* L) {
     auto* st = static_cast<LoadState*>(lua_touserdata(L, lua_upvalueindex(1)));
     const char* name = luaL_checkstring(L, 1);
     if (++st->depth > 8) return luaL_error(L, "include('%s'): profiles include each other too deeply", name);
-    auto path = resolve_profile_path(name, st->share_dir);
+    lua_Debug ar;  // a relative path is the including profile's neighbour (as plugin_path is), not the working folder's
+    const bool known = lua_getstack(L, 1, &ar) && lua_getinfo(L, "S", &ar) && ar.source[0] == '@';
+    auto path = resolve_profile_path(name, st->share_dir, known ? fs::path(ar.source + 1).parent_path() : fs::path());
+    if (std::error_code ec; !fs::exists(path, ec))  // luaL_error names the including file and line
+        return luaL_error(L, "include: %s", profile_not_found(name, path, st->share_dir).c_str());
     int n = run_profile_file(L, path);
     --st->depth;
     return n;
@@ -140,8 +151,7 @@ int run_profile_file(lua_State* L, const fs::path& path) {
     return 1;
 }
 
-// Walks a Lua table and remembers which keys were read, so that leftovers
-// can be reported as unknown.
+// Walks a Lua table and remembers which keys were read, so that leftovers can be reported as unknown.
 class TableReader {
 public:
     TableReader(lua_State* L, int index, const Profile& p, std::string path)
@@ -411,14 +421,8 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
     Profile p;
     p.path = resolve_profile_path(name_or_path, share_dir);
     p.name = p.path.stem().string();
-    std::error_code ec;
-    if (!fs::exists(p.path, ec)) {
-        std::string known;
-        for (const auto& e : fs::directory_iterator(share_dir / "profiles", ec))
-            if (e.path().extension() == ".lua") known += (known.empty() ? "" : ", ") + e.path().stem().string();
-        return Error{ErrorCode::not_found, "profile '" + name_or_path + "' not found at " + p.path.string() +
-                                               (known.empty() ? "" : " (profiles here: " + known + ")")};
-    }
+    if (std::error_code ec; !fs::exists(p.path, ec))
+        return Error{ErrorCode::not_found, profile_not_found(name_or_path, p.path, share_dir)};
     ProfileBudget budget;
     budget.heap.cap = limits.memory_bytes;
     budget.max_ms = limits.max_slice_ms;

@@ -98,9 +98,8 @@ public:
     void mark_used(const std::string& key) const { used_.insert(key); }
     bool used(const std::string& key) const { return used_.count(key) > 0; }
 
-    // Declared settings (rs.settings): once a namespace ("" for plain keys,
-    // "etroll" for etroll.*) declares its settings, reading an undeclared key
-    // of it is an error. The declared default stands in for a missing --set.
+    // Declared settings (rs.settings): once a namespace ("" for plain keys, "etroll" for etroll.*) declares its
+    // settings, reading an undeclared key of it is an error. The declared default stands in for a missing --set.
     void declare(const std::string& key, ParamValue fallback) { declared_[key] = std::move(fallback); }
     const std::map<std::string, ParamValue>& declared() const { return declared_; }
     bool namespace_declared(const std::string& key) const;
@@ -116,8 +115,9 @@ std::string setting_namespace(const std::string& key);
 // True for a profile entry (sample_rate_hz) or a path under one (devices.tactile.params.x).
 bool is_profile_path(const std::string& key);
 
-// Where profiles named without a path are looked up: <share>/profiles/<name>.lua.
-std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);
+// <share>/profiles/<name>.lua for a name; a path (with '/', or ending in .lua) as given, or relative to `base`.
+std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir,
+                                           const std::filesystem::path& base = {});
 
 struct SandboxLimits;
 // A profile is Lua: it runs under the scripts' memory cap and no-wait limit
