@@ -53,7 +53,7 @@ Status check_not_dataset_file(const fs::path& target, const fs::path& dataset_di
     return {ErrorCode::invalid_argument,
             std::string(what) + " " + target.string() + " is " +
                 (first == "trials" ? "under the trials/ folder" : "the file " + first) + " of the dataset " +
-                dataset_dir.string() + " being read; writing it would destroy the dataset: give " + std::string(what) +
+                dataset_dir.string() + "; writing it would destroy the dataset: give " + std::string(what) +
                 " a file outside the dataset, or one of another name"};
 }
 

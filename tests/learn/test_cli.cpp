@@ -253,6 +253,16 @@ TEST_CASE("evaluate and train -o never overwrite a file of the dataset being rea
     CHECK(file_text(ds / "dataset-info.csv") == info);
     CHECK(file_text(ds / "trials" / "C1-r0.csv") == trial);
     CHECK(!fs::exists(ds / "run-info.csv"));
+    // Review (bad input) item 9: another dataset's files were not protected; -o OTHER/manifest.csv replaced them.
+    fs::create_directories(dir / "other" / "trials");
+    for (const char* f : {"manifest.csv", "dataset-info.csv"}) fs::copy_file(ds / f, dir / "other" / f);
+    for (const char* target : {"/manifest.csv", "/trials/x.csv"}) {
+        const auto r = rollsense_cli("features " + d + " -o " + (dir / "other").string() + target);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains("of the dataset " + (dir / "other").string() + "; writing it would destroy"));
+    }
+    CHECK(file_text(dir / "other" / "manifest.csv") == manifest);
     // Its own derived files may be written beside it.
     const auto r = rollsense_cli("features " + d + " -o " + d + "/features.csv");
     INFO(r.output);

@@ -13,8 +13,15 @@ int check_output_files(const char* command, const std::filesystem::path& input,
     std::error_code ec;
     const bool dataset = std::filesystem::is_directory(input, ec);
     for (const auto& file : outputs) {
-        if (dataset)
-            if (auto st = check_not_dataset_file(file, input, "-o"); !st) {
+        // The input's files, and any other dataset's the output lands in (review: -o OTHER/manifest.csv replaced
+        // another dataset's manifest with a features table).
+        std::vector<std::filesystem::path> datasets;
+        if (dataset) datasets.push_back(input);
+        const auto folder = std::filesystem::absolute(file, ec).parent_path();
+        for (const auto& dir : {folder, folder.parent_path()})  // beside the file, or the file under its trials/
+            if (holds_dataset(dir)) datasets.push_back(dir);
+        for (const auto& dir : datasets)
+            if (auto st = check_not_dataset_file(file, dir, "-o"); !st) {
                 std::fprintf(stderr, "rollsense %s: %s\n", command, st.message().c_str());
                 return kExitUsage;
             }
