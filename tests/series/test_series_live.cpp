@@ -32,6 +32,9 @@ local clf_z = rs.classifier{ model = z.model, classifier = "minirocket" }
 local early = rs.prefix_models{ dataset = z.model:match("(.*)/"), classifier = "minirocket:num_features=168",
                                 fractions = { 1 }, name = "zp", series_amplitude = "z_per_channel" }
 local clf_p = rs.classifier{ model = early.models[1].path, classifier = "minirocket" }
+-- Review (user journeys) item 9: a feature model ignored a mistyped option.
+local trees = rs.analyse{ classifiers = { "bagged_trees" }, folds = 2, repeats = 1, model = "trees.rsm", tag = "trees" }
+local clf_t = rs.classifier{ model = trees.model, classifier = "bagged_trees" }
 rs.trial{ object = "P1", speed = 15, repetition = 99, id = "live" }
 etroll.open(); etroll.clamp(); etroll.roll(15)
 local answer, why = clf:identify()
@@ -39,6 +42,7 @@ local unasked, told = clf_z:identify(), clf_z:identify{ series_amplitude = "z_pe
 local ok_g, err_g = pcall(clf_z.identify, clf_z, { series_amplitude = "global_scale" })
 local p_unasked = clf_p:identify{ open_end = true }
 local p_told = clf_p:identify{ open_end = true, series_amplitude = "z_per_channel" }
+local ok_t, err_t = pcall(clf_t.identify, clf_t, { open_ned = true })
 -- The contact's clock a stopping rule reads (identify_early.lua), after a whole roll.
 local progress = clf:contact_progress(early.units)
 local ok_u, err_u = pcall(clf.contact_progress, clf, 0)
@@ -59,6 +63,8 @@ rs.log("z_per_channel model: recorded rule applied")
 -- (a prism roll can be well short of or past the nominal one: its first bump's width varies with its face)
 assert(early.units > 1 and progress and progress > 0, "progress " .. tostring(progress))
 assert(not ok_u and tostring(err_u):find("units must be > 0"), tostring(err_u))
+assert(not ok_t and tostring(err_t):find("identify: unknown option 'open_ned'", 1, true) and
+       tostring(err_t):find("options: series_amplitude, open_end", 1, true), tostring(err_t))
 -- A wrong amplitude word is an error naming the choices.
 local ok, err = pcall(clf.identify, clf, { series_amplitude = "loud" })
 assert(not ok and tostring(err):find("z_per_channel"), tostring(err))

@@ -374,7 +374,6 @@ int identify_series(lua_State* L, const Classifier& clf, const TrialData& data,
     check(L, Status(rule.status()).with_context("identify"));
     series::SeriesSettings settings = rule->settings;
     if (lua_istable(L, 2)) {
-        check_options(L, 2, "identify", {"series_amplitude", "open_end"});
         settings.open_end = opt_field_bool(L, 2, "open_end", false);
         const std::string amplitude = opt_field_string(L, 2, "series_amplitude", "");
         if (!amplitude.empty()) {
@@ -431,6 +430,9 @@ int l_identification_channels(lua_State* L) {
 // or, for a series model, when the series rule refuses it.
 int l_identify(lua_State* L) {
     auto& clf = check_classifier(L, 1);
+    // Checked for every model (review: a mistyped option was silently ignored by a feature model); the two concern
+    // the series rule, so a feature model, whose peaks need the whole contact, reads neither.
+    check_options(L, 2, "identify", {"series_amplitude", "open_end"});
     Session& s = Session::of(L);
     const auto& data = s.recorded();
     if (data.samples() == 0) return luaL_error(L, "identify: nothing recorded (rs.record_start/stop first)");
