@@ -234,6 +234,13 @@ TEST_CASE("in a script that declares its settings, reading an undeclared one is 
     const auto bad = run_rollsense("run " + shell_quoted(dir / "bad.lua") + " --profile mock --out " + shell_quoted(dir / "c"));
     INFO(bad.output);
     CHECK(bad.output.find("rs.settings: runs: unknown option 'knd' (options: default, kind, min, max, help)") != std::string::npos);
+    // Review (user journeys) item 9: a default that does not fit was blamed on a --set nobody gave.
+    write_file(dir / "unfit.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 'ten', kind = 'integer' } }\n");
+    const auto unfit = run_rollsense("run " + shell_quoted(dir / "unfit.lua") + " --profile mock --out " + shell_quoted(dir / "d"));
+    INFO(unfit.output);
+    CHECK(unfit.output.find("unfit.lua:2: rs.settings: runs: the default does not fit the declaration: the default: key "
+                            "'runs' must be an integer, got a string ('ten')") != std::string::npos);
+    CHECK(unfit.output.find("--set") == std::string::npos);
 }
 
 TEST_CASE("a script that declares nothing keeps working, with the end-of-run warning for an unused --set") {

@@ -106,7 +106,7 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
         lua_pop(L, 2);
         d.spec.doc = runtime::lua_api::opt_field_string(L, entry, "help", "");
         if (d.fallback)
-            if (auto ok = check_value(d, *d.fallback, nullptr); !ok)
+            if (auto ok = check_value(d, *d.fallback, nullptr, true); !ok)
                 luaL_error(L, "rs.settings: %s: the default does not fit the declaration: %s", d.key.c_str(),
                            ok.status().message().c_str());
         out.push_back(std::move(d));
@@ -115,8 +115,10 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
     return out;
 }
 
-Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue) {
-    const std::string where = "--set " + d.key + "=" + typed_text(given);
+Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue,
+                               bool is_default) {
+    // Review: a declaration's own default was blamed on a --set nobody gave.
+    const std::string where = (is_default ? "default " : "--set " + d.key + "=") + typed_text(given);
     const std::string about = d.spec.doc.empty() ? "" : " (" + d.key + ": " + d.spec.doc + ")";
     // A string setting takes any text, numbers included (--set model=2026.rsm).
     const ParamValue value = d.spec.type == ParamType::string ? ParamValue{typed_text(given)} : given;
@@ -144,7 +146,7 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
     }
     ParamSpec spec = d.spec;
     spec.default_value.reset();
-    auto checked = validate_params({spec}, {{d.key, value}}, "--set");
+    auto checked = validate_params({spec}, {{d.key, value}}, is_default ? "the default" : "--set");
     if (!checked) return Error{ErrorCode::invalid_argument, checked.error().message + about};
     // A number keeps the type it was given in (150 stays a Lua integer, as the default would be).
     if (d.spec.type == ParamType::number) return value;

@@ -48,7 +48,8 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
 // script, or an error naming the setting, the value and what is accepted
 // (for "objects": the catalogue's ids). `catalogue` may be null when no
 // declaration needs it.
-Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue);
+Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue,
+                               bool is_default = false);  // the declaration's default, not a --set
 
 // One line per setting: "  runs=50   integer >= 1: repetitions of ...".
 std::string describe(const std::vector<Declaration>& declarations);
