@@ -645,7 +645,7 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     if (auto s = take_error(); !s.ok()) return s;
     // Checked before anything is queued: an id the filesystem refuses would
     // otherwise fail the whole batch later, losing the other trials in it.
-    if (auto s = check_trial_id(record.info.id); !s.ok()) return s;
+    if (auto s = check_trial_info(record.info); !s.ok()) return s;
     if (has_trial(record.info.id))
         return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string() +
                                                 " (a resumed run records only what is not on disk: skip a recorded trial with "

@@ -35,6 +35,17 @@ bool reserved(std::string_view id) {
 
 }  // namespace
 
+Status check_trial_info(const TrialInfo& info) {
+    if (auto s = check_trial_id(info.id); !s.ok()) return s;
+    for (const auto& [key, value] : info.extra)
+        if (key.empty() || key.find_first_of("=;") != std::string::npos || value.find(';') != std::string::npos)
+            return {ErrorCode::invalid_argument,
+                    "trial '" + info.id + "': extra '" + key.substr(0, 60) + "' = '" + value.substr(0, 60) +
+                        "' cannot go into the manifest's extra column (key=value;key=value) and read back the same: "
+                        "give a key without '=' or ';' and a value without ';'"};
+    return {};
+}
+
 Status check_trial_id(std::string_view id) {
     const std::string shown = id.size() > 60 ? std::string(id.substr(0, 60)) + "..." : std::string(id);
     const std::string how = "; name it with 1 to " + std::to_string(kMaxTrialIdLength) +

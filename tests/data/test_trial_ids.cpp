@@ -122,3 +122,26 @@ TEST_CASE("rs.trial refuses an over-long id at once, naming the rule", "[data][t
     CHECK(r.status != 0);
     CHECK_THAT(r.output, Catch::Contains("300 characters long") && !Catch::Contains("trial accepted"));
 }
+
+// Review (bad input) item 8: extras the manifest's "key=value;key=value"
+// column cannot give back ("a;b=c" read back as two extras) were written.
+TEST_CASE("rs.trial refuses extras the manifest cannot give back, naming them", "[data][trial_id][cli]") {
+    TrialInfo fine{"t1", "C1", "10", 1, 0, {{"note", "a=b c"}}};
+    CHECK(check_trial_info(fine).ok());
+    for (const auto& [key, value] : {std::pair{"note", "a;b=c"}, std::pair{"a=b", "1"}, std::pair{"x;y", "1"}}) {
+        TrialInfo bad{"t1", "C1", "10", 1, 0, {{key, value}}};
+        const auto s = check_trial_info(bad);
+        INFO(key << " = " << value);
+        CHECK_THAT(s.message(), Catch::Contains("extra '" + std::string(key) + "'") &&
+                                    Catch::Contains("give a key without '=' or ';' and a value without ';'"));
+    }
+    TempDir dir;
+    const auto script = dir / "extra.lua";
+    std::ofstream(script) << "local rs = require \"rollsense\"\nrs.trial{ object = \"C1\", extra = { note = \"a;b=c\" } }\n"
+                             "rs.log(\"trial accepted\")\n";
+    auto r = rollsense::testing::run_rollsense("run " + script.string() + " --no-progress -q --out " + (dir / "out").string());
+    INFO(r.output);
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains("extra.lua:2:") && Catch::Contains("extra 'note' = 'a;b=c'") &&
+                             !Catch::Contains("trial accepted"));
+}

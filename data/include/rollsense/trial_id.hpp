@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "rollsense/status.hpp"
+#include "rollsense/types.hpp"
 
 namespace rollsense {
 
@@ -23,5 +24,10 @@ std::string trial_id(std::string_view object, std::string_view speed, int repeti
 // the id breaks and how to name it.
 inline constexpr std::size_t kMaxTrialIdLength = 100;
 Status check_trial_id(std::string_view id);
+
+// A trial's id (check_trial_id) and its extras, which the manifest's `extra`
+// column ("key=value;key=value") must give back as they were: a key is not
+// empty and holds no '=' or ';', a value holds no ';'.
+Status check_trial_info(const TrialInfo& info);
 
 }  // namespace rollsense

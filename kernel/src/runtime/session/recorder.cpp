@@ -41,7 +41,7 @@ Status Recorder::begin_trial(TrialInfo info) {
     if (recording_) return {ErrorCode::state_error, "a trial cannot begin while recording (call rs.record_stop() first)"};
     // The id names the trial's file: checked here so rs.trial fails at once,
     // not a batch of trials later when the file cannot be created.
-    if (auto s = check_trial_id(info.id); !s.ok()) return s;
+    if (auto s = check_trial_info(info); !s.ok()) return s;
     info.seed = trial_seed(run_seed_, info.id);
     trial_ = std::move(info);
     trial_rng_.seed(trial_.seed);
