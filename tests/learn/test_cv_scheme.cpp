@@ -177,6 +177,18 @@ TEST_CASE("grouped CV refuses an unknown column and a grouping that is the class
     REQUIRE_FALSE(plan.ok());
     CHECK_THAT(plan.error().message, Catch::Contains("no training fold ever sees that class"));
     CHECK_THAT(plan.error().message, Catch::Contains("docs/identification.md"));
+    CHECK_THAT(plan.error().message, Catch::Contains("its clean trials all have mount '1', one group"));
+
+    // Review (user journeys) item 10: grouped by speed where one class's clean trials are all at one speed, the
+    // advice was to group by speed. It names that class's one speed now.
+    std::vector<FeatureRow> one_speed;
+    for (const auto& r : rows)
+        if (r.object != "S1" || r.speed == "15") one_speed.push_back(r);
+    auto by_speed = plan_for(parse_cv_schemes("grouped", "speed", "")->front(), one_speed, 5, 1);
+    REQUIRE_FALSE(by_speed.ok());
+    CHECK_THAT(by_speed.error().message, Catch::Contains("class 'S1'") &&
+                                             Catch::Contains("its clean trials all have speed '15', one group") &&
+                                             Catch::Contains("record more of it, or use --cv blocked"));
 
     // Blocks as long as a mounting are the class as well: the message says to shorten them.
     auto too_long = plan_for(parse_cv_schemes("blocked", "", "12")->front(), rows, 5, 1);
