@@ -104,7 +104,7 @@ TEST_CASE("features taken from memory equal those read from the files, resumed r
     CHECK(format_features_csv(*from_memory) == format_features_csv(*from_files));
     CHECK((*from_memory)[0].clean);
     CHECK_FALSE((*from_memory)[5].clean);
-    CHECK((*from_memory)[0].extra.at("note") == "a");  // as the manifest reads it back
+    CHECK((*from_memory)[0].extra.at("note") == "a=b c");  // as the manifest reads it back
 
     SECTION("the test is sensitive: features of the unrounded values differ") {
         FeatureExtractor extractor;
