@@ -381,9 +381,13 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir, MissingTrialFile 
                              ": the last row has no line end: the recording was interrupted while listing a trial. "
                              "Continue the run with --resume (it drops that line and records the trial again)"};
     }
-    if (!fs::exists(dir / "manifest.csv", ec))
-        return Error{ErrorCode::not_found, dir.string() + " holds no dataset (no manifest.csv): give a folder that "
-                                                          "'rollsense run ... --out DIR' recorded (docs/dataset-format.md)"};
+    if (!fs::exists(dir / "manifest.csv", ec))  // a dataset that lost its list (review: "holds no dataset" misled)
+        return Error{ErrorCode::not_found,
+                     fs::exists(dir / "dataset-info.csv", ec)
+                         ? dir.string() + " has a dataset-info.csv but no manifest.csv, the list of its trials: restore "
+                                          "it from a copy (its rows name trials/*.csv; docs/dataset-format.md)"
+                         : dir.string() + " holds no dataset (no manifest.csv): give a folder that 'rollsense run ... "
+                                          "--out DIR' recorded (docs/dataset-format.md)"};
     auto manifest = read_manifest(dir / "manifest.csv");
     if (!manifest) return manifest.error();
     r.trials_ = std::move(*manifest);

@@ -44,6 +44,10 @@ TEST_CASE("malformed datasets: missing files", "[replay][malformed]") {
         std::filesystem::create_directories(dir / "ds/trials");
         CHECK(replay_error(dir).find((dir / "ds").string() + " holds no dataset (no manifest.csv): give a folder that "
                                      "'rollsense run ... --out DIR' recorded") != std::string::npos);
+        // Review (bad input) item 8: a dataset that lost only its manifest is said to, not to be no dataset.
+        rt::write_file(dir / "ds/dataset-info.csv", "key,value\nformat,rollsense-dataset\n");
+        CHECK(replay_error(dir).find((dir / "ds").string() + " has a dataset-info.csv but no manifest.csv, the list of "
+                                     "its trials: restore it") != std::string::npos);
     }
     SECTION("the manifest points at a missing trial file") {
         rt::write_file(dir / "ds/manifest.csv", std::string(kManifest) + "t2,trials/t2.csv,C1,10,2,3\n");
