@@ -82,4 +82,11 @@ TEST_CASE("typed getters refuse the wrong type", "[params]") {
     REQUIRE(p.ok());
     CHECK_THROWS_AS(p->get_string("count"), StatusError);
     CHECK_THROWS_AS(p->get_number("nope"), StatusError);
+    // Review (user journeys) item 8: the reading code's bug, not the profile's (it was reported as a bad profile).
+    try {
+        (void)p->get_string("count");
+    } catch (const StatusError& e) {
+        CHECK(e.status().code() == ErrorCode::plugin_error);
+        CHECK_THAT(e.status().message(), Catch::Contains("'count' is an integer, read as a string: a bug of the code"));
+    }
 }

@@ -138,16 +138,16 @@ ParamSpec param_string_list(std::string name, std::optional<std::vector<std::str
 const ParamValue& ParamSet::at(const std::string& name) const {
     auto it = values_.find(name);
     if (it == values_.end())
-        throw StatusError(Status(ErrorCode::invalid_argument, "parameter '" + name + "' is not declared"));
+        throw StatusError(Status(ErrorCode::plugin_error, "parameter '" + name + "' has no value (undeclared, or optional "
+                                                      "and not given: has() first): a bug of the code reading it"));
     return it->second;
 }
 
-namespace {
-template <class T>
-const T& typed(const ParamValue& v, const std::string& name, const char* want) {
+namespace {  // the values were checked against the schema: another type asked is the reader's bug
+template <class T> const T& typed(const ParamValue& v, const std::string& name, const char* want) {
     if (auto* p = std::get_if<T>(&v)) return *p;
-    throw StatusError(Status(ErrorCode::invalid_argument,
-                             "parameter '" + name + "' is a " + value_type_name(v) + ", not a " + want));
+    throw StatusError(Status(ErrorCode::plugin_error, "parameter '" + name + "' is " + with_article(value_type_name(v)) + ", read as a " +
+                                                          want + ": a bug of the code reading it, not of the profile"));
 }
 }  // namespace
 
