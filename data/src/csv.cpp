@@ -49,10 +49,14 @@ Result<Reader> Reader::open(const std::filesystem::path& file) {
     auto in = open_for_reading(file);
     if (!in) return in.error();
     r.in_ = std::move(in).value();
+    // A UTF-8 byte-order mark (Excel's "CSV UTF-8" writes one) is not part of the first column's name, quoted or not.
+    char bom[3] = {};
+    if (!r.in_->read(bom, 3) || std::memcmp(bom, "\xEF\xBB\xBF", 3) != 0) {
+        r.in_->clear();
+        r.in_->seekg(0);
+    }
     auto got = r.read_record(r.header_);
     if (!got.ok()) return got.error();
-    // A UTF-8 byte-order mark (Excel's "CSV UTF-8" writes one) is not part of the first column's name.
-    if (!r.header_.empty() && r.header_[0].rfind("\xEF\xBB\xBF", 0) == 0) r.header_[0].erase(0, 3);
     if (!got.value() || (r.header_.size() == 1 && r.header_[0].empty()))
         return Error{ErrorCode::parse_error, file.string() + ":1: the file is empty (a header row is expected)"};
     return r;

@@ -30,9 +30,11 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         if (same(k) || (k == "profile" && same("profile_fnv1a"))) continue;
         const auto& [was, is] = values;
         // A hash is no reason a user reads (review): say what it means.
-        const std::string edited = k == "script_fnv1a" || k == "profile_fnv1a"
-                                       ? std::string(" (the ") + (k[0] == 's' ? "script" : "profile") +
-                                             " was edited since it recorded: restore it, or record anew into another --out)"
+        // Only where the file is the same one (second review: another --profile was said to be edited).
+        const std::string file = k == "script_fnv1a" ? "script" : k == "profile_fnv1a" ? "profile" : "";
+        const std::string edited = !file.empty() && same(file)
+                                       ? " (the " + file + " was edited since it recorded: restore it, or record anew "
+                                                           "into another --out)"
                                        : "";
         out.push_back(k + ": recorded " + (was ? "'" + *was + "'" : "(not given)") + ", this run " +
                       (is ? "'" + *is + "'" : "(not given)") + edited);

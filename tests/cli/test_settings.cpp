@@ -95,6 +95,13 @@ TEST_CASE("run SCRIPT --help reads past rs.on_cleanup and names the call where i
     CHECK(late.output.find("declares no settings before " + (dir / "late.lua").string() + ":2 (rs.wait)") !=
           std::string::npos);
     CHECK(late.output.find("declare them with rs.settings before it") != std::string::npos);
+    // A declared setting without a default stops the reading there, said as required (it was called undeclared).
+    write_file(dir / "req.lua", "local rs = require 'rollsense'\nrs.settings{ object = { kind = 'object' } }\n"
+                                "local o = rs.setting('object')\n");
+    const auto req = run_rollsense("run " + shell_quoted(dir / "req.lua") + " --help");
+    INFO(req.output);
+    CHECK(req.output.find("declared before " + (dir / "req.lua").string() + ":3 (rs.setting 'object', required)") !=
+          std::string::npos);
 }
 
 // Review (sandbox) item 8: the settings probe ran under the default limits, and its error came after the usage text.

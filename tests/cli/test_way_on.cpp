@@ -196,3 +196,29 @@ TEST_CASE("a resume refused for an unreadable run-info.csv is the dataset's erro
     INFO(resumed.output);
     CHECK(resumed.status == 0);
 }
+
+// Second review: a script error of over 1 MiB went whole into run-info.csv,
+// whose reading then refused the very resume the run had printed.
+TEST_CASE("a huge script error is cut in run-info.csv, and the printed resume works") {
+    TempDir dir("rollsense-cli-way-on-huge-error");
+    write_file(dir / "huge.lua", R"(local rs = require "rollsense"
+local etroll = require "etroll"
+local function roll(r)
+  local t = { object = "C1", speed = 10, repetition = r }
+  if not rs.has_trial(rs.trial_id(t)) then etroll.run_trial(t) end
+end
+roll(1)
+if os.getenv("ROLLSENSE_TEST_FAIL") == "1" then error(string.rep("x", 1100000)) end
+roll(2)
+)");
+    const auto out = dir / "out";
+    const std::string run = "run " + shell_quoted(dir / "huge.lua") + " --no-progress -q --out " + shell_quoted(out);
+    const auto failed = run_command("ROLLSENSE_TEST_FAIL=1 " + rollsense_bin() + " " + run + " 2>&1 | tail -c 2000");
+    INFO(failed.output);
+    CHECK(failed.output.find("continue with: rollsense run ") != std::string::npos);
+    CHECK(fs::file_size(out / "run-info.csv") < 70000);
+    const auto resumed = run_rollsense(run + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+    CHECK(manifest_rows(out) == 2);
+}

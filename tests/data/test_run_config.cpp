@@ -60,8 +60,12 @@ TEST_CASE("run-config.csv round-trips, and its differences name each key with bo
     const RunConfig changed{{"profile", "/lab/hand.lua"}, {"profile_fnv1a", "2e"}};
     CHECK(run_config_differences(here, changed) ==
           std::vector<std::string>{"profile: recorded './hand.lua', this run '/lab/hand.lua'",
-                                   "profile_fnv1a: recorded '1f', this run '2e' (the profile was edited since it recorded: restore it, or record "
-                                       "anew into another --out)"});
+                                   "profile_fnv1a: recorded '1f', this run '2e'"});  // another file: not "edited"
+    // The same file with other contents was edited (review), and is said to be.
+    const RunConfig edited{{"profile", "./hand.lua"}, {"profile_fnv1a", "2e"}};
+    CHECK(run_config_differences(here, edited) ==
+          std::vector<std::string>{"profile_fnv1a: recorded '1f', this run '2e' (the profile was edited since it "
+                                   "recorded: restore it, or record anew into another --out)"});
     auto none = read_run_config(dir / "nowhere");
     REQUIRE(none.ok());
     CHECK(none->empty());

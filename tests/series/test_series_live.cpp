@@ -43,6 +43,7 @@ local ok_g, err_g = pcall(clf_z.identify, clf_z, { series_amplitude = "global_sc
 local p_unasked = clf_p:identify{ open_end = true }
 local p_told = clf_p:identify{ open_end = true, series_amplitude = "z_per_channel" }
 local ok_t, err_t = pcall(clf_t.identify, clf_t, { open_ned = true })
+local ok_b, err_b = pcall(clf_t.identify, clf_t, { open_end = 1 })
 -- The contact's clock a stopping rule reads (identify_early.lua), after a whole roll.
 local progress = clf:contact_progress(early.units)
 local ok_u, err_u = pcall(clf.contact_progress, clf, 0)
@@ -65,6 +66,7 @@ assert(early.units > 1 and progress and progress > 0, "progress " .. tostring(pr
 assert(not ok_u and tostring(err_u):find("units must be > 0"), tostring(err_u))
 assert(not ok_t and tostring(err_t):find("identify: unknown option 'open_ned'", 1, true) and
        tostring(err_t):find("options: series_amplitude, open_end", 1, true), tostring(err_t))
+assert(not ok_b and tostring(err_b):find("option 'open_end' must be true or false", 1, true), tostring(err_b))
 -- A wrong amplitude word is an error naming the choices.
 local ok, err = pcall(clf.identify, clf, { series_amplitude = "loud" })
 assert(not ok and tostring(err):find("z_per_channel"), tostring(err))

@@ -44,8 +44,8 @@ not clean gets no decision, with the reason.
 
 TRIAL.csv must lie in a dataset's trials/ folder (its dataset-info.csv names
 the channels and the sample rate), and a TRIAL.csv that cannot be read is an
-error (exit 3); DATASET classifies every trial of a dataset (one that cannot
-be read gets no decision, with the reason).
+error (exit 3, or 5 when the system refuses the read); DATASET classifies every
+trial of a dataset (one that cannot be read gets no decision, with the reason).
 
 Warnings say when a trial is unlike the training data: another channel set or
 sample rate than the training dataset's, a feature outside the range seen in

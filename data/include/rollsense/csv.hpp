@@ -17,11 +17,12 @@
 
 namespace rollsense::csv {
 
-// Bounds of one record, far above any file rollsense writes (a trial row is
-// well under 1 kB): past them a file is damaged or not ours, and is refused
-// before it costs memory (a line of commas would cost 32 bytes per byte).
-inline constexpr std::size_t kMaxRecordBytes = std::size_t{1} << 20;
-inline constexpr std::size_t kMaxRecordFields = 10000;
+// Bounds of one record, far above what rollsense writes (a trial row is well
+// under 1 kB; run-info.csv cuts a status at 64 KiB; a trial's extras are at
+// most 64 KiB): past them a file is damaged or not ours, and is refused before
+// it costs more memory (a line of commas would cost 32 bytes per byte).
+inline constexpr std::size_t kMaxRecordBytes = std::size_t{16} << 20;
+inline constexpr std::size_t kMaxRecordFields = 100000;
 
 // Text from a file as a message quotes it: bytes outside printable ASCII as
 // \xNN, and past `limit` bytes cut, with the length ("1234567890… (5000000 bytes)").

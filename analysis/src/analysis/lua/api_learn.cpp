@@ -433,6 +433,7 @@ int l_identify(lua_State* L) {
     // Checked for every model (review: a mistyped option was silently ignored by a feature model); the two concern
     // the series rule, so a feature model, whose peaks need the whole contact, reads neither.
     check_options(L, 2, "identify", {"series_amplitude", "open_end"});
+    (void)opt_field_bool(L, 2, "open_end", false);  // its type, for every model
     Session& s = Session::of(L);
     const auto& data = s.recorded();
     if (data.samples() == 0) return luaL_error(L, "identify: nothing recorded (rs.record_start/stop first)");

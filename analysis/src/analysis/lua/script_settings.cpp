@@ -182,7 +182,7 @@ struct Probe {
 Probe& probe_of(lua_State* L) { return *static_cast<Probe*>(lua_touserdata(L, lua_upvalueindex(1))); }
 
 int stop_at(lua_State* L, const std::string& call) {
-    probe_of(L).stopped_at = runtime::script_line(L, 1) + " (" + call + ")";
+    probe_of(L).stopped_at = std::string(runtime::script_line(L, 1).data()) + " (" + call + ")";
     lua_pushlightuserdata(L, const_cast<char*>(&kStop));
     return lua_error(L);
 }
@@ -200,12 +200,16 @@ int probe_settings(lua_State* L) {
 // rs.setting while probing: the declared default (what a run without --set reads).
 int probe_setting(lua_State* L) {
     const std::string key = luaL_checkstring(L, 1);
-    for (const auto& d : probe_of(L).found)
+    bool declared = false;
+    for (const auto& d : probe_of(L).found) {
         if (d.key == key && d.fallback) {
             runtime::push_param(L, *d.fallback);
             return 1;
         }
-    if (lua_gettop(L) < 2) return stop_at(L, "rs.setting '" + key + "', undeclared, without a default");
+        declared = declared || d.key == key;
+    }
+    // A required setting: no value to go on with while reading.
+    if (lua_gettop(L) < 2) return stop_at(L, "rs.setting '" + key + "'" + (declared ? ", required" : " without a default"));
     lua_settop(L, 2);
     return 1;
 }

@@ -174,7 +174,7 @@ bool l_wait_until(lua_State* L) {
     Wait w;
     w.kind = Wait::Kind::predicate;
     // The script's line that called it, through pcall and other C functions.
-    w.predicate = lua_predicate(s.sandbox(), ref, script_line(L, 1));
+    w.predicate = lua_predicate(s.sandbox(), ref, script_line(L, 1).data());
     w.until = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
     w.what = "a condition";
     t.request(std::move(w));

@@ -106,7 +106,7 @@ std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::stri
         sandbox.end_slice();
         if (rc != LUA_OK) {
             // Any error value: nil, a table, a userdata (hooks are on again here).
-            std::string msg = error_text(main, -1);
+            const std::string msg = rc == LUA_ERRMEM ? sandbox.memory_error() : error_text(main, -1);
             lua_pop(main, 1);
             return Status(sandbox.cancelled() ? sandbox.cancel_code() : ErrorCode::script_error,
                           "wait_until condition failed: " + msg + " (the condition of rs.wait_until at " + called_at + ")");

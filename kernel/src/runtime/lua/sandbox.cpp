@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -107,8 +108,9 @@ void* LuaHeap::allocate(void* heap, void* ptr, std::size_t osize, std::size_t ns
         return nullptr;
     }
     // Past the cap: fail the allocation (freeing, as when the state closes, always works).
+    // The stack is safe to ask here while a reallocation keeps the old one valid (Lua < 5.4.6); later, no line.
     if (nsize > old && self->used + (nsize - old) > self->cap) {
-        if (self->running) self->refused_at = script_line(self->running, 0);
+        self->refused_at = self->running && LUA_VERSION_RELEASE_NUM < 50406 ? script_line(self->running, 0) : ScriptLine{};
         return nullptr;
     }
     void* p = std::realloc(ptr, nsize);
@@ -309,14 +311,15 @@ std::string Sandbox::memory_cap() const {
 }
 
 std::string Sandbox::memory_error(const std::string& when) const {
-    return (heap_.refused_at.empty() ? "" : heap_.refused_at + ": ") + "not enough memory: the script reached " +
+    return (heap_.refused_at[0] ? std::string(heap_.refused_at.data()) + ": " : "") + "not enough memory: the script reached " +
            memory_cap() + when + "; raise it with --memory-limit-mb MB";
 }
 
-std::string script_line(lua_State* L, int level) {
-    for (lua_Debug ar; lua_getstack(L, level, &ar); ++level)
-        if (lua_getinfo(L, "Sl", &ar) && ar.currentline > 0) return std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
-    return "";
+ScriptLine script_line(lua_State* L, int level) noexcept {
+    ScriptLine out{};
+    for (lua_Debug ar; lua_getstack(L, level, &ar) && !out[0]; ++level)
+        if (lua_getinfo(L, "Sl", &ar) && ar.currentline > 0) std::snprintf(out.data(), out.size(), "%s:%d", ar.short_src, ar.currentline);
+    return out;
 }
 
 Status Sandbox::charge(std::size_t bytes, const std::string& what) const {

@@ -19,6 +19,7 @@
 
 #include <lua.hpp>
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
@@ -30,8 +31,9 @@
 
 namespace rollsense::runtime {
 
-// "script.lua:12", the innermost Lua line at or below stack `level` of L ("" if none); allocates nothing in Lua.
-std::string script_line(lua_State* L, int level);
+// "script.lua:12", the innermost Lua line at or below stack `level` of L (empty if none); no allocation, no throw.
+using ScriptLine = std::array<char, LUA_IDSIZE + 24>;
+ScriptLine script_line(lua_State* L, int level) noexcept;
 
 struct SandboxLimits {
     std::size_t memory_bytes = 256u << 20;  // Lua heap cap
@@ -45,7 +47,7 @@ struct LuaHeap {
     std::size_t cap = 0;
     std::size_t used = 0;
     lua_State* running = nullptr;  // the thread a slice runs: a refusal notes its line, which Lua's error lacks
-    std::string refused_at;        // "script.lua:12", the last refusal's line
+    ScriptLine refused_at{};       // "script.lua:12", the last refusal's line ("" outside a slice)
     static void* allocate(void* heap, void* ptr, std::size_t osize, std::size_t nsize);
 };
 

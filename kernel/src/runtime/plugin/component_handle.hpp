@@ -38,10 +38,9 @@ public:
     Status recover();
     Result<ValueMap> invoke(const std::string& verb, const ValueMap& args);
 
-    // Run a plugin call: exceptions become plugin_error, a failing Status is
-    // prefixed with the instance name; either moves the component to `error`
-    // unless the failure is the caller's: `keeps_state` (e.g. a command refused as
-    // out of range), or not_found, a request for what does not exist (a trial's unknown object).
+    // Run a plugin call: exceptions become plugin_error, a failing Status is prefixed with the instance name; either
+    // moves the component to `error` unless the failure is the caller's: `keeps_state` (e.g. a command refused as out
+    // of range), or not_found, a request for what does not exist (a trial's unknown object).
     template <class F>
     Status call(const char* what, F&& fn, bool keeps_state = false) {
         // Initialised by the call itself, not assigned over: several calls per control period.

@@ -20,10 +20,9 @@ std::string article(PluginKind kind) {
     return (kind == PluginKind::actuator ? "an " : "a ") + name;
 }
 
-// dlopen maps a library's segments straight from the file: in a truncated one
-// they reach past its end, and the first touch of them is a SIGBUS no error
-// return reports. So first: does the file hold every byte its ELF64 headers
-// point at? Empty if so, or if it is no ELF64 file (dlopen says why then).
+// dlopen maps a library's segments straight from the file: in a truncated one they reach past its end, and the first
+// touch of them is a SIGBUS no error return reports. So first: does the file hold every byte its ELF64 headers point
+// at? Empty if so, or if it is no ELF64 file (dlopen says why then).
 std::string truncation(const fs::path& file) {
     std::ifstream in(file, std::ios::binary | std::ios::ate);
     const auto size = static_cast<std::uintmax_t>(in.tellg());

@@ -54,9 +54,9 @@ bool is_profile_path(const std::string& key) {
     return entries.count(key.substr(0, key.find('.'))) > 0;  // an entry (sample_rate_hz) or a path under one
 }
 
-fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir, const fs::path& base) {
+fs::path resolve_profile_path(const std::string& name, const fs::path& share_dir) {
     if (name.find('/') != std::string::npos || (name.size() > 4 && name.substr(name.size() - 4) == ".lua"))
-        return base.empty() || fs::path(name).is_absolute() ? fs::path(name) : base / name;
+        return fs::path(name);
     return share_dir / "profiles" / (name + ".lua");
 }
 
@@ -65,9 +65,11 @@ namespace {
 // "profile 'x' not found at P (profiles here: a, b)", for --profile and include().
 std::string profile_not_found(const std::string& name, const fs::path& path, const fs::path& share_dir) {
     std::string known;
-    for (std::error_code ec; const auto& e : fs::directory_iterator(share_dir / "profiles", ec))
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(share_dir / "profiles", ec))
         if (e.path().extension() == ".lua") known += (known.empty() ? "" : ", ") + e.path().stem().string();
-    return "profile '" + name + "' not found at " + path.string() + (known.empty() ? "" : " (profiles here: " + known + ")");
+    return "profile '" + name + "' not found at " + path.string() + (path.is_relative() ? " (relative to the working folder "
+           + fs::current_path(ec).string() + ")" : "") + (known.empty() ? "" : " (profiles here: " + known + ")");
 }
 
 struct LuaCloser {
@@ -109,9 +111,7 @@ int lua_include(lua_State* L) {
     auto* st = static_cast<LoadState*>(lua_touserdata(L, lua_upvalueindex(1)));
     const char* name = luaL_checkstring(L, 1);
     if (++st->depth > 8) return luaL_error(L, "include('%s'): profiles include each other too deeply", name);
-    lua_Debug ar;  // a relative path is the including profile's neighbour (as plugin_path is), not the working folder's
-    const bool known = lua_getstack(L, 1, &ar) && lua_getinfo(L, "S", &ar) && ar.source[0] == '@';
-    auto path = resolve_profile_path(name, st->share_dir, known ? fs::path(ar.source + 1).parent_path() : fs::path());
+    auto path = resolve_profile_path(name, st->share_dir);
     if (std::error_code ec; !fs::exists(path, ec))  // luaL_error names the including file and line
         return luaL_error(L, "include: %s", profile_not_found(name, path, st->share_dir).c_str());
     int n = run_profile_file(L, path);
@@ -439,9 +439,9 @@ Result<Profile> load_profile(const std::string& name_or_path, const fs::path& sh
     if (const int rc = lua_pcall(L, 1, 1, 0); rc != LUA_OK) {
         const char* msg = lua_tostring(L, -1);
         std::string text = msg ? msg : "(error object is not a string)";
-        const std::string& at = budget.heap.refused_at;  // Lua's memory error has no place: the line the allocator noted
+        const char* at = budget.heap.refused_at.data();  // Lua's memory error has no place: the line the allocator noted
         if (rc == LUA_ERRMEM)
-            text = (at.empty() ? p.path.string() : at) + ": " + text + " (the profile went past the memory cap of " +
+            text = (*at ? std::string(at) : p.path.string()) + ": " + text + " (the profile went past the memory cap of " +
                    std::to_string(limits.memory_bytes >> 20) + " MB; --memory-limit-mb)";
         return Error{ErrorCode::parse_error, "profile " + text};
     }

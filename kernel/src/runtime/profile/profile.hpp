@@ -115,9 +115,8 @@ std::string setting_namespace(const std::string& key);
 // True for a profile entry (sample_rate_hz) or a path under one (devices.tactile.params.x).
 bool is_profile_path(const std::string& key);
 
-// <share>/profiles/<name>.lua for a name; a path (with '/', or ending in .lua) as given, or relative to `base`.
-std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir,
-                                           const std::filesystem::path& base = {});
+// <share>/profiles/<name>.lua for a name; a path (with '/', or ending in .lua) as given.
+std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);
 
 struct SandboxLimits;
 // A profile is Lua: it runs under the scripts' memory cap and no-wait limit

@@ -46,18 +46,16 @@ public:
     // Best effort, never throws: stop every joint (hold, or torque off where the
     // profile says so), then deactivate (or recover, if failed) and clean up every device.
     void shutdown(double time) noexcept;
-    // Stop every joint now: the profile's safe action (hold here, or torque
-    // off) to every actuator that is active or failed, so the servos that
-    // still answer stop even when another one on their bus does not. Used on
-    // any failure (device, sensor, script, scheduler), cancellation and e-stop.
+    // Stop every joint now: the profile's safe action (hold here, or torque off) to every actuator that is active or
+    // failed, so the servos that still answer stop even when another one on their bus does not. Used on any failure
+    // (device, sensor, script, scheduler), cancellation and e-stop.
     void safe_state(double time) noexcept;
     // Refuse every command until released (emergency stop).
     void set_commands_locked(bool locked, std::string reason = {});
     std::string commands_locked_reason() const { return locked_ ? lock_reason_ : std::string(); }  // "": not locked
 
-    // Held on the script's thread around actuator I/O (activate, control_tick,
-    // safe_state, shutdown; device:call and :recover), and by the cancel
-    // watchdog's thread, with a timeout, for its safe state (Session::last_resort).
+    // Held on the script's thread around actuator I/O (activate, control_tick, safe_state, shutdown; device:call and
+    // :recover), and by the cancel watchdog's thread, with a timeout, for its safe state (Session::last_resort).
     // Sensors are not under it: the safe state never reads them.
     std::unique_lock<std::recursive_timed_mutex> lock_devices() { return std::unique_lock(devices_mutex_); }
     std::recursive_timed_mutex& devices_mutex() { return devices_mutex_; }

@@ -52,8 +52,7 @@ public:
     Status end_trial();
     // Make every saved trial durable and listed in the manifest.
     Status flush();
-    // Already in the dataset (a resumed run skips it; counted as skipped), or
-    // recorded by another shard.
+    // Already in the dataset (a resumed run skips it; counted as skipped), or recorded by another shard.
     bool has_trial(const std::string& id);
     // rs.random's generator: in a trial the trial's (its seed), outside one the run's (--seed): a draw between
     // trials does not shift a trial's, and none is the same for every seed.

@@ -55,9 +55,8 @@ public:
     // Cancel the run (e-stop, failure of a device, a script's request).
     void cancel(const std::string& reason);
 
-    // Recording started at `t`: on the virtual clock the control grid is
-    // re-phased on it, so what is recorded depends only on the trial, not on
-    // where it falls in the run.
+    // Recording started at `t`: on the virtual clock the control grid is re-phased on it, so what is recorded depends
+    // only on the trial, not on where it falls in the run.
     void on_recording_start(double t);
 
 private:

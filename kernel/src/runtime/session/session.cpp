@@ -193,14 +193,12 @@ RunSummary Session::run() {
     return summary;
 }
 
-// On the watchdog's thread while the Lua thread is stuck inside the script
-// (in Lua or in long C++ work, past the grace period): it is not in a control
-// tick or a recorder call then, which run between resumes; the robot calls a
-// binding makes are short and bounded by the devices' own timeouts.
-// Unless it is inside a plugin call, holding the devices' lock, maybe mid-packet:
-// a healthy call ends within the devices' timeouts, so the lock is awaited up to
-// kDeviceWait; one stuck in C code never lets go, and the prepared last resort
-// (whole packets, no lock) goes out instead. Held until the exit; no other wait: no deadlock.
+// On the watchdog's thread while the Lua thread is stuck inside the script (in Lua or in long C++ work, past the
+// grace period): it is not in a control tick or a recorder call then, which run between resumes; the robot calls a
+// binding makes are short and bounded by the devices' own timeouts. Unless it is inside a plugin call, holding the
+// devices' lock, maybe mid-packet: a healthy call ends within the devices' timeouts, so the lock is awaited up to
+// kDeviceWait; one stuck in C code never lets go, and the prepared last resort (whole packets, no lock) goes out
+// instead. Held until the exit; no other wait: no deadlock.
 void Session::last_resort(const std::string& why, ErrorCode code, double wall_start) {
     constexpr auto kDeviceWait = std::chrono::seconds(1);
     log_error("kernel", why);
@@ -231,7 +229,7 @@ void Session::write_run_info(const Status& s, double wall_start) {
         {"profile", profile_.path.string()},
         {"script", options_.script.string()},
         {"seed", std::to_string(options_.seed)},
-        {"status", s.ok() ? "ok" : s.error().describe()},
+        {"status", s.ok() ? "ok" : s.error().describe().substr(0, 1 << 16)},  // a script's error text has no bound
         {"trials_saved", std::to_string(recorder_->trials_saved())},
         {"trials_skipped", std::to_string(recorder_->trials_skipped())},
         {"run_time_s", std::to_string(clock_ ? clock_->now() : 0.0)},
@@ -284,9 +282,10 @@ Status Session::run_cleanup() {
         scheduler_->spawn(std::make_unique<LuaTask>(*sandbox_, L, -1, "cleanup"), TaskRole::cleanup);
         lua_pop(L, 1);
     }
-    Status cleanup = scheduler_->run(TaskRole::cleanup, now() + options_.cleanup_limit_s,
-                                     "cleanup exceeded its time budget (" + std::to_string(options_.cleanup_limit_s) +
-                                         " s)");
+    const std::string over = "cleanup exceeded its time budget (" + std::to_string(options_.cleanup_limit_s) + " s)";
+    Status cleanup = scheduler_->run(TaskRole::cleanup, now() + options_.cleanup_limit_s, over);
+    // The cleanup's own failure (exit 1), not an interrupt's (130).
+    if (cleanup.message() == over) cleanup = Status(ErrorCode::limit_violation, over);
     // After a failure the hand is safe already (above); a cleanup step a device
     // refuses because that failure left it in the error state is no news.
     if (!cleanup.ok() && !main_failure.ok())

@@ -120,10 +120,9 @@ public:
     void add_cleanup(int function_ref) { cleanup_refs_.push_back(function_ref); }
     void report_progress(std::size_t done, std::size_t total, const std::string& label);
     Status write_output_text(const std::string& name, const std::string& text);
-    // A file name a script may write into the output folder: a plain name
-    // (letters, digits, '.', '_', '-'; no leading '.'; at most 128 bytes),
-    // not one of the dataset's own files (rollsense/dataset_files.hpp) nor
-    // features.csv. `what` names the caller.
+    // A file name a script may write into the output folder: a plain name (letters, digits, '.', '_', '-'; no leading
+    // '.'; at most 128 bytes), not one of the dataset's own files (rollsense/dataset_files.hpp) nor features.csv.
+    // `what` names the caller.
     static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 
