@@ -130,7 +130,10 @@ TEST_CASE("the waiting calls refuse bad arguments before any wait, naming the ca
     for (const auto& [call, expected] :
          {std::pair{"rs.wait(-1)", "rs.wait: milliseconds must be a number >= 0"},
           std::pair{"rs.joint('finger'):move(10, { mode = 'current' })", "move: mode 'current' is not a position mode"},
-          std::pair{"rs.wait_until(42)", "bad argument #1 to 'wait_until'"}}) {
+          std::pair{"rs.wait_until(42)", "bad argument #1 to 'wait_until'"},
+          // Review (user journeys) item 9: names for handles said "bad argument #-1 to 'wait_joints'".
+          std::pair{"rs.wait_joints({ 'finger' })", "rs.wait_joints: item 1 is a string, not a joint (rs.joint(name))"},
+          std::pair{"rs.save_trial()", "no trial to save: rs.trial{...} first"}}) {
         INFO(call);
         kt::TempDir dir;
         auto r = kt::run_script(dir, std::string("local rs = require 'rollsense'\n") + call + "\n");

@@ -193,7 +193,8 @@ bool l_wait_joints(lua_State* L) {
     std::vector<const Joint*> list;
     std::string names;
     for (lua_Integer i = 1; i <= static_cast<lua_Integer>(lua_rawlen(L, 1)); ++i) {
-        lua_rawgeti(L, 1, i);
+        if (lua_rawgeti(L, 1, i) != LUA_TUSERDATA || !luaL_testudata(L, -1, kJointMeta))  // review: "bad argument #-1"
+            luaL_error(L, "rs.wait_joints: item %d is a %s, not a joint (rs.joint(name))", int(i), luaL_typename(L, -1));
         Joint& j = check_joint(L, -1);
         list.push_back(&j);
         names += (names.empty() ? "" : ", ") + j.name;
