@@ -73,7 +73,8 @@ Result<ShardDataset> open_shard(const fs::path& dir) {
     const fs::path run_info = dir / "run-info.csv";
     if (!fs::exists(run_info, ec))
         return refused(run_info.string() + " is missing: " + dir.string() + " is not the folder of a finished run " +
-                       "(a shard's run writes it when it ends)");
+                       "(a shard's run writes it when it ends; one killed before it could: run its command again with "
+                       "--resume and the same --out, then merge)");
     auto info = csv::read_key_values(run_info);
     if (!info) return info.error();
     s.run_info = std::move(info).value();

@@ -215,6 +215,12 @@ TEST_CASE("rollsense merge refuses what is not a finished shard, and an output f
                 {(whole / "run-info.csv").string() + ": no 'shard' row: " + whole.string() +
                  " was recorded without --shard K/N"});
     }
+    // Review (bad input) item 8: the one refusal without the way on.
+    SECTION("a shard killed before it wrote its run-info.csv") {
+        fs::remove(s1 / "run-info.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {(s1 / "run-info.csv").string() + " is missing", "run its command again with --resume and the same --out"});
+    }
     SECTION("a folder that does not exist") {
         refused(merge(dir / "merged", {s0, dir / "nowhere", s2}), dir / "merged",
                 {(dir / "nowhere").string() + ": no such shard folder"});
