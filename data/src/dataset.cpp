@@ -533,8 +533,8 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     auto same_setup = [&](const DatasetInfo& old) -> Status {
         std::string differ;  // each key that differs, with both values (review: only profile and seed were named)
         auto compare = [&](const char* key, const std::string& was, const std::string& now) {
-            if (was != now)
-                differ += (differ.empty() ? "" : "; ") + std::string(key) + " was '" + was + "', this run's '" + now + "'";
+            if (was == now) return;
+            differ += (differ.empty() ? "" : "; ") + std::string(key) + " was '" + was + "', this run's '" + now + "'";
         };
         auto words = [](const std::vector<std::string>& v) {
             std::string out;

@@ -181,9 +181,10 @@ Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& f
         row.trial_id = f[*id_col];
         // A copy would sit in a training fold and a test fold at once, and raise every accuracy figure.
         if (const auto [at, fresh] = line_of.emplace(row.trial_id, r.line()); !fresh)
-            return Error{ErrorCode::parse_error, r.where(*id_col) + ": trial id '" + row.trial_id +
-                                                     "' appears twice (first at line " + std::to_string(at->second) +
-                                                     "); remove the copy, or write the file again with rollsense features"};
+            return Error{ErrorCode::parse_error,
+                         r.where(*id_col) + ": trial id '" + row.trial_id + "' appears twice (first at line " +
+                             std::to_string(at->second) + "); remove the copy, or write the file again with rollsense "
+                                                          "features"};
         row.object = f[*obj_col];
         const std::string& cl = f[*clean_col];
         if (cl == "1" || cl == "true" || cl == "TRUE" || cl == "True") row.clean = true;

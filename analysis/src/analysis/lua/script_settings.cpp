@@ -209,7 +209,8 @@ int probe_setting(lua_State* L) {
         declared = declared || d.key == key;
     }
     // A required setting: no value to go on with while reading.
-    if (lua_gettop(L) < 2) return stop_at(L, "rs.setting '" + key + "'" + (declared ? ", required" : " without a default"));
+    if (lua_gettop(L) < 2)
+        return stop_at(L, "rs.setting '" + key + "'" + (declared ? ", required" : " without a default"));
     lua_settop(L, 2);
     return 1;
 }
@@ -259,7 +260,8 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
         if (rc == LUA_ERRMEM) text = sandbox.memory_error(" while its settings were read");  // Lua's text has no place
         return Error{ErrorCode::invalid_argument, text};
     }
-    std::sort(probe.found.begin(), probe.found.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
+    std::sort(probe.found.begin(), probe.found.end(),
+              [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
     if (stopped_at) *stopped_at = probe.stopped_at;
     return probe.found;
 }

@@ -311,14 +311,15 @@ std::string Sandbox::memory_cap() const {
 }
 
 std::string Sandbox::memory_error(const std::string& when) const {
-    return (heap_.refused_at[0] ? std::string(heap_.refused_at.data()) + ": " : "") + "not enough memory: the script reached " +
-           memory_cap() + when + "; raise it with --memory-limit-mb MB";
+    const std::string at = heap_.refused_at[0] ? std::string(heap_.refused_at.data()) + ": " : "";
+    return at + "not enough memory: the script reached " + memory_cap() + when + "; raise it with --memory-limit-mb MB";
 }
 
 ScriptLine script_line(lua_State* L, int level) noexcept {
     ScriptLine out{};
     for (lua_Debug ar; lua_getstack(L, level, &ar) && !out[0]; ++level)
-        if (lua_getinfo(L, "Sl", &ar) && ar.currentline > 0) std::snprintf(out.data(), out.size(), "%s:%d", ar.short_src, ar.currentline);
+        if (lua_getinfo(L, "Sl", &ar) && ar.currentline > 0)
+            std::snprintf(out.data(), out.size(), "%s:%d", ar.short_src, ar.currentline);
     return out;
 }
 

@@ -99,8 +99,8 @@ Status Recorder::save_trial() {
     if (!dataset_) return {ErrorCode::state_error, "no dataset is open: run with --out DIR to save trials"};
     if (recording_) return {ErrorCode::state_error, "stop recording before saving the trial"};
     if (data_.samples() == 0)  // review: with no trial begun, this said "trial '' recorded no samples"
-        return {ErrorCode::state_error, trial_open_ ? "trial '" + trial_.id + "' recorded no samples (rs.record_start, "
-                                                      "roll, rs.record_stop, then save)" : "no trial to save: rs.trial{...} first"};
+        return {ErrorCode::state_error, trial_open_ ? "trial '" + trial_.id + "' recorded no samples: record it first"
+                                                    : "no trial to save: rs.trial{...} first"};
     if (plan_)
         if (auto s = plan_->check_save(trial_.id); !s.ok()) return s;
     TrialRecord rec;
