@@ -536,15 +536,10 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
             if (was == now) return;
             differ += (differ.empty() ? "" : "; ") + std::string(key) + " was '" + was + "', this run's '" + now + "'";
         };
-        auto words = [](const std::vector<std::string>& v) {
-            std::string out;
-            for (const auto& word : v) out += (out.empty() ? "" : " ") + word;
-            return out;
-        };
         compare("profile", old.profile, info.profile);
         compare("seed", std::to_string(old.seed), std::to_string(info.seed));
-        compare("channels", words(old.channels), words(info.channels));
-        compare("joints", words(old.joints), words(info.joints));
+        compare("channels", join(old.channels, ' '), join(info.channels, ' '));
+        compare("joints", join(old.joints, ' '), join(info.joints, ' '));
         if (old.sample_rate_hz != info.sample_rate_hz)  // shortest round-trip text: two rates never print alike
             compare("sample_rate_hz", csv::format_number(old.sample_rate_hz), csv::format_number(info.sample_rate_hz));
         if (differ.empty()) return {};
