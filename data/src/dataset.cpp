@@ -557,7 +557,13 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
         if (auto s = drop_torn_line(dir / "manifest.csv"); !s.ok())
             return Error{s.error().code, "cannot resume: " + s.error().message};
         auto read = DatasetReader::open(dir, DatasetReader::MissingTrialFile::keep_listed);
-        if (!read) return Error{read.error().code, "cannot resume: " + read.error().message};
+        if (!read) {  // review: a damaged manifest row or dataset-info.csv was named with no way on
+            const std::string way = read.error().code != ErrorCode::parse_error
+                                        ? ""
+                                        : "; repair or restore that file, or record anew into another --out (a manifest "
+                                          "row may also be deleted: a resume records again a trial it does not list)";
+            return Error{read.error().code, "cannot resume: " + read.error().message + way};
+        }
         if (!recorded)  // a hand-made dataset's setup, inferred from its first trial file
             if (auto s = same_setup(read->info()); !s.ok()) return s.error();
         on_disk = std::move(*read);

@@ -222,3 +222,27 @@ roll(2)
     CHECK(resumed.status == 0);
     CHECK(manifest_rows(out) == 2);
 }
+
+// Review (bad input) item 8: a resume refused for a damaged manifest row named
+// the line and no way on. Deleting the row is one: the trial is recorded again.
+TEST_CASE("a resume refused for a damaged manifest row names the way on, and deleting the row works") {
+    TempDir dir("rollsense-cli-way-on-manifest-row");
+    const auto out = dir / "out";
+    const std::string run = "run " + kPaper + kFour + " --set analyse=false -q --out " + shell_quoted(out);
+    REQUIRE(run_rollsense(run).status == 0);
+    const std::string manifest = read_file(out / "manifest.csv");
+    const auto third = manifest.find('\n', manifest.find('\n', manifest.find('\n') + 1) + 1);  // end of line 3
+    const auto second = manifest.rfind('\n', third - 1);                                       // end of line 2
+    write_file(out / "manifest.csv", manifest.substr(0, second + 1) + "a,b,c\n" + manifest.substr(third + 1));
+    const auto refused = run_rollsense(run + " --resume");
+    INFO(refused.output);
+    CHECK(refused.status == 3);
+    CHECK(count_of(refused.output, "manifest.csv:3: 3 fields") == 1);
+    CHECK(refused.output.find("a manifest row may also be deleted: a resume records again a trial it does not list") !=
+          std::string::npos);
+    write_file(out / "manifest.csv", manifest.substr(0, second + 1) + manifest.substr(third + 1));
+    const auto resumed = run_rollsense(run + " --resume");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+    CHECK(read_file(out / "manifest.csv").size() == manifest.size());  // the deleted row's trial, recorded again
+}
