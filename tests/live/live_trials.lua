@@ -1,9 +1,14 @@
--- Two short trials on the emulated hand for the live view's test
--- (tests/live/test_live_view.sh): each names its steps with rs.status.
+-- Short trials on the emulated hand for the live view's test
+-- (tests/live/test_live_view.cpp): each names its steps with rs.status.
 local rs = require "rollsense"
 local etroll = require "etroll"
-local trials = { { object = "C2", speed = 5, repetition = 1 }, { object = "C2", speed = 5, repetition = 2 } }
-for i, t in ipairs(trials) do
+rs.settings{
+  trials = { default = 2, kind = "integer", min = 1,
+             help = "trials to record (a test that kills the run asks for more than it watches)" },
+}
+local count = rs.setting("trials")
+for i = 1, count do
+  local t = { object = "C2", speed = 5, repetition = i }
   rs.status("trial " .. i .. ": opening")
   rs.trial(t)
   etroll.open()
@@ -15,6 +20,6 @@ for i, t in ipairs(trials) do
   etroll.release()
   rs.save_trial()
   rs.end_trial()
-  rs.progress(i, #trials, "trials")
+  rs.progress(i, count, "trials")
 end
 rs.status("done")

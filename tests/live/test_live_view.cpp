@@ -86,8 +86,8 @@ std::string chromium(const fs::path& work, const std::string& args, const std::s
 const std::string kEventsRequest = "GET /events HTTP/1.1\r\nHost: x\r\n\r\n";
 
 // `rollsense run tests/live/live_trials.lua --live=0` on the emulated bus at
-// `device` (its stderr in `log`): the run's pid.
-pid_t start_run(const fs::path& work, const fs::path& log, const std::string& device) {
+// `device` (its stderr in `log`), recording `trials` trials: the run's pid.
+pid_t start_run(const fs::path& work, const fs::path& log, const std::string& device, int trials = 2) {
     const std::string exe = std::string(ROLLSENSE_BIN_DIR) + "/rollsense";
     const std::string script = std::string(ROLLSENSE_SOURCE_DIR) + "/tests/live/live_trials.lua";
     const std::string out = (work / "out").string();
@@ -95,13 +95,15 @@ pid_t start_run(const fs::path& work, const fs::path& log, const std::string& de
     // This tests the view, not the bus's deadlines: a reply timeout of 250 ms
     // (not 30) keeps a CI machine busy with other builds from failing the run.
     const std::string patience = "devices.hand.params.timeout_ms=250";
+    const std::string count = "trials=" + std::to_string(trials);
     const pid_t run = ::fork();
     REQUIRE(run >= 0);
     if (run == 0) {
         const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         ::dup2(fd, 2);
         ::execl(exe.c_str(), exe.c_str(), "run", script.c_str(), "--profile", "etroll-emulated", "--set",
-                dxl.c_str(), "--set", patience.c_str(), "--out", out.c_str(), "--live=0", "--no-progress", static_cast<char*>(nullptr));
+                dxl.c_str(), "--set", patience.c_str(), "--set", count.c_str(), "--out", out.c_str(), "--live=0",
+                "--no-progress", static_cast<char*>(nullptr));
         ::_exit(127);
     }
     return run;
@@ -335,7 +337,9 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
     auto emu = etroll_bus::start();
     const rollsense::testing::TempDir tmp("rollsense-live");
     const fs::path log = tmp.path() / "run.txt";
-    const pid_t run = start_run(tmp.path(), log, emu->device());
+    // Three trials of about 18 s: the page is loaded three times while it
+    // records (with two, a loaded machine could see the run end before).
+    const pid_t run = start_run(tmp.path(), log, emu->device(), 3);
     Reap reap_run{run};
     std::uint16_t port = 0;
     const std::string url = wait_for_url(log, port);
@@ -414,7 +418,7 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
                                           << "," << latest2.second);
     CHECK(latest2 > latest1);
 
-    // The run ends in its own time with both trials, the stalled client
+    // The run ends in its own time with all its trials, the stalled client
     // notwithstanding (it still holds its connection, reading nothing).
     int status = 0;
     pid_t ended = 0;
@@ -426,7 +430,7 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
     reap_run.pid = 0;
     CHECK(WIFEXITED(status));
     CHECK(WEXITSTATUS(status) == 0);
-    CHECK_THAT(read_file(log), Catch::Contains("done: 2 trials saved"));
+    CHECK_THAT(read_file(log), Catch::Contains("done: 3 trials saved"));
 }
 
 // The server serves HttpServer::kMaxClients clients at once and answers any
@@ -444,7 +448,10 @@ TEST_CASE("rollsense run --live: a page that finds every client slot taken says 
     auto emu = etroll_bus::start();
     const rollsense::testing::TempDir tmp("rollsense-live-busy");
     const fs::path log = tmp.path() / "run.txt";
-    Reap reap_run{start_run(tmp.path(), log, emu->device())};  // killed at the end: its trials do not matter here
+    // Killed at the end: its trials do not matter here, only that it still
+    // records when the page goes live, however slowly the browser starts
+    // (with two trials, a loaded CI machine saw the run end first).
+    Reap reap_run{start_run(tmp.path(), log, emu->device(), 1000)};
     std::uint16_t port = 0;
     wait_for_url(log, port);
     INFO(read_file(log));
