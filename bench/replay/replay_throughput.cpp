@@ -113,7 +113,6 @@ runtime::RunSummary run_session(const std::string& profile, const fs::path& out,
     o.out_dir = out;
     o.seed = 3;
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
     throw_if_error(o.settings.add("runs=" + std::to_string(runs)));
     throw_if_error(o.settings.add("analyse=false"));  // time the trials, not the script's evaluation
     if (!dataset.empty()) throw_if_error(o.settings.add("dataset=" + dataset.string()));

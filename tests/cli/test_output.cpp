@@ -127,3 +127,35 @@ TEST_CASE("the global option log-time starts every log line with the UTC time, b
     const auto plain = run_rollsense("run " + script + " --profile mock --out " + shell_quoted(dir / "c"));
     CHECK_FALSE(std::regex_search(plain.output, std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d)")));
 }
+
+// The progress bar is drawn with carriage returns and no newline: a log line
+// printed while it was drawn used to continue the bar's line.
+TEST_CASE("on a terminal a log line during the progress bar starts a line of its own and --no-progress draws none") {
+    TempDir dir("rollsense-cli-progress");
+    write_file(dir / "steps.lua", "local rs = require 'rollsense'\nfor i = 1, 3 do\n  rs.wait(1)\n"
+                                  "  rs.progress(i, 3, 'steps')\n  if i == 1 then rs.log('after the first step') end\nend\n");
+    const std::vector<std::string> args{"run", (dir / "steps.lua").string(), "--profile", "mock", "--out",
+                                        (dir / "out").string()};
+    const auto drawn = run_on_terminal(args, {"NO_COLOR=1", "TERM=xterm"});
+    INFO(drawn.output);
+    REQUIRE(drawn.status == 0);
+    CHECK(drawn.output.find("] 1/3 steps") != std::string::npos);
+    CHECK(drawn.output.find("] 3/3 steps") != std::string::npos);
+    const auto logged = drawn.output.find("info    script: after the first step");
+    REQUIRE(logged != std::string::npos);
+    REQUIRE(logged > 0);
+    CHECK(drawn.output[logged - 1] == '\n');
+    // The summary after the bar starts a line of its own too.
+    const auto done = drawn.output.find("done: 0 trials saved");
+    REQUIRE(done != std::string::npos);
+    CHECK(drawn.output[done - 1] == '\n');
+
+    auto quiet_args = args;
+    quiet_args.back() = (dir / "quiet").string();
+    quiet_args.push_back("--no-progress");
+    const auto quiet = run_on_terminal(quiet_args, {"NO_COLOR=1", "TERM=xterm"});
+    INFO(quiet.output);
+    CHECK(quiet.status == 0);
+    CHECK(quiet.output.find("steps") == std::string::npos);
+    CHECK(quiet.output.find("after the first step") != std::string::npos);
+}

@@ -107,7 +107,6 @@ Outcome clamp_then(const char* name, lua_CFunction fault) {
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = tmp.path() / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
 
     // Forked before the emulator's serving thread exists (fork_first.hpp says why).
     testing::ForkedFirst child([&](const std::string& device) {

@@ -31,7 +31,6 @@ runtime::RunSummary run_session(const fs::path& dir, const fs::path& script, con
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = dir / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
     runtime::Session session(o);
     return session.run();
 }

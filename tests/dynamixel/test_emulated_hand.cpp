@@ -34,7 +34,6 @@ runtime::SessionOptions options_for(const fs::path& script, const std::string& p
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = out;
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
     return o;
 }
 

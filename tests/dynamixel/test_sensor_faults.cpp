@@ -49,7 +49,6 @@ runtime::SessionOptions options(const fs::path& dir, const fs::path& script, std
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = dir / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
     return o;
 }
 

@@ -64,7 +64,6 @@ assert(read_mid_roll, "the watchdog was not read during the second roll")
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = dir / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
     runtime::Session session(o);
     const auto summary = session.run();
     INFO(summary.status.message());

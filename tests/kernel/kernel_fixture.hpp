@@ -58,7 +58,6 @@ inline rollsense::runtime::SessionOptions options_for(const TempDir& dir, const 
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = dir / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR, ROLLSENSE_TEST_PLUGIN_DIR};
-    o.progress = false;
     o.sandbox.max_slice_ms = 1000;
     o.digital_lines = rollsense::hal::gpio_digital_lines();  // e-stop and trigger on fake chips
     return o;

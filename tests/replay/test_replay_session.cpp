@@ -24,7 +24,6 @@ runtime::SessionOptions session_options(const fs::path& script, const std::strin
     o.out_dir = out;
     o.seed = seed;
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
-    o.progress = false;
     o.sandbox.max_slice_ms = 1000;
     for (const auto& kv : settings) REQUIRE(o.settings.add(kv).ok());
     return o;

@@ -8,6 +8,7 @@
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
 #include "cli/paths.hpp"
+#include "cli/progress_bar.hpp"
 #include "cli/recorded_seed.hpp"
 #include "cli/run_dataset.hpp"
 #include "live/live_view.hpp"
@@ -210,7 +211,6 @@ int run(const std::vector<std::string>& argv) {
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
-    o.progress = !args.flag("--no-progress");
     o.digital_lines = hal::gpio_digital_lines();
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
@@ -223,6 +223,13 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "live view: %s\n", view->where().c_str());
     }
 
+    ProgressBar bar(!args.flag("--no-progress"));
+    o.on_progress = [&bar, observer = std::move(o.on_progress)](std::size_t done, std::size_t total,
+                                                                 const std::string& label, double run_clock_s) {
+        bar.update(done, total, label, run_clock_s);
+        if (observer) observer(done, total, label, run_clock_s);
+    };
+
     std::error_code ec;
     const bool out_existed = std::filesystem::exists(o.out_dir, ec);
     const auto out_before = folder_state(o.out_dir);
@@ -231,6 +238,7 @@ int run(const std::vector<std::string>& argv) {
         runtime::Session session(o);
         summary = session.run();
     }  // the dataset's folder lock is released here
+    bar.finish();
     if (view) view->finished(summary);
     // The trials the dataset held before this run and still holds. The kernel counts those the script skipped
     // (rs.has_trial); a resume that stopped before its script reached them (a device that failed at activation)

@@ -15,7 +15,7 @@ Result<std::unique_ptr<LiveView>> LiveView::start(const LiveOptions& live, runti
     view->server_ = std::move(*server);
     RunFeed* feed = &view->feed_;
     options.on_sample = [feed](runtime::Session& s) { feed->sampled(s); };
-    options.on_progress = [feed](std::size_t done, std::size_t total, const std::string& label) {
+    options.on_progress = [feed](std::size_t done, std::size_t total, const std::string& label, double) {
         feed->progress(done, total, label);
     };
     set_status_feed(feed);

@@ -158,7 +158,6 @@ RunSummary Session::run() {
 
     Status s = prepare();
     if (s.ok()) {
-        progress_ = std::make_unique<Progress>(options_.progress);
         try {
             CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
                                     [this, wall_start](const std::string& why, ErrorCode code) { last_resort(why, code, wall_start); });
@@ -169,7 +168,6 @@ RunSummary Session::run() {
             s = Status(ErrorCode::limit_violation, "out of memory (std::bad_alloc) during the run; " +
                                                        std::to_string(sent) + " last-resort actions sent");
         }
-        if (progress_) progress_->finish();
     }
     if (robot_) robot_->shutdown(clock_ ? clock_->now() : 0.0);
     if (recorder_ && recorder_->has_dataset()) {
@@ -307,8 +305,7 @@ Status Session::record_start() {
 }
 
 void Session::report_progress(std::size_t done, std::size_t total, const std::string& label) {
-    if (progress_) progress_->update(done, total, label, now());
-    if (options_.on_progress) options_.on_progress(done, total, label);
+    if (options_.on_progress) options_.on_progress(done, total, label, now());
 }
 
 Status Session::write_output_text(const std::string& name, const std::string& text) {

@@ -22,7 +22,6 @@
 #include "runtime/profile/profile.hpp"
 #include "runtime/robot/robot.hpp"
 #include "runtime/session/loop_timing.hpp"
-#include "runtime/session/progress.hpp"
 #include "runtime/session/recorder.hpp"
 #include "runtime/session/safety.hpp"
 #include "runtime/session/scheduler.hpp"
@@ -46,13 +45,13 @@ struct SessionOptions {
     double cleanup_limit_s = 60;              // run-clock budget for cleanup functions
     SandboxLimits sandbox;
     std::size_t commit_every = 0;             // 0: 1 on hardware, 64 in simulation
-    bool progress = true;                     // a progress bar when stderr is a terminal
     std::string command_line;                 // for run-info.csv
     RunConfig run_config;                     // for run-config.csv; --resume refuses another
     DigitalLines digital_lines;               // opens the profile's e-stop and trigger lines
-    // An observer (the live view): after each recorded sample and each rs.progress, on the script's thread; must not block.
+    // Observers (the live view, the progress bar): after each recorded sample and each rs.progress, on the script's
+    // thread; must not block.
     std::function<void(Session&)> on_sample;
-    std::function<void(std::size_t done, std::size_t total, const std::string& label)> on_progress;
+    std::function<void(std::size_t done, std::size_t total, const std::string& label, double run_clock_s)> on_progress;
 };
 
 struct RunSummary {
@@ -161,7 +160,6 @@ private:
     std::unique_ptr<Recorder> recorder_;
     std::unique_ptr<Sandbox> sandbox_;
     std::unique_ptr<Scheduler> scheduler_;
-    std::unique_ptr<Progress> progress_;
     std::vector<int> cleanup_refs_;
     bool prepared_ = false;
     ErrorCode raised_code_ = ErrorCode::ok;

@@ -1,17 +1,30 @@
-#include "runtime/session/progress.hpp"
+#include "cli/progress_bar.hpp"
 
 #include <unistd.h>
 
 #include <cstdio>
 
-namespace rollsense::runtime {
+namespace rollsense::cli {
 
-Progress::Progress(bool enabled) : enabled_(enabled && ::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+ProgressBar::ProgressBar(bool wanted)
+    : enabled_(wanted && ::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {
+    if (!enabled_) return;
+    // Made before the run starts its threads: nothing logs until log_sink_ is set.
+    log_sink_ = set_log_sink([this](LogLevel level, std::string_view source, std::string_view message) {
+        finish();
+        log_sink_(level, source, message);
+    });
+}
 
-Progress::~Progress() { finish(); }
+ProgressBar::~ProgressBar() {
+    if (!enabled_) return;
+    set_log_sink(log_sink_);
+    finish();
+}
 
-void Progress::update(std::size_t done, std::size_t total, const std::string& label, double run_clock_s) {
+void ProgressBar::update(std::size_t done, std::size_t total, const std::string& label, double run_clock_s) {
     if (!enabled_ || total == 0) return;
+    std::lock_guard lock(mutex_);
     auto now = std::chrono::steady_clock::now();
     if (first_done_ == SIZE_MAX) first_done_ = done;  // trials skipped on --resume do not count for the rate
     if (done < total && now - last_draw_ < std::chrono::milliseconds(100)) return;
@@ -30,9 +43,10 @@ void Progress::update(std::size_t done, std::size_t total, const std::string& la
     drawn_ = true;
 }
 
-void Progress::finish() {
+void ProgressBar::finish() {
+    std::lock_guard lock(mutex_);
     if (drawn_) std::fprintf(stderr, "\n");
     drawn_ = false;
 }
 
-}  // namespace rollsense::runtime
+}  // namespace rollsense::cli
