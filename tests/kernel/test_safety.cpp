@@ -213,12 +213,29 @@ while true do pcall(rs.wait, 1000) end
 // Review (user journeys) item 1: a cleanup that failed after a script that
 // succeeded was only logged, and the run said "ok" (exit 0) with the hand
 // perhaps not parked. Now it is the run's failure, printed once (by the caller).
+// Review (user journeys): a wait that can never end ran on the virtual clock
+// until --time-limit or Ctrl-C, whose message named no place in the script.
+TEST_CASE("a run stopped by its time budget names the line where the script waited", "[safety]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, "local rs = require 'rollsense'\nlocal function never() return false end\n"
+                                  "rs.wait(1)\nrs.wait_until(never)\n");
+    o.time_limit_s = 30;
+    rollsense::runtime::Session session(o);
+    const auto s = session.run();
+    REQUIRE_FALSE(s.status.ok());
+    CHECK(s.status.code() == ErrorCode::cancelled);
+    CHECK_THAT(s.status.message(), Catch::StartsWith("the run exceeded --time-limit (30 s of run time) (task 'main' "
+                                                     "waited at ") &&
+                                       Catch::EndsWith("script.lua:4)"));
+}
+
 TEST_CASE("a cleanup that fails after a script that succeeded fails the run", "[safety]") {
     struct Case { const char* cleanup; ErrorCode code; const char* says; };
     for (const Case& c : {Case{"rs.nosuch()", ErrorCode::script_error, "script.lua:2: attempt to call a nil value"},
                           Case{"while true do end", ErrorCode::limit_violation, "past --slice-limit-ms 300"},
                           // Its time budget: its own failure (exit 1), not an interrupt (130) (second review).
-                          Case{"rs.wait(120000)", ErrorCode::limit_violation, "cleanup exceeded its time budget (2."}}) {
+                          Case{"rs.wait(120000)", ErrorCode::limit_violation,
+                               "cleanup exceeded its time budget (2 s) (task 'cleanup' waited at "}}) {
         INFO(c.cleanup);
         kt::TempDir dir;
         auto o = kt::options_for(dir, std::string("local rs = require 'rollsense'\nrs.on_cleanup(function() ") +

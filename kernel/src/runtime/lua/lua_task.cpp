@@ -58,6 +58,8 @@ LuaTask::~LuaTask() {
 
 void LuaTask::on_cancel() { sandbox_.arm(thread_); }
 
+std::string LuaTask::where() const { return script_line(thread_, 0).data(); }
+
 void LuaTask::request(Wait wait) {
     waiting_for_ = wait.what;
     pending_ = std::move(wait);

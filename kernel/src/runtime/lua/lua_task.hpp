@@ -23,6 +23,7 @@ public:
 
     TaskStep resume(WaitOutcome last) override;
     void on_cancel() override;
+    std::string where() const override;
 
     lua_State* thread() const { return thread_; }
     // Called by a binding right before it yields.

@@ -44,9 +44,16 @@ void Scheduler::fail(Status status) {
     if (failure_.ok()) failure_ = std::move(status);
 }
 
+// Ctrl-C, --time-limit and the e-stop name no place in the script: the first task that waits says where, so a wait
+// that could never end is found.
 void Scheduler::cancel(const std::string& reason) {
     cancellation_.cancel(reason);
-    fail(Status(ErrorCode::cancelled, reason));
+    std::string where;
+    for (const auto& s : slots_)
+        if (s->task && s->wait.kind != Wait::Kind::none && where.empty())
+            if (const std::string line = s->task->where(); !line.empty())
+                where = " (task '" + s->task->name() + "' waited at " + line + ")";
+    fail(Status(ErrorCode::cancelled, reason + where));
 }
 
 void Scheduler::on_recording_start(double t) {

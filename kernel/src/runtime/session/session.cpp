@@ -16,6 +16,7 @@
 #include "rollsense/dataset_files.hpp"
 #include "rollsense/last_resort.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/params.hpp"
 #include "rollsense/run_config.hpp"
 #include "runtime/lua/api.hpp"
 #include "runtime/lua/cancel_watchdog.hpp"
@@ -245,8 +246,7 @@ Status Session::run_main_chunk() {
     lua_pop(L, 1);
     const double deadline = options_.time_limit_s > 0 ? options_.time_limit_s : kInf;
     return scheduler_->run(TaskRole::main, deadline,
-                           "the run exceeded --time-limit (" + std::to_string(options_.time_limit_s) +
-                               " s of run time)");
+                           "the run exceeded --time-limit (" + format_number(options_.time_limit_s) + " s of run time)");
 }
 
 Status Session::spawn(lua_State* L, int function_index, std::string name) {
@@ -280,10 +280,10 @@ Status Session::run_cleanup() {
         scheduler_->spawn(std::make_unique<LuaTask>(*sandbox_, L, -1, "cleanup"), TaskRole::cleanup);
         lua_pop(L, 1);
     }
-    const std::string over = "cleanup exceeded its time budget (" + std::to_string(options_.cleanup_limit_s) + " s)";
+    const std::string over = "cleanup exceeded its time budget (" + format_number(options_.cleanup_limit_s) + " s)";
     Status cleanup = scheduler_->run(TaskRole::cleanup, now() + options_.cleanup_limit_s, over);
     // The cleanup's own failure (exit 1), not an interrupt's (130).
-    if (cleanup.message() == over) cleanup = Status(ErrorCode::limit_violation, over);
+    if (cleanup.message().starts_with(over)) cleanup = Status(ErrorCode::limit_violation, cleanup.message());
     // After a failure the hand is safe already (above); a cleanup step a device
     // refuses because that failure left it in the error state is no news.
     if (!cleanup.ok() && !main_failure.ok())

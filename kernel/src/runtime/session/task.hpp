@@ -63,6 +63,8 @@ public:
     // The run was cancelled (called before each resume while it is): a task
     // running code of its own makes that code stop (the Lua hook is re-armed).
     virtual void on_cancel() {}
+    // Where a waiting task waits, for messages: "script.lua:12" (empty: unknown).
+    virtual std::string where() const { return {}; }
 
 private:
     std::string name_;
