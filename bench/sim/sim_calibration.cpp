@@ -76,8 +76,10 @@ bool parse(int argc, char** argv, Options& o) {
                 else o.overrides[key] = value;
             }
         } else {
-            std::fprintf(stderr, "usage: %s [--runs N] [--seed S] [--noise-trials N] [--features out.csv] [--set key=value ...]\n",
-                         argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--runs N] [--seed S] [--noise-trials N] [--features out.csv] [--set key=value ...]\n"
+                         "       %s --dataset DIR [--features out.csv]   (a dataset recorded by rollsense run)\n",
+                         argv[0], argv[0]);
             return false;
         }
     }

@@ -106,6 +106,31 @@ TEST_CASE("a script error comes back with file, line and traceback", "[lua]") {
     CHECK_THAT(m, Catch::Contains("script.lua:4: in main chunk"));
 }
 
+// Review (bad inputs): a mistyped API name gave Lua's "attempt to call a nil
+// value (field 'record_strat')", with no hint of the name meant.
+TEST_CASE("a name the API does not have is an error at its line naming the nearest one", "[lua]") {
+    struct Case { const char* line; const char* says; };
+    for (const Case& c : {Case{"rs.record_strat()", "script.lua:2: rs.record_strat does not exist (did you mean "
+                                                     "rs.record_start?); docs/scripting.md lists the API"},
+                          Case{"local x = rs.wiat", "script.lua:2: rs.wiat does not exist (did you mean rs.wait?)"},
+                          Case{"rs.joint('finger'):torqeu(false)",
+                               "script.lua:2: joint:torqeu does not exist (did you mean joint:torque?)"},
+                          Case{"rs.device('hand'):cal('x')", "script.lua:2: device:cal does not exist (did you mean device:call?)"},
+                          Case{"rs.zzzzzzzzzz()", "script.lua:2: rs.zzzzzzzzzz does not exist; docs"}}) {
+        INFO(c.line);
+        kt::TempDir dir;
+        const auto r = kt::run_script(dir, std::string("local rs = require 'rollsense'\n") + c.line + "\n");
+        REQUIRE_FALSE(r.summary.status.ok());
+        CHECK(r.summary.status.code() == ErrorCode::script_error);
+        CHECK_THAT(r.summary.status.message(), Catch::Contains(c.says));
+    }
+    // rawget tests for a name, and a script may still add its own.
+    kt::TempDir dir;
+    CHECK(run_and_read(dir, "rs.helper = function() return 'own' end\n"
+                            "rs.write_output('result.txt', tostring(rawget(rs, 'analyse_later')) .. ' ' .. rs.helper())\n") ==
+          "nil own");
+}
+
 TEST_CASE("a syntax error names the line and runs nothing", "[lua]") {
     kt::TempDir dir;
     auto r = kt::run_script(dir, "local rs = require 'rollsense'\nrs.wait(10\n");

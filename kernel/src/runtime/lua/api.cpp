@@ -1,7 +1,10 @@
 // Module assembly and the core of the rollsense Lua API: time, waiting,
 // settings, logging, progress, tasks and cleanup.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "rollsense/log.hpp"
@@ -39,6 +42,7 @@ void open_rollsense_api(Session& session) {
     for (auto add : {&lua_api::register_core, &lua_api::register_joints, &lua_api::register_trials,
                      &lua_api::register_devices, &lua_api::register_extras})
         add(L);
+    lua_api::refuse_unknown_names(L, -1, "rs.");
     session.sandbox().set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
 }
 
@@ -53,6 +57,45 @@ std::vector<Registrar>& extras() {
 
 ExtraRegistration::ExtraRegistration(Registrar registrar) { extras().push_back(registrar); }
 void register_extras(lua_State* L) { for (auto r : extras()) r(L); }
+
+namespace {
+// Edits (insert, delete, replace) between two names.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = std::exchange(row[0], i);
+        for (std::size_t j = 1; j <= b.size(); ++j)
+            diagonal = std::exchange(row[j], std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])}));
+    }
+    return row[b.size()];
+}
+
+// __index(table, key): the nearest name of the table, if one is near.
+int unknown_name(lua_State* L) {
+    const char* prefix = lua_tostring(L, lua_upvalueindex(1));
+    const std::string name = luaL_tolstring(L, 2, nullptr);
+    std::string nearest;
+    std::size_t best = std::max<std::size_t>(2, name.size() / 3) + 1;  // farther: no suggestion
+    for (lua_pushnil(L); lua_next(L, 1); lua_pop(L, 1)) {
+        if (lua_type(L, -2) != LUA_TSTRING) continue;
+        const std::string candidate = lua_tostring(L, -2);
+        const std::size_t d = edit_distance(name, candidate);
+        if (d < best || (d == best && !nearest.empty() && candidate < nearest)) best = d, nearest = candidate;
+    }
+    const std::string hint = nearest.empty() ? "" : " (did you mean " + std::string(prefix) + nearest + "?)";
+    return luaL_error(L, "%s%s does not exist%s; docs/scripting.md lists the API", prefix, name.c_str(), hint.c_str());
+}
+}  // namespace
+
+void refuse_unknown_names(lua_State* L, int table, const char* prefix) {
+    table = lua_absindex(L, table);
+    lua_newtable(L);
+    lua_pushstring(L, prefix);
+    lua_pushcclosure(L, unknown_name, 1);
+    lua_setfield(L, -2, "__index");
+    lua_setmetatable(L, table);
+}
 
 LuaTask& waiting_task(lua_State* L, const char* function) {
     Session& s = Session::of(L);

@@ -94,6 +94,7 @@ void register_devices(lua_State* L) {
     protect_metatable(L);
     lua_newtable(L);
     luaL_setfuncs(L, methods, 0);
+    refuse_unknown_names(L, -1, "device:");
     lua_setfield(L, -2, "__index");
     lua_pop(L, 1);
     static const luaL_Reg fns[] = {{"device", l_device},

@@ -32,6 +32,10 @@ inline void protect_metatable(lua_State* L) {
     lua_setfield(L, -2, "__metatable");
 }
 
+// Reading a name the table at `table` lacks raises "rs.record_strat does not exist (did you mean rs.record_start?)"
+// instead of giving nil (Lua's later "attempt to call a nil value" suggests nothing). `prefix`: "rs.", "joint:".
+void refuse_unknown_names(lua_State* L, int table, const char* prefix);
+
 // Raises "CALL: unknown option 'velocty' (options: velocity, ...)" for a key of
 // the option table at `table` that is not in `valid` (nothing when it is no table).
 void check_options(lua_State* L, int table, const char* call, std::initializer_list<const char*> valid);

@@ -222,6 +222,7 @@ void register_joints(lua_State* L) {
     protect_metatable(L);
     lua_newtable(L);
     luaL_setfuncs(L, methods, 0);
+    refuse_unknown_names(L, -1, "joint:");
     lua_setfield(L, -2, "__index");
     lua_pushcfunction(L, l_tostring);
     lua_setfield(L, -2, "__tostring");
