@@ -44,7 +44,13 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
 
 Status check_resume_config(const fs::path& dir, const RunConfig& now) {
     auto recorded = read_run_config(dir);
-    if (!recorded) return Error{recorded.error().code, "cannot resume: " + recorded.error().message};
+    if (!recorded) {  // review: an empty or damaged file was named with no way on
+        const std::string way = recorded.error().code != ErrorCode::parse_error
+                                    ? ""
+                                    : "; repair or restore it (run-info.csv's command_line shows the run that "
+                                      "recorded the dataset), or record anew into another --out";
+        return Error{recorded.error().code, "cannot resume: " + recorded.error().message + way};
+    }
     std::string text;
     if (!recorded->empty() && !now.empty())
         for (const auto& d : run_config_differences(*recorded, now)) text += "\n  " + d;

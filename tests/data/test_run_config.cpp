@@ -71,6 +71,22 @@ TEST_CASE("run-config.csv round-trips, and its differences name each key with bo
     CHECK(none->empty());
 }
 
+// Review (bad inputs): an empty run-config.csv refused the resume naming the
+// file but no way out.
+TEST_CASE("a resume refused for an empty or damaged run-config.csv names the way on", "[run_config]") {
+    TempDir dir("rollsense-run-config-damaged");
+    for (const char* text : {"", "key,value\nscript\n"}) {
+        INFO(text);
+        rollsense::testing::write_file(dir / kRunConfigFile, text);
+        const auto s = check_resume_config(dir.path(), RunConfig{{"script", "a.lua"}});
+        REQUIRE_FALSE(s.ok());
+        CHECK(s.code() == ErrorCode::parse_error);
+        CHECK_THAT(s.message(), Catch::StartsWith("cannot resume: ") && Catch::Contains("run-config.csv:") &&
+                                    Catch::EndsWith("; repair or restore it (run-info.csv's command_line shows the run "
+                                                    "that recorded the dataset), or record anew into another --out"));
+    }
+}
+
 TEST_CASE("resume refuses another run configuration and records a cut-short trial again", "[run_config]") {
     TempDir dir("rollsense-run-config");
     const RunConfig config{{"script", "a.lua"}, {"set.runs", "3"}};
