@@ -379,7 +379,8 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir, MissingTrialFile 
             return Error{ErrorCode::parse_error,
                          (dir / "manifest.csv").string() + ":" + std::to_string((*torn)->line) +
                              ": the last row has no line end: the recording was interrupted while listing a trial. "
-                             "Continue the run with --resume (it drops that line and records the trial again)"};
+                             "Continue the run that recorded " + dir.string() + " with --resume --out " + dir.string() +
+                             " (it drops that line and records the trial again)"};
     }
     if (!fs::exists(dir / "manifest.csv", ec))  // a dataset that lost its list (review: "holds no dataset" misled)
         return Error{ErrorCode::not_found,

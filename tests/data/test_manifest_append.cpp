@@ -152,8 +152,11 @@ TEST_CASE("a torn last manifest line is refused by the reader and cut off by --r
 
     auto refused = DatasetReader::open(torn.path() / "ds");
     REQUIRE_FALSE(refused.ok());
+    // Review: "Continue the run with --resume" was ambiguous where the dataset is a replay's source.
+    const std::string ds = (torn.path() / "ds").string();
     CHECK_THAT(refused.error().message, Catch::Contains("manifest.csv:5: the last row has no line end") &&
-                                            Catch::Contains("--resume"));
+                                            Catch::Contains("Continue the run that recorded " + ds +
+                                                            " with --resume --out " + ds));
 
     SECTION("resuming cuts the line and records the trial again: the dataset of an uninterrupted run") {
         record_trials(torn.path() / "ds", 4, 1, DatasetOpenMode::resume);
