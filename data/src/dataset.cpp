@@ -22,14 +22,6 @@ const std::vector<std::string> kManifestColumns = {"trial_id", "file",    "objec
                                                     "repetition", "seed", "samples", "invalid_samples",
                                                     "mount",    "index_in_mount", "extra"};
 
-// The paper's protocol (one mounting of a specimen on the winch, rolled many
-// times): which mounting a roll belongs to and how many rolls of it came
-// before. A script gives them as trial metadata (etroll.run_trial{mount=,
-// index_in_mount=}, in TrialInfo::extra); the manifest holds them in columns
-// of their own, so that MATLAB or pandas group by them without parsing
-// `extra`. Reading puts them back among the metadata.
-const std::vector<std::string> kProtocolKeys = {"mount", "index_in_mount"};
-
 std::string join(const std::vector<std::string>& v, char sep) {
     std::string out;
     for (std::size_t i = 0; i < v.size(); ++i) out += (i ? std::string(1, sep) : "") + v[i];

@@ -37,12 +37,15 @@ bool reserved(std::string_view id) {
 
 Status check_trial_info(const TrialInfo& info) {
     if (auto s = check_trial_id(info.id); !s.ok()) return s;
-    for (const auto& [key, value] : info.extra)
-        if (key.empty() || key.find_first_of("=;") != std::string::npos || value.find(';') != std::string::npos)
+    for (const auto& [key, value] : info.extra) {
+        const bool own_column = std::find(kProtocolKeys.begin(), kProtocolKeys.end(), key) != kProtocolKeys.end();
+        if (key.empty() || key.find_first_of("=;") != std::string::npos ||
+            (!own_column && value.find(';') != std::string::npos))
             return {ErrorCode::invalid_argument,
                     "trial '" + info.id + "': extra '" + key.substr(0, 60) + "' = '" + value.substr(0, 60) +
                         "' cannot go into the manifest's extra column (key=value;key=value) and read back the same: "
                         "give a key without '=' or ';' and a value without ';'"};
+    }
     return {};
 }
 

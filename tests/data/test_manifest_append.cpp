@@ -219,6 +219,9 @@ TEST_CASE("mount and index_in_mount have manifest columns of their own; reading 
         mounted.info.extra = {{"mount", "C1-1"}, {"index_in_mount", "4"}, {"operator", "ab"}};
         REQUIRE((*w)->add_trial(mounted, tiny_samples()).ok());
         REQUIRE((*w)->add_trial(tiny_record("t1"), tiny_samples()).ok());  // no protocol: empty cells
+        auto semicolon = tiny_record("t2");
+        semicolon.info.extra = {{"mount", "rig;2"}};  // its own column: read back the same
+        REQUIRE((*w)->add_trial(semicolon, tiny_samples()).ok());
         REQUIRE((*w)->flush().ok());
     }
     const std::string text = testing::read_file(dir.path() / "ds" / "manifest.csv");
@@ -230,6 +233,7 @@ TEST_CASE("mount and index_in_mount have manifest columns of their own; reading 
     CHECK(back->trials()[0].info.extra ==
           std::map<std::string, std::string>{{"index_in_mount", "4"}, {"mount", "C1-1"}, {"operator", "ab"}});
     CHECK(back->trials()[1].info.extra.empty());
+    CHECK(back->trials()[2].info.extra == std::map<std::string, std::string>{{"mount", "rig;2"}});
     // A manifest of an earlier version kept them in `extra`: read the same.
     testing::write_file(dir.path() / "ds" / "manifest.csv",
                         "trial_id,file,object,speed,repetition,seed,samples,invalid_samples,extra\n"

@@ -5,6 +5,7 @@
 // same string; docs/dataset-format.md ("manifest.csv") documents it.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -25,9 +26,18 @@ std::string trial_id(std::string_view object, std::string_view speed, int repeti
 inline constexpr std::size_t kMaxTrialIdLength = 100;
 Status check_trial_id(std::string_view id);
 
+// The paper's protocol (one mounting of a specimen on the winch, rolled many
+// times): which mounting a roll belongs to and how many rolls of it came
+// before. A script gives them as trial metadata (etroll.run_trial{mount=,
+// index_in_mount=}, in TrialInfo::extra); the manifest holds them in columns
+// of their own, so that MATLAB or pandas group by them without parsing
+// `extra`. Reading puts them back among the metadata.
+inline const std::array<std::string, 2> kProtocolKeys = {"mount", "index_in_mount"};
+
 // A trial's id (check_trial_id) and its extras, which the manifest's `extra`
 // column ("key=value;key=value") must give back as they were: a key is not
-// empty and holds no '=' or ';', a value holds no ';'.
+// empty and holds no '=' or ';', a value holds no ';' (a protocol key's value
+// may: it has a column of its own).
 Status check_trial_info(const TrialInfo& info);
 
 }  // namespace rollsense
