@@ -128,7 +128,7 @@ async function get(url, options) {
     // capped, so a wrong header cannot park the page for hours.
     const after = Number(r.headers.get("Retry-After"));
     const s = after > 0 ? Math.min(after, RETRY_MAX_S) : RETRY_DEFAULT_S;
-    const most = text.match(/^(\d+) viewers/);  // the server's "8 viewers at once at most: ..."
+    const most = text.match(/(\d+) viewers at once/);  // the server's "8 viewers at once at most: ..."
     notice(`busy: ${most ? most[1] + " viewers at most" : "no room for another viewer"}, retrying in ${s} s`);
     await new Promise((wake) => setTimeout(wake, s * 1000));
   }

@@ -262,7 +262,11 @@ TEST_CASE("viewers that never read leave their places within seconds; the refuse
     const auto refused = http_get(port, "/");
     CHECK(status_of(refused) == 503);
     CHECK_THAT(refused, Catch::Contains(std::to_string(HttpServer::kMaxClients) + " viewers at once at most: close another viewer") &&
-                            Catch::Contains("Retry-After: "));
+                            Catch::Contains("Retry-After: 2\r\n"));
+    // A browser that loads the page then shows the answer and reloads by itself (it was plain text: the viewer had
+    // to reload by hand).
+    CHECK_THAT(refused, Catch::Contains("Content-Type: text/html; charset=utf-8") &&
+                            Catch::Contains("<meta http-equiv=\"refresh\" content=\"2\">"));
 
     // The stream at the simulation's pace (a sample of about 200 bytes every
     // 4 ms, 50 kB/s), while a new viewer keeps asking; the bound is generous:

@@ -440,7 +440,8 @@ TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clie
 // every slot of the server (with streams that read) just before the page's
 // first request for info.json or for the event stream, so that the server
 // itself answers 503; in the second part it frees them when the page asks
-// for the same target the third time.
+// for the same target the third time; in the third, the page itself is
+// refused once.
 // Chromium's virtual time (--virtual-time-budget) runs the page's waits at
 // once when nothing else is pending, so the test waits for nothing.
 TEST_CASE("rollsense run --live: a page that finds every client slot taken says so, retries and goes live",
@@ -509,6 +510,28 @@ TEST_CASE("rollsense run --live: a page that finds every client slot taken says 
         CHECK(dom_count(dump.output, "n-samples") > 0);
         CHECK(points_drawn(dump.output) > 0);
         CHECK(dump.output.find("waiting for the first trial") == std::string::npos);
+        CHECK_THAT(element(dump.output, "notice"), Catch::Contains("hidden"));
+    }
+
+    // The page itself refused: the browser shows the server's short page,
+    // which reloads itself after Retry-After, and then the page goes live (it
+    // was plain text, to be reloaded by hand).
+    REQUIRE(wait_for_samples(port));
+    {
+        SlotHolders holders(port);
+        std::atomic<bool> held{true};
+        int asked = 0;
+        Relay relay(port, [&](const std::string&, const std::string& target) {
+            if (target.rfind("/?", 0) != 0) return;
+            if (++asked == 1) held = holders.take_all();
+            if (asked == 2) held = held && holders.release();
+        });
+        const auto dump = rollsense::testing::run_command(
+            chromium(tmp.path(), "--virtual-time-budget=30000 --dump-dom", "'" + relay.url() + "?events=60'"));
+        INFO(dump.output.substr(0, 4000));
+        REQUIRE(held);
+        CHECK(relay.statuses("/?events=60") == std::vector<int>{503, 200});
+        CHECK(dom_count(dump.output, "n-events") == 60);
         CHECK_THAT(element(dump.output, "notice"), Catch::Contains("hidden"));
     }
 }

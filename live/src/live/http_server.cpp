@@ -169,11 +169,19 @@ void HttpServer::accept_loop() {
             return true;
         });
         if (active_ >= kMaxClients) {
-            (void)send_all(fd, http_response(503, "text/plain; charset=utf-8",
-                                             std::to_string(kMaxClients) +
-                                                 " viewers at once at most: close another viewer of this run "
-                                                 "and reload (a viewer that stops reading leaves within seconds)\n",
-                                             "Retry-After: 2\r\n"));
+            // Answered before the request is read, so for the page and the page's own requests alike: a browser
+            // shows it and reloads by itself (the refresh); the page's script reads the status and Retry-After.
+            const std::string again = std::to_string(kRetryAfterS);
+            (void)send_all(fd, http_response(503, "text/html; charset=utf-8",
+                                             "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+                                             "<meta http-equiv=\"refresh\" content=\"" + again + "\">"
+                                             "<title>rollsense live view: busy</title></head><body><p>" +
+                                                 std::to_string(kMaxClients) +
+                                                 " viewers at once at most: close another viewer of this run; this "
+                                                 "page tries again every " + again +
+                                                 " s (a viewer that stops reading leaves within seconds)</p></body>"
+                                                 "</html>\n",
+                                             "Retry-After: " + again + "\r\n"));
             close_after_reply(fd, 100);  // briefly: the acceptor waits meanwhile
             ::close(fd);
             continue;

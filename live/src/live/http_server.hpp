@@ -47,6 +47,7 @@ public:
     int active_clients() const { return active_; }
 
     static constexpr int kMaxClients = 8;
+    static constexpr int kRetryAfterS = 2;          // a client refused for want of room asks again after this
     static constexpr int kRequestTimeoutMs = 5000;  // to send the request head
     static constexpr int kSendTimeoutMs = 2000;     // a client that takes no data this long is dropped
     static constexpr int kStreamSendBuffer = 64 * 1024;  // SO_SNDBUF of an event stream (the kernel doubles it)
