@@ -124,6 +124,16 @@ TEST_CASE("a name the API does not have is an error at its line naming the neare
         CHECK(r.summary.status.code() == ErrorCode::script_error);
         CHECK_THAT(r.summary.status.message(), Catch::Contains(c.says));
     }
+    // Its metatable is the kernel's: a script cannot call the lookup with another table, nor remove it (review: a
+    // call with a number crashed liblua). Keys other than names read nil, so ipairs(rs) ends at once.
+    {
+        kt::TempDir guarded;
+        CHECK(run_and_read(guarded, "rs.write_output('result.txt', type(getmetatable(rs)) .. ' ' .. tostring(rs[1]))\n"
+                                    "for _ in ipairs(rs) do error('a name') end\n") == "string nil");
+        kt::TempDir other;
+        const auto r = kt::run_script(other, "local rs = require 'rollsense'\nsetmetatable(rs, nil)\n");
+        CHECK_THAT(r.summary.status.message(), Catch::Contains("cannot change a protected metatable"));
+    }
     // rawget tests for a name, and a script may still add its own.
     kt::TempDir dir;
     CHECK(run_and_read(dir, "rs.helper = function() return 'own' end\n"

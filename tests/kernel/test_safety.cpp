@@ -227,6 +227,17 @@ TEST_CASE("a run stopped by its time budget names the line where the script wait
     CHECK_THAT(s.status.message(), Catch::StartsWith("the run exceeded --time-limit (30 s of run time) (task 'main' "
                                                      "waited at ") &&
                                        Catch::EndsWith("script.lua:4)"));
+
+    // A wait inside a module is found from the script's line that called it (review: only etroll.lua's line).
+    kt::TempDir dir2;
+    kt::write_file(dir2 / "helper.lua", "local rs = require 'rollsense'\nreturn { stall = function()\n"
+                                        "  rs.wait_until(function() return false end)\nend }\n");
+    auto o2 = kt::options_for(dir2, "local helper = require 'helper'\nhelper.stall()\n");
+    o2.time_limit_s = 30;
+    rollsense::runtime::Session session2(o2);
+    const auto s2 = session2.run();
+    REQUIRE_FALSE(s2.status.ok());
+    CHECK_THAT(s2.status.message(), Catch::Contains("helper.lua:3, called from ") && Catch::EndsWith("script.lua:2)"));
 }
 
 TEST_CASE("a cleanup that fails after a script that succeeded fails the run", "[safety]") {

@@ -215,6 +215,7 @@ int run(const std::vector<std::string>& argv) {
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
 
+    ProgressBar bar(!args.flag("--no-progress"));  // before the live view's threads (it wraps the log sink)
     std::unique_ptr<live::LiveView> view;
     if (auto live_options = live_options_of(argv, args)) {
         auto started = live::LiveView::start(*live_options, o);
@@ -222,8 +223,6 @@ int run(const std::vector<std::string>& argv) {
         view = std::move(*started);
         std::fprintf(stderr, "live view: %s\n", view->where().c_str());
     }
-
-    ProgressBar bar(!args.flag("--no-progress"));
     o.on_progress = [&bar, observer = std::move(o.on_progress)](std::size_t done, std::size_t total,
                                                                  const std::string& label, double run_clock_s) {
         bar.update(done, total, label, run_clock_s);

@@ -7,11 +7,13 @@
 namespace rollsense::cli {
 
 ProgressBar::ProgressBar(bool wanted)
-    : enabled_(wanted && ::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {
+    : enabled_(wanted && ::isatty(STDERR_FILENO)) {
     if (!enabled_) return;
-    // Made before the run starts its threads: nothing logs until log_sink_ is set.
+    // Made before the run and the live view start their threads: nothing logs until log_sink_ is set. The lock
+    // spans the line, so that the bar is not drawn between its newline and the log line (review).
     log_sink_ = set_log_sink([this](LogLevel level, std::string_view source, std::string_view message) {
-        finish();
+        std::lock_guard lock(mutex_);
+        end_line();
         log_sink_(level, source, message);
     });
 }
@@ -26,7 +28,8 @@ void ProgressBar::update(std::size_t done, std::size_t total, const std::string&
     if (!enabled_ || total == 0) return;
     std::lock_guard lock(mutex_);
     auto now = std::chrono::steady_clock::now();
-    if (first_done_ == SIZE_MAX) first_done_ = done;  // trials skipped on --resume do not count for the rate
+    // The rate counts from the first report on: not the setup before it, nor trials skipped on --resume.
+    if (first_done_ == SIZE_MAX) first_done_ = done, start_ = now;
     if (done < total && now - last_draw_ < std::chrono::milliseconds(100)) return;
     last_draw_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
@@ -45,6 +48,10 @@ void ProgressBar::update(std::size_t done, std::size_t total, const std::string&
 
 void ProgressBar::finish() {
     std::lock_guard lock(mutex_);
+    end_line();
+}
+
+void ProgressBar::end_line() {
     if (drawn_) std::fprintf(stderr, "\n");
     drawn_ = false;
 }

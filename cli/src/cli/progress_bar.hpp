@@ -25,11 +25,13 @@ public:
     void finish();
 
 private:
+    void end_line();  // with mutex_ held
+
     bool enabled_;
     LogSink log_sink_;  // the one the bar wraps, restored by the destructor
     std::mutex mutex_;  // log lines come from other threads too
     bool drawn_ = false;
-    std::chrono::steady_clock::time_point start_;
+    std::chrono::steady_clock::time_point start_;  // of the first update
     std::chrono::steady_clock::time_point last_draw_{};
     std::size_t first_done_ = SIZE_MAX;
 };

@@ -1,11 +1,9 @@
 // Actuator plugin interface.
 //
-// The kernel's control loop calls read() then write() once per control period
-// for all joints of an actuator at once (a servo bus does one sync read and
-// one sync write). Limits from the profile are enforced by the kernel before
-// write() is called; a plugin may enforce its device's own limits as well.
-// On activation an actuator must hold its present position (no jump to a
-// stale goal): the kernel also re-reads the state and commands "hold here".
+// The kernel's control loop calls read() then write() once per control period for all joints of an actuator at once
+// (a servo bus does one sync read and one sync write). Limits from the profile are enforced by the kernel before
+// write() is called; a plugin may enforce its device's own limits as well. On activation an actuator must hold its
+// present position (no jump to a stale goal): the kernel also re-reads the state and commands "hold here".
 #pragma once
 
 #include <span>

@@ -1,6 +1,5 @@
-// Classifier plugin interface: trained on a table of trials (feature vectors,
-// or prepared series), predicts a class with per-class scores, saves and
-// loads its model, and declares what it takes and what tuning may search.
+// Classifier plugin interface: trained on a table of trials (feature vectors, or prepared series), predicts a class
+// with per-class scores, saves and loads its model, and declares what it takes and what tuning may search.
 #pragma once
 
 #include <cstddef>
@@ -19,10 +18,9 @@ enum class ClassifierInput {
     series,    // the trial's prepared series: every channel resampled to one length
 };
 
-// Rows are trials; row-major for cheap row access. A row is either a feature
-// vector (series_length == 0: one column per feature name) or a prepared
-// series (series_length > 0: channel_names.size() × series_length samples,
-// channel by channel). Folds, subsets and predictions treat both alike.
+// Rows are trials; row-major for cheap row access. A row is either a feature vector (series_length == 0: one column
+// per feature name) or a prepared series (series_length > 0: channel_names.size() × series_length samples, channel by
+// channel). Folds, subsets and predictions treat both alike.
 struct FeatureTable {
     std::vector<std::string> feature_names;  // feature vectors
     std::vector<std::string> channel_names;  // series

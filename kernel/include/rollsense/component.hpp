@@ -6,12 +6,10 @@
 //
 //   any hook that fails or throws --> error --recover--> unconfigured
 //
-// A plugin only fills the hooks. The kernel's handle (kernel/src/plugin/
-// component_handle) owns the state machine: it refuses illegal transitions,
-// catches every exception a hook throws and turns it into a typed error naming
-// the plugin, and moves the component to `error`, from which `recover` brings
-// it back without reloading anything (the complaint about ros2_control's
-// one-way error state).
+// A plugin only fills the hooks. The kernel's handle (kernel/src/runtime/plugin/component_handle) owns the state
+// machine: it refuses illegal transitions, catches every exception a hook throws and turns it into a typed error
+// naming the plugin, and moves the component to `error`, from which `recover` brings it back without reloading
+// anything (the complaint about ros2_control's one-way error state).
 #pragma once
 
 #include <filesystem>
@@ -51,9 +49,8 @@ public:
     virtual Status on_activate() { return {}; }
     virtual Status on_deactivate() { return {}; }
     virtual Status on_cleanup() { return {}; }
-    // Called on `recover` from the error state: release whatever the failure
-    // left behind (close a bus, forget a half-read frame). Success returns the
-    // component to `unconfigured`.
+    // Called on `recover` from the error state: release whatever the failure left behind (close a bus, forget a
+    // half-read frame). Success returns the component to `unconfigured`.
     virtual Status on_recover() { return {}; }
 
     // A plugin-specific operation reachable from Lua as `device:call(verb, args)`,

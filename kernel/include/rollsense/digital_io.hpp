@@ -1,8 +1,7 @@
-// Digital lines the kernel itself uses: the emergency-stop input it checks
-// every control period and the trigger output it pulses when a recording
-// starts. The kernel sees only these interfaces; the program hands it a
-// DigitalLines that opens real lines (the HAL's libgpiod backend, or its fake
-// chips in tests), so the kernel never depends on an I/O library.
+// Digital lines the kernel itself uses: the emergency-stop input it checks every control period and the trigger
+// output it pulses when a recording starts. The kernel sees only these interfaces; the program hands it a
+// DigitalLines that opens real lines (the HAL's libgpiod backend, or its fake chips in tests), so the kernel never
+// depends on an I/O library.
 #pragma once
 
 #include <functional>

@@ -1,11 +1,9 @@
 // Declared, typed plugin parameters.
 //
-// Every plugin declares its parameters as a schema (name, type, default, range,
-// unit, documentation). The kernel checks a profile's table against that schema
-// before the plugin sees it: unknown keys, wrong types and out-of-range values
-// are errors naming the profile file and the key, and defaults are filled in.
-// A plugin therefore receives a ParamSet in which every declared key exists with
-// the declared type; it never parses strings itself.
+// Every plugin declares its parameters as a schema (name, type, default, range, unit, documentation). The kernel
+// checks a profile's table against that schema before the plugin sees it: unknown keys, wrong types and out-of-range
+// values are errors naming the profile file and the key, and defaults are filled in. A plugin therefore receives a
+// ParamSet in which every declared key exists with the declared type; it never parses strings itself.
 #pragma once
 
 #include <cstdint>
@@ -54,9 +52,8 @@ ParamSpec param_number_list(std::string name, std::optional<std::vector<double>>
                             std::string unit = {});
 ParamSpec param_string_list(std::string name, std::optional<std::vector<std::string>> def, std::string doc);
 
-// A validated set of parameter values. Getters throw StatusError(invalid_argument)
-// when a key is missing or has another type, which inside a plugin hook the
-// kernel turns into a typed error naming the plugin.
+// A validated set of parameter values. Getters throw StatusError(invalid_argument) when a key is missing or has
+// another type, which inside a plugin hook the kernel turns into a typed error naming the plugin.
 class ParamSet {
 public:
     ParamSet() = default;

@@ -5,9 +5,8 @@
 //     ROLLSENSE_PLUGIN(MySensor, sensor, "my_sensor", "1.0.0",
 //                      "What it measures, in one line", my_sensor_schema)
 //
-// which exports `rollsense_plugin_manifest` (through BOOST_DLL_ALIAS). The
-// kernel reads the manifest's first fields (magic, ABI version, compiler tag)
-// before touching anything else, so a library built against another SDK is
+// which exports `rollsense_plugin_manifest` (through BOOST_DLL_ALIAS). The kernel reads the manifest's first fields
+// (magic, ABI version, compiler tag) before touching anything else, so a library built against another SDK is
 // reported as "ABI mismatch" instead of crashing the loader.
 #pragma once
 

@@ -62,9 +62,8 @@ constexpr std::uint64_t scale_below(std::uint64_t draw, std::uint64_t n) noexcep
 // Uniform in [0, 1) from the top 53 bits of one 64-bit draw.
 constexpr double unit_interval(std::uint64_t draw) noexcept { return static_cast<double>(draw >> 11) * 0x1.0p-53; }
 
-// A splitmix64 generator: output n is splitmix64(seed + n·gamma). One word of
-// state; for fold shuffles and device models' draws, where xoshiro's longer
-// period is not needed.
+// A splitmix64 generator: output n is splitmix64(seed + n·gamma). One word of state; for fold shuffles and device
+// models' draws, where xoshiro's longer period is not needed.
 class SplitMix64 {
 public:
     explicit constexpr SplitMix64(std::uint64_t seed) noexcept : state_(seed) {}

@@ -1,8 +1,7 @@
 // Sensor plugin interface.
 //
-// The kernel's sampling loop (C++, fixed rate, 31.1 Hz by default) calls
-// read() once per sample while a script records. A sensor describes its
-// channels once; every frame has one value per channel.
+// The kernel's sampling loop (C++, fixed rate, 31.1 Hz by default) calls read() once per sample while a script
+// records. A sensor describes its channels once; every frame has one value per channel.
 #pragma once
 
 #include <vector>

@@ -1,8 +1,7 @@
 // Typed status and error values shared by the kernel, the HAL and every plugin.
 //
-// Why not bools or bare exceptions: a failure has to travel across a plugin
-// boundary, into Lua and onto a user's terminal with enough context to act on
-// ("which servo, what went wrong, what to do"). An Error carries a machine-
+// Why not bools or bare exceptions: a failure has to travel across a plugin boundary, into Lua and onto a user's
+// terminal with enough context to act on ("which servo, what went wrong, what to do"). An Error carries a machine-
 // readable code plus a human message; Result<T> carries a value or an Error.
 #pragma once
 

@@ -23,9 +23,8 @@ enum class ControlMode {
 
 std::string_view to_string(ControlMode mode) noexcept;
 
-// Static description of one joint, as the actuator reports it. Units: a
-// revolute joint uses degrees, a linear one millimetres; velocities are
-// unit/s, accelerations unit/s^2, currents mA.
+// Static description of one joint, as the actuator reports it. Units: a revolute joint uses degrees, a linear one
+// millimetres; velocities are unit/s, accelerations unit/s^2, currents mA.
 struct JointInfo {
     std::string name;
     std::string unit = "deg";  // "deg" or "mm"
@@ -75,10 +74,9 @@ struct Frame {
     std::string reason;
 };
 
-// What the kernel hands a sensor with every sample: the time and the joint
-// states measured in the same control period. A sensor that depends on the
-// hand's posture (the simulation; a replay that checks the commanded roll)
-// reads them here rather than keeping a private copy of the schedule.
+// What the kernel hands a sensor with every sample: the time and the joint states measured in the same control
+// period. A sensor that depends on the hand's posture (the simulation; a replay that checks the commanded roll) reads
+// them here rather than keeping a private copy of the schedule.
 struct SampleInput {
     double time = 0.0;
     const std::vector<std::string>* joint_names = nullptr;
@@ -95,9 +93,8 @@ struct SampleInput {
 
 // ----------------------------------------------------------------- trials --
 
-// The description of one trial, set by the roll script before it rolls.
-// Sensors use it to prepare (the simulation places the object; a replay picks
-// the recording); the recorder writes it into the dataset's manifest.
+// The description of one trial, set by the roll script before it rolls. Sensors use it to prepare (the simulation
+// places the object; a replay picks the recording); the recorder writes it into the dataset's manifest.
 struct TrialInfo {
     std::string id;                           // unique within a dataset, e.g. "C1-s10-r007"
     std::string object;                       // catalogue id, e.g. "C1"

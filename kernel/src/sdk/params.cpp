@@ -37,9 +37,8 @@ static_assert(std::is_same_v<std::variant_alternative_t<std::size_t(ParamType::s
                              std::vector<std::string>>);
 std::string value_type_name(const ParamValue& v) { return std::string(to_string(static_cast<ParamType>(v.index()))); }
 
-// Convert a raw value to the declared type where the conversion loses nothing
-// (an integer where a number is expected, an integer list for a number list,
-// an empty list of any kind). Anything else is a type error.
+// Convert a raw value to the declared type where the conversion loses nothing (an integer where a number is expected,
+// an integer list for a number list, an empty list of any kind). Anything else is a type error.
 std::optional<ParamValue> coerce(const ParamValue& v, ParamType type) {
     switch (type) {
         case ParamType::boolean:

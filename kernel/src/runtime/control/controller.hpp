@@ -1,6 +1,5 @@
-// Joint-level controllers that run in C++ on the control loop, once per
-// control period, between reading the actuators and writing them (for
-// instance the palm-parallel controller). Lua only enables and disables them.
+// Joint-level controllers that run in C++ on the control loop, once per control period, between reading the actuators
+// and writing them (for instance the palm-parallel controller). Lua only enables and disables them.
 #pragma once
 
 #include <functional>

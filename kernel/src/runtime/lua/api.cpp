@@ -71,10 +71,13 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
     return row[b.size()];
 }
 
-// __index(table, key): the nearest name of the table, if one is near.
+// __index(table, key): the nearest name of the table, if one is near. Names are strings: other keys read nil
+// (ipairs(rs) ends at once, as before).
 int unknown_name(lua_State* L) {
+    luaL_checktype(L, 1, LUA_TTABLE);
+    if (lua_type(L, 2) != LUA_TSTRING) return lua_pushnil(L), 1;
     const char* prefix = lua_tostring(L, lua_upvalueindex(1));
-    const std::string name = luaL_tolstring(L, 2, nullptr);
+    const std::string name = lua_tostring(L, 2);
     std::string nearest;
     std::size_t best = std::max<std::size_t>(2, name.size() / 3) + 1;  // farther: no suggestion
     for (lua_pushnil(L); lua_next(L, 1); lua_pop(L, 1)) {
@@ -91,6 +94,7 @@ int unknown_name(lua_State* L) {
 void refuse_unknown_names(lua_State* L, int table, const char* prefix) {
     table = lua_absindex(L, table);
     lua_newtable(L);
+    protect_metatable(L);  // review: getmetatable(rs).__index(42, "x") crashed liblua
     lua_pushstring(L, prefix);
     lua_pushcclosure(L, unknown_name, 1);
     lua_setfield(L, -2, "__index");

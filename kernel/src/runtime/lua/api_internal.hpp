@@ -14,9 +14,8 @@ namespace rollsense::runtime::lua_api {
 // The task running this Lua code; raises if the caller cannot wait here
 // (inside a wait_until condition, at load time of a module, ...).
 LuaTask& waiting_task(lua_State* L, const char* function);
-// A binding that may wait: `request` checks its arguments and, to wait, gives
-// the task its Wait and returns true; the task then yields, `k` continuing. The
-// Lua library yields by throwing a C++ exception: yielding here, where no C++
+// A binding that may wait: `request` checks its arguments and, to wait, gives the task its Wait and returns true; the
+// task then yields, `k` continuing. The Lua library yields by throwing a C++ exception: yielding here, where no C++
 // object is alive, spares the unwinder a second walk for every destructor.
 template <bool (*request)(lua_State*), lua_KFunction k>
 int waiting(lua_State* L) {

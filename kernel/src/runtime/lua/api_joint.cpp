@@ -1,6 +1,5 @@
-// Joints from Lua: rs.joint(name) returns a handle with move / push / hold /
-// torque and state queries. Every command goes through the kernel's limit
-// checks (Robot::command_joint); a refused command raises and nothing moves.
+// Joints from Lua: rs.joint(name) returns a handle with move / push / hold / torque and state queries. Every command
+// goes through the kernel's limit checks (Robot::command_joint); a refused command raises and nothing moves.
 #include <cmath>
 
 #include "runtime/lua/api_internal.hpp"

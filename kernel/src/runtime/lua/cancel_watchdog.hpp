@@ -1,12 +1,9 @@
-// The last line behind the sandbox's cancel: a thread that watches the run
-// (slice limit, Ctrl-C, e-stop, time budget). Lua hands control back to the
-// scheduler within one hook period of a cancel, unless something no hook
-// reaches holds it: C++ work that takes long, a C library call. If Lua has not
-// handed control back `grace_ms` after a cancel was seen or after the slice
-// limit passed, or at once on the third Ctrl-C, the watchdog calls
-// `last_resort` on its own thread: the hand made safe under the robot's device
-// lock (or by the prepared last resort if the script's thread holds it),
-// run-info written, the process ended (Session::last_resort).
+// The last line behind the sandbox's cancel: a thread that watches the run (slice limit, Ctrl-C, e-stop, time
+// budget). Lua hands control back to the scheduler within one hook period of a cancel, unless something no hook
+// reaches holds it: C++ work that takes long, a C library call. If Lua has not handed control back `grace_ms` after a
+// cancel was seen or after the slice limit passed, or at once on the third Ctrl-C, the watchdog calls `last_resort`
+// on its own thread: the hand made safe under the robot's device lock (or by the prepared last resort if the script's
+// thread holds it), run-info written, the process ended (Session::last_resort).
 #pragma once
 
 #include <atomic>

@@ -1,7 +1,6 @@
-// Text for any Lua error value. A script may throw nil, a table, a userdata:
-// strings and numbers read as they are; a value with __tostring reads
-// through it, in protected mode (a __tostring that fails or is cancelled
-// cannot escape into C++); anything else is named by its type.
+// Text for any Lua error value. A script may throw nil, a table, a userdata: strings and numbers read as they are; a
+// value with __tostring reads through it, in protected mode (a __tostring that fails or is cancelled cannot escape
+// into C++); anything else is named by its type.
 #pragma once
 
 #include <lua.hpp>

@@ -58,7 +58,16 @@ LuaTask::~LuaTask() {
 
 void LuaTask::on_cancel() { sandbox_.arm(thread_); }
 
-std::string LuaTask::where() const { return script_line(thread_, 0).data(); }
+// The innermost line, and where the task's own function called it when that is elsewhere: a wait inside a module
+// (etroll.lua) is found from the script's line that called it (review).
+std::string LuaTask::where() const {
+    std::string inner, outer;
+    lua_Debug ar;
+    for (int level = 0; lua_getstack(thread_, level, &ar); ++level)
+        if (lua_getinfo(thread_, "Sl", &ar) && ar.currentline > 0)
+            (inner.empty() ? inner : outer) = std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
+    return outer.empty() || outer == inner ? inner : inner + ", called from " + outer;
+}
 
 void LuaTask::request(Wait wait) {
     waiting_for_ = wait.what;

@@ -1,8 +1,6 @@
-// A roll-script procedure as a scheduler task: a Lua coroutine in the
-// sandbox. A binding that waits (rs.wait, j:move, rs.wait_until, ...) states
-// its wait with request() and yields; resume() hands that wait to the
-// scheduler, and the binding's continuation reads outcome() when the
-// scheduler resumes the coroutine.
+// A roll-script procedure as a scheduler task: a Lua coroutine in the sandbox. A binding that waits (rs.wait, j:move,
+// rs.wait_until, ...) states its wait with request() and yields; resume() hands that wait to the scheduler, and the
+// binding's continuation reads outcome() when the scheduler resumes the coroutine.
 #pragma once
 
 #include <lua.hpp>

@@ -10,9 +10,8 @@
 
 namespace rollsense::runtime {
 
-// Convert the value at `index` to a ParamValue. Sequences of numbers or
-// strings become lists; nested tables and functions are refused with a message
-// naming `where` (e.g. "sim.lua: devices.tactile.params.gain").
+// Convert the value at `index` to a ParamValue. Sequences of numbers or strings become lists; nested tables and
+// functions are refused with a message naming `where` (e.g. "sim.lua: devices.tactile.params.gain").
 Result<ParamValue> lua_to_param(lua_State* L, int index, const std::string& where);
 // A table of key → value (string keys only) at `index`.
 Result<std::map<std::string, ParamValue>> lua_to_param_map(lua_State* L, int index, const std::string& where);

@@ -6,13 +6,11 @@
 //
 //   cost = (n + 1)^(r + s) * 2^o  must not exceed 10^9 steps,
 //
-// n the subject's length in bytes, r the repetition items ('*', '+', '-' and
-// '%b'), o the optional items ('?'), s = 1 when the match may start at every
-// position (no '^' anchor; gmatch always) and 0 otherwise. That is an upper
-// bound on the matcher's backtracking, so whatever passes finishes in a
-// bounded time; ordinary patterns on ordinary strings pass (one repetition
-// on 30 kB, three anchored repetitions on 1 kB). A plain find (4th argument
-// true) is no pattern and is not checked.
+// n the subject's length in bytes, r the repetition items ('*', '+', '-' and '%b'), o the optional items ('?'), s = 1
+// when the match may start at every position (no '^' anchor; gmatch always) and 0 otherwise. That is an upper bound
+// on the matcher's backtracking, so whatever passes finishes in a bounded time; ordinary patterns on ordinary strings
+// pass (one repetition on 30 kB, three anchored repetitions on 1 kB). A plain find (4th argument true) is no pattern
+// and is not checked.
 #pragma once
 
 #include <lua.hpp>

@@ -1,7 +1,6 @@
-// The kernel's non-virtual wrapper around every plugin instance (NVI, as in
-// ros2_control): it owns the lifecycle state machine, refuses illegal
-// transitions, catches anything a plugin throws while the plugin's library is
-// still loaded, and turns it into a typed error naming the instance and plugin.
+// The kernel's non-virtual wrapper around every plugin instance (NVI, as in ros2_control): it owns the lifecycle
+// state machine, refuses illegal transitions, catches anything a plugin throws while the plugin's library is still
+// loaded, and turns it into a typed error naming the instance and plugin.
 #pragma once
 
 #include <exception>

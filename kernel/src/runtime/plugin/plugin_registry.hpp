@@ -1,10 +1,9 @@
 // Finds, loads and describes plugin libraries (Boost.DLL).
 //
-// Search order: paths given on the command line, then the profile's
-// plugin_path, then $ROLLSENSE_PLUGIN_PATH (colon separated), then the install
-// location next to the program (<prefix>/lib/rollsense/plugins). Every `*.so`
-// in those folders is a candidate; `rollsense plugins` shows each candidate
-// with its manifest or the exact reason it was not loaded.
+// Search order: paths given on the command line, then the profile's plugin_path, then $ROLLSENSE_PLUGIN_PATH (colon
+// separated), then the install location next to the program (<prefix>/lib/rollsense/plugins). Every `*.so` in those
+// folders is a candidate; `rollsense plugins` shows each candidate with its manifest or the exact reason it was not
+// loaded.
 #pragma once
 
 #include <filesystem>

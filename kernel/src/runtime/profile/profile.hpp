@@ -82,12 +82,10 @@ struct Profile {
     std::string at(const std::string& key) const { return site(key) + ": " + key; }  // "FILE:LINE: joints.palm.min"
 };
 
-// Command-line settings (--set key=value). One namespace rule (docs/scripting.md,
-// "Settings"): a profile entry (sample_rate_hz) or a dotted path under one
-// (devices., joints., ...) overrides that part of the profile, so a plugin
-// parameter is devices.NAME.params.KEY; every other key is a script
-// setting: plain for the script (and a profile's `setting`), MODULE.KEY for a
-// Lua module (etroll.clamp_current).
+// Command-line settings (--set key=value). One namespace rule (docs/scripting.md, "Settings"): a profile entry
+// (sample_rate_hz) or a dotted path under one (devices., joints., ...) overrides that part of the profile, so a
+// plugin parameter is devices.NAME.params.KEY; every other key is a script setting: plain for the script (and a
+// profile's `setting`), MODULE.KEY for a Lua module (etroll.clamp_current).
 class Settings {
 public:
     Status add(const std::string& key_equals_value);
@@ -119,9 +117,8 @@ bool is_profile_path(const std::string& key);
 std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);
 
 struct SandboxLimits;
-// A profile is Lua: it runs under the scripts' memory cap and no-wait limit
-// (`limits`; defaults when not given), so a looping or allocating profile
-// ends with an error naming it.
+// A profile is Lua: it runs under the scripts' memory cap and no-wait limit (`limits`; defaults when not given), so a
+// looping or allocating profile ends with an error naming it.
 Result<Profile> load_profile(const std::string& name_or_path, const std::filesystem::path& share_dir,
                              const Settings& settings);
 Result<Profile> load_profile(const std::string& name_or_path, const std::filesystem::path& share_dir,

@@ -301,10 +301,9 @@ void Robot::safe_commands(const ActuatorHandle& actuator, std::vector<JointComma
         }
 }
 
-// The safe commands go to every actuator that may still drive a joint: active
-// ones, and those in error (one silent servo puts its whole bus there while the
-// others on it still push). A plugin applies what it can; its failure here is
-// logged, keeps the handle's state, and a second safe_state() tries again.
+// The safe commands go to every actuator that may still drive a joint: active ones, and those in error (one silent
+// servo puts its whole bus there while the others on it still push). A plugin applies what it can; its failure here
+// is logged, keeps the handle's state, and a second safe_state() tries again.
 void Robot::safe_state(double time) noexcept {
     const auto devices = lock_devices();
     try {
@@ -440,10 +439,9 @@ void Robot::disable_all_controllers(double time) {
     for (const auto& c : controllers_) disable_controller(c.name, time);
 }
 
-// The SDK hands sensors the joints as parallel name and state vectors; they
-// are filled from the joint table when a sensor is called, so the table stays
-// the one store of joint state (a copy updated on read went stale when the
-// safe state re-read the joints).
+// The SDK hands sensors the joints as parallel name and state vectors; they are filled from the joint table when a
+// sensor is called, so the table stays the one store of joint state (a copy updated on read went stale when the safe
+// state re-read the joints).
 SampleInput Robot::sample_input(double time) {
     for (std::size_t i = 0; i < joints_.size(); ++i) take_state(joint_states_[i], joints_[i].state);
     return SampleInput{time, &joint_names_, &joint_states_};

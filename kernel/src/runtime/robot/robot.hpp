@@ -1,6 +1,5 @@
-// The hand as the kernel sees it: every device of a profile, created through
-// the plugin registry and driven through lifecycle handles, plus the joint
-// table on which limits are enforced. The control loop (control_tick) and the
+// The hand as the kernel sees it: every device of a profile, created through the plugin registry and driven through
+// lifecycle handles, plus the joint table on which limits are enforced. The control loop (control_tick) and the
 // sampling loop (sample) are C++; Lua only sets commands.
 #pragma once
 

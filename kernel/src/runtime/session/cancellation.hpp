@@ -1,9 +1,7 @@
-// Cancellation of a run: the one flag every part of a run consults (the
-// scheduler between steps, a script engine inside its own code). It is an
-// interface because a script engine may have to own the flag itself: the Lua
-// sandbox checks it from an instruction hook and sets it on its own (an
-// endless loop, the Ctrl-C flag), so it implements this; C++-only runs use
-// CancelToken.
+// Cancellation of a run: the one flag every part of a run consults (the scheduler between steps, a script engine
+// inside its own code). It is an interface because a script engine may have to own the flag itself: the Lua sandbox
+// checks it from an instruction hook and sets it on its own (an endless loop, the Ctrl-C flag), so it implements
+// this; C++-only runs use CancelToken.
 #pragma once
 
 #include <string>

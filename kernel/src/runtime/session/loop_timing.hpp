@@ -1,8 +1,6 @@
-// Timing of the control loop on a real clock: how regular the control periods
-// are (jitter) and how much of each the bus exchange takes. Kept as fixed
-// histograms (10 µs bins up to 250 ms) so a run of hours costs no more memory
-// than a run of seconds. Only meaningful on the monotonic clock; on the
-// virtual clock periods are exact by construction.
+// Timing of the control loop on a real clock: how regular the control periods are (jitter) and how much of each the
+// bus exchange takes. Kept as fixed histograms (10 µs bins up to 250 ms) so a run of hours costs no more memory than
+// a run of seconds. Only meaningful on the monotonic clock; on the virtual clock periods are exact by construction.
 #pragma once
 
 #include <array>

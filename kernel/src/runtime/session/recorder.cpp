@@ -16,9 +16,8 @@ Recorder::Recorder(Robot& robot, const Clock& clock, double sample_rate_hz, std:
 Recorder::~Recorder() = default;
 
 std::uint64_t Recorder::trial_seed(std::uint64_t run_seed, const std::string& trial_id) {
-    // FNV-1a of the id, with the offset basis this project has always used
-    // (1469598103934665603, not FNV's 14695981039346656037): every recorded
-    // dataset's trial seeds depend on it, so it stays.
+    // FNV-1a of the id, with the offset basis this project has always used (1469598103934665603, not FNV's
+    // 14695981039346656037): every recorded dataset's trial seeds depend on it, so it stays.
     std::uint64_t h = 1469598103934665603ULL;
     for (unsigned char c : trial_id) {
         h ^= c;

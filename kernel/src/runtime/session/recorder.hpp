@@ -1,9 +1,7 @@
-// Trials and recording, apart from any script: a trial opens (its seed and
-// random stream derive from the run seed and its id), recording starts and
-// stops, the scheduler's sample ticks read every sensor into the trial's
-// data, and a saved trial goes to the dataset. Sample times come from the
-// sample index, so identical trials record identical data wherever they fall
-// in a run.
+// Trials and recording, apart from any script: a trial opens (its seed and random stream derive from the run seed and
+// its id), recording starts and stops, the scheduler's sample ticks read every sensor into the trial's data, and a
+// saved trial goes to the dataset. Sample times come from the sample index, so identical trials record identical data
+// wherever they fall in a run.
 #pragma once
 
 #include <cstdint>

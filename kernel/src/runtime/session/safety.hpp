@@ -1,8 +1,7 @@
-// The safety side of a run, apart from any script: the emergency-stop input
-// and the recording trigger output (through the SDK's DigitalLines), and the
-// interrupt flag that Ctrl-C sets. The scheduler polls the e-stop every
-// control period; a tripped e-stop stops every joint at once, locks out
-// commands and returns the reason, which cancels the run.
+// The safety side of a run, apart from any script: the emergency-stop input and the recording trigger output (through
+// the SDK's DigitalLines), and the interrupt flag that Ctrl-C sets. The scheduler polls the e-stop every control
+// period; a tripped e-stop stops every joint at once, locks out commands and returns the reason, which cancels the
+// run.
 #pragma once
 
 #include <atomic>
@@ -48,11 +47,10 @@ private:
     std::atomic<bool> interrupt_{false};
 };
 
-// SIGINT/SIGTERM/SIGHUP for the lifetime of this object: the first asks the run to
-// stop through `flag` (the script is cancelled, its cleanup runs, the hand is
-// made safe); the third exits at once, unless a watchdog has taken it over
-// (set_hard_interrupt_handled: it makes the hand safe and writes run-info
-// before the exit). The previous handlers come back after.
+// SIGINT/SIGTERM/SIGHUP for the lifetime of this object: the first asks the run to stop through `flag` (the script is
+// cancelled, its cleanup runs, the hand is made safe); the third exits at once, unless a watchdog has taken it over
+// (set_hard_interrupt_handled: it makes the hand safe and writes run-info before the exit). The previous handlers
+// come back after.
 int interrupts_received();
 void set_hard_interrupt_handled(bool handled);
 

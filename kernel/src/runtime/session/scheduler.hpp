@@ -1,9 +1,7 @@
-// The run's scheduler, single-threaded on injected time. Each iteration
-// resumes the tasks that are ready, then advances the clock to the next event:
-// a control tick (e-stop check; read every actuator, run controllers, write
-// every actuator; re-check waiting tasks), a sample tick while recording, the
-// end of a trigger pulse, or a task's wake time or timeout. It knows tasks
-// only through the Task interface: nothing here depends on Lua.
+// The run's scheduler, single-threaded on injected time. Each iteration resumes the tasks that are ready, then
+// advances the clock to the next event: a control tick (e-stop check; read every actuator, run controllers, write
+// every actuator; re-check waiting tasks), a sample tick while recording, the end of a trigger pulse, or a task's
+// wake time or timeout. It knows tasks only through the Task interface: nothing here depends on Lua.
 #pragma once
 
 #include <cstdint>
@@ -35,11 +33,10 @@ public:
     void start();
     // Add a task; it is first resumed in the scheduler's next pass.
     void spawn(std::unique_ptr<Task> task, TaskRole role);
-    // Run until the tasks of `phase` (main or cleanup) have ended, or the run
-    // fails, or the next event falls past `deadline` (run clock), which
-    // cancels with `over_deadline` as the reason. The main phase stops at the
-    // first failure; the cleanup phase lets its tasks end (they see the
-    // cancellation). Tasks still alive at the end are destroyed.
+    // Run until the tasks of `phase` (main or cleanup) have ended, or the run fails, or the next event falls past
+    // `deadline` (run clock), which cancels with `over_deadline` as the reason. The main phase stops at the first
+    // failure; the cleanup phase lets its tasks end (they see the cancellation). Tasks still alive at the end are
+    // destroyed.
     Status run(TaskRole phase, double deadline, const std::string& over_deadline);
 
     // Tasks not yet ended (of every role).

@@ -1,9 +1,7 @@
-// One run of a roll script on a robot profile: the assembly of the parts a
-// run needs, in the order it needs them. The profile's robot (plugins), the
-// injected clock, the recorder (trials, dataset), the safety lines, the Lua
-// sandbox with the rollsense module, and the scheduler that runs the script's
-// coroutines as tasks, then its cleanup functions, and leaves the hand safe.
-// The scheduler, recorder and safety know nothing of Lua (see scheduler.hpp);
+// One run of a roll script on a robot profile: the assembly of the parts a run needs, in the order it needs them. The
+// profile's robot (plugins), the injected clock, the recorder (trials, dataset), the safety lines, the Lua sandbox
+// with the rollsense module, and the scheduler that runs the script's coroutines as tasks, then its cleanup
+// functions, and leaves the hand safe. The scheduler, recorder and safety know nothing of Lua (see scheduler.hpp);
 // this class and runtime/lua/ are the layer that drives them from a script.
 #pragma once
 

@@ -1,9 +1,7 @@
-// A task of the scheduler: a procedure that runs in steps on the run clock.
-// Each resume runs it until it finishes or asks to wait (for a time, for
-// joints to arrive, for a condition); the scheduler resumes it again once the
-// wait ends, and says how it ended (ready, timed out, cancelled). Roll scripts
-// are tasks through the Lua layer (runtime/lua/lua_task.hpp); C++ procedures
-// and tests implement the interface directly.
+// A task of the scheduler: a procedure that runs in steps on the run clock. Each resume runs it until it finishes or
+// asks to wait (for a time, for joints to arrive, for a condition); the scheduler resumes it again once the wait
+// ends, and says how it ended (ready, timed out, cancelled). Roll scripts are tasks through the Lua layer
+// (runtime/lua/lua_task.hpp); C++ procedures and tests implement the interface directly.
 #pragma once
 
 #include <functional>

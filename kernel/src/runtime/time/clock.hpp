@@ -1,6 +1,5 @@
-// Injected time. The scheduler never reads a clock directly: with the virtual
-// clock (simulation) time jumps to the next event, so a run goes as fast as
-// the CPU allows and is deterministic; with the monotonic clock (hardware) the
+// Injected time. The scheduler never reads a clock directly: with the virtual clock (simulation) time jumps to the
+// next event, so a run goes as fast as the CPU allows and is deterministic; with the monotonic clock (hardware) the
 // scheduler sleeps until the event. The same script runs on both.
 #pragma once
 
@@ -14,9 +13,8 @@ public:
     virtual double now() const = 0;           // seconds since the run started
     virtual void sleep_until(double t) = 0;   // returns at once if t <= now()
     virtual bool is_virtual() const = 0;
-    // Round a duration to the virtual clock's grid (2^-20 s), so that time
-    // differences are exact and a trial does not depend on when it started.
-    // Real clocks have no grid: unchanged.
+    // Round a duration to the virtual clock's grid (2^-20 s), so that time differences are exact and a trial does not
+    // depend on when it started. Real clocks have no grid: unchanged.
     double quantize(double t) const;
 };
 
