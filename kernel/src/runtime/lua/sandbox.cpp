@@ -351,6 +351,8 @@ int Sandbox::lua_setmetatable(lua_State* L) {
                                  "finalizers where no cancel can stop them; use rs.on_cleanup or a <close> variable");
         lua_pop(L, 1);
     }
+    // Lua's own refusal, but raised here: from the wrapped function it would carry no file:line.
+    if (luaL_getmetafield(L, 1, "__metatable") != LUA_TNIL) return luaL_error(L, "cannot change a protected metatable");
     return call_wrapped(L);
 }
 
