@@ -615,6 +615,49 @@ TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one firs
     REQUIRE(a.on_deactivate().ok());
 }
 
+// Review (hardware safety): after a stall read() stopped at the first servo
+// whose watchdog had tripped; another one, pushing in current mode, was then
+// switched to position mode by the safe hold, its goal (read-only while
+// tripped) not set, and torque on drove it to the goal left from before.
+TEST_CASE("after a stall every tripped servo is known: the safe hold switches none of them towards an old goal") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    auto raw = etroll_raw(emu->device());
+    raw["bus_watchdog_ms"] = std::int64_t{100};
+    REQUIRE(a.on_configure(validated(raw), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto push = hold_all(a, s);
+    push[1].mode = ControlMode::current;  // the pushing finger pushes (servo 2)
+    push[1].current = 100;
+    REQUIRE(a.write(0, push).ok());
+    // The control loop stalls past the watchdog: every servo with torque on stops by itself.
+    on_bus(*emu, [](BusEmulator& b) {
+        b.advance(0.5);
+        return 0;
+    });
+    for (std::uint8_t id : {1, 2}) REQUIRE(on_bus(*emu, [id](BusEmulator& b) { return int(b.servo(id)->watchdog_tripped()); }));
+    auto fault = a.read(0.5, s);
+    CHECK(fault.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(fault.message(), Catch::Contains("sensing_finger") && Catch::Contains("Bus Watchdog"));
+    const auto mode_of_2 = [&] { return on_bus(*emu, [](BusEmulator& b) { return b.servo(2)->item(addr::operating_mode, 1); }); };
+    const auto at_2 = [&] { return on_bus(*emu, [](BusEmulator& b) { return b.servo(2)->item(addr::present_position, 4); }); };
+    const auto current_mode = mode_of_2();
+    const auto before = at_2();
+    // The kernel's safe state: hold every joint in position mode.
+    auto hold = hold_all(a, s);
+    for (auto& c : hold) c.mode = ControlMode::position;
+    const auto refused = a.write(0.5, hold);
+    CHECK(refused.code() == ErrorCode::hardware_fault);
+    on_bus(*emu, [](BusEmulator& b) {
+        b.advance(0.5);
+        return 0;
+    });
+    CHECK(mode_of_2() == current_mode);  // not switched: its goal could not have been set
+    CHECK(std::abs(at_2() - before) <= 2);
+}
+
 TEST_CASE("rest turns every Bus Watchdog off until control resumes: the next write re-arms it (issue 22)") {
     auto emu = start_emulator(false);
     DynamixelActuator a;

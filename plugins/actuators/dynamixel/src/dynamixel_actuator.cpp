@@ -380,17 +380,24 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
     // A SYNC_WRITE has no reply: a tripped Bus Watchdog would drop every goal
     // unseen. It trips only after a pause in our instructions, so 98 is read
     // only after a pause of half its time (two clocks), never in a steady run.
+    // Every servo is looked at, not up to the first that tripped: write() must know each one whose goals are
+    // read-only, or a mode switch would switch torque back on towards a goal left from before the pause (review: a
+    // finger swept 138 degrees after a stall).
     const bool paused = watchdog_ms_ > 0 && time - last_io_time_ > watchdog_ms_ * 0.5e-3;
     last_io_time_ = time;
+    Status first;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         if (paused && rt_[i].torque && !rt_[i].watchdog_tripped) {
             auto wd = bus_->read_value(ids_[i], addr::bus_watchdog, 1);
-            if (!wd.ok()) return with_joint(i, wd.status());
+            if (!wd.ok()) {
+                if (first.ok()) first = with_joint(i, wd.status());
+                continue;
+            }
             rt_[i].watchdog_tripped = *wd < 0;
         }
-        if (rt_[i].watchdog_tripped) return watchdog_fault(i);
+        if (rt_[i].watchdog_tripped && first.ok()) first = watchdog_fault(i);
     }
-    return {};
+    return first;
 }
 
 // Two phases. First every command is checked (a refused command moves
