@@ -225,12 +225,23 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     const auto out_of_range = fault("default");
     INFO(out_of_range.output);
     CHECK(out_of_range.status == 3);
-    CHECK(count_of(out_of_range.output, "SCHEMA FAILED: a default its own declaration refuses: key 'gain': 5 is outside "
-                                        "the allowed range [0, 1] (fix the plugin's schema function)\n") == 1);
+    CHECK(count_of(out_of_range.output, "SCHEMA FAILED: plugin 'bad_schema': its schema is wrong: a default its own "
+                                        "declaration refuses: key 'gain': 5 is outside the allowed range [0, 1] (fix the "
+                                        "plugin's schema function)\n") == 1);
     const auto twice = fault("twice");
     INFO(twice.output);
     CHECK(twice.status == 3);
-    CHECK(count_of(twice.output, "SCHEMA FAILED: parameter 'gain' is declared twice") == 1);
+    CHECK(count_of(twice.output, "SCHEMA FAILED: plugin 'bad_schema': its schema is wrong: parameter 'gain' is declared "
+                                 "twice") == 1);
+    // A run refuses it too (review: it used the schema that --check refused), before anything moves.
+    TempDir dir("rollsense-cli-bad-schema");
+    write_file(dir / "rig.lua", "local p = include('mock')\np.devices.tactile = { plugin = 'bad_schema' }\nreturn p\n");
+    const auto run = run_rollsense("run " + kDemo + " --profile " + shell_quoted(dir / "rig.lua") + " --plugin-path " +
+                                   shell_quoted(std::string(ROLLSENSE_TEST_BAD_SCHEMA_DIR) + "twice") + " --out " +
+                                   shell_quoted(dir / "out"));
+    INFO(run.output);
+    CHECK(run.status == 3);
+    CHECK(count_of(run.output, "plugin 'bad_schema': its schema is wrong: parameter 'gain' is declared twice") == 1);
     // Without --check the listing goes on (exit 0); the shipped plugins' schemas have no such mistake.
     CHECK(run_rollsense("plugins --plugin-path " + shell_quoted(std::string(ROLLSENSE_TEST_BAD_SCHEMA_DIR) + "twice")).status == 0);
     const auto shipped = run_rollsense("plugins --check");

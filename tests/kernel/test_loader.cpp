@@ -58,6 +58,30 @@ TEST_CASE("a plugin built for another ABI is reported as an ABI mismatch", "[loa
     CHECK_THAT(c.failure, Catch::Contains(std::to_string(kPluginAbiVersion + 41)));
 }
 
+// Review (plugin author's journey): a constructor that threw 42 ended the
+// process; a symbol no library defines killed a run at its first call
+// (lazy binding); a plugin built with -D_GLIBCXX_DEBUG loaded and crashed.
+TEST_CASE("a plugin that throws a non-exception or lacks a symbol or uses debug containers is refused by name", "[loader]") {
+    PluginRegistry reg({ROLLSENSE_TEST_PLUGIN_DIR});
+    auto thrown = reg.create_sensor("test_ctor_thrower", "tactile");
+    REQUIRE_FALSE(thrown.ok());
+    CHECK(thrown.error().code == ErrorCode::plugin_error);
+    CHECK(thrown.error().message == "plugin 'test_ctor_thrower': constructor threw a non-std::exception");
+
+    auto undefined = PluginRegistry::load_file(test_plugin("rollsense_test_undefined"));
+    CHECK_FALSE(undefined.library);
+    CHECK_THAT(undefined.failure, Catch::Contains("cannot be loaded") && Catch::Contains("rollsense_test_defined_nowhere"));
+    auto asked = reg.find("test_undefined", PluginKind::sensor);
+    REQUIRE_FALSE(asked.ok());  // and asked for by name, the refused file comes first
+    CHECK_THAT(asked.error().message, Catch::StartsWith("no sensor plugin named 'test_undefined' loads: ") &&
+                                          Catch::Contains("librollsense_test_undefined.so is not used: cannot be loaded"));
+
+    auto debug = PluginRegistry::load_file(test_plugin("rollsense_test_debug_stdlib"));
+    CHECK_FALSE(debug.library);
+    CHECK_THAT(debug.failure, Catch::Contains("ABI mismatch") && Catch::Contains("-glibcxxdebug") &&
+                                  Catch::Contains("without -D_GLIBCXX_DEBUG"));
+}
+
 TEST_CASE("a file that is not a shared library is reported with the loader's reason", "[loader]") {
     kt::TempDir dir;
     kt::write_file(dir / "librollsense_fake.so", "this is text, not ELF\n");

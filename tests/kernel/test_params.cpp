@@ -33,12 +33,13 @@ TEST_CASE("unknown keys, wrong types, ranges, choices and missing keys name the 
     auto type = validate_params(schema(), {{"count", ParamValue{std::string("three")}}}, "f.lua: dev");
     REQUIRE_FALSE(type.ok());
     CHECK_THAT(type.error().message, Catch::Contains("key 'count' must be an integer"));
-    CHECK_THAT(type.error().message, !Catch::Contains("quote it"));
+    CHECK_THAT(type.error().message, !Catch::Contains("double quotes"));
     // Review item 12: --set devices.X.params.mode=3 is read as an integer; the way out is quoting it.
     auto number_for_text = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"mode", ParamValue{std::int64_t{3}}}}, "f");
     REQUIRE_FALSE(number_for_text.ok());
     CHECK_THAT(number_for_text.error().message,
-               Catch::Contains("key 'mode' must be a string, got an integer (3); quote it to give it as text"));
+               Catch::Contains("key 'mode' must be a string, got an integer (3); a --set value reads as a number where it "
+                               "can: in double quotes it is text (--set '...=\"3\"')"));
 
     auto range = validate_params(schema(), {{"count", ParamValue{std::int64_t{1}}}, {"gain", ParamValue{11.0}}}, "f");
     REQUIRE_FALSE(range.ok());

@@ -225,6 +225,15 @@ TEST_CASE("one namespace rule for --set: a profile entry or its path overrides t
     CHECK(s.unused() == std::vector<std::string>{"etroll.clamp_current"});  // left for the script
     CHECK(p->sample_rate_hz == 50.0);
 
+    // A value reads as a number where it can; in double quotes it is text as written (review: a quoted value reached
+    // the plugin with its quotes, and a folder named 2025 could not be given at all).
+    REQUIRE(s.add("dataset=2025").ok());
+    CHECK(std::get<std::int64_t>(s.values().at("dataset")) == 2025);
+    REQUIRE(s.add("dataset=\"2025\"").ok());
+    CHECK(std::get<std::string>(s.values().at("dataset")) == "2025");
+    REQUIRE(s.add("label=\"\"").ok());
+    CHECK(std::get<std::string>(s.values().at("label")).empty());
+
     // Declarations: a namespace that declared settings knows its keys.
     s.declare("etroll.clamp_settle_ms", std::int64_t{300});
     CHECK(s.namespace_declared("etroll.anything"));

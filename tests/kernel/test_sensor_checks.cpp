@@ -93,3 +93,14 @@ TEST_CASE("a channel name that would not stay one CSV column, or that a recorded
     CHECK_THAT(joint.error().message, Catch::Contains("p.lua:19: record_joints.1 is 'finger', which is no usable column") &&
                                           Catch::Contains("taken by a channel"));
 }
+
+// Review (plugin author's journey): a sensor whose channels() threw gave
+// "unexpected error: boom" with no device, plugin or profile.
+TEST_CASE("a sensor whose channels() throws is a plugin error naming the device and the plugin", "[robot][review]") {
+    kt::TempDir dir;
+    auto robot = robot_with(dir, "tactile = { plugin = \"test_thrower\", params = { throw_in = \"channels\" } },");
+    REQUIRE_FALSE(robot.ok());
+    CHECK(robot.error().code == ErrorCode::plugin_error);
+    CHECK_THAT(robot.error().message, Catch::Contains("device 'tactile' (plugin 'test_thrower')") &&
+                                          Catch::Contains("threw an exception in channels: boom in channels"));
+}

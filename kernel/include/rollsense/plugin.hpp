@@ -30,8 +30,15 @@ inline constexpr const char* kPluginManifestSymbol = "rollsense_plugin_manifest"
 
 #define ROLLSENSE_STRINGIFY_IMPL(x) #x
 #define ROLLSENSE_STRINGIFY(x) ROLLSENSE_STRINGIFY_IMPL(x)
-// Plugins and kernel must agree on the C++ ABI, not just on our headers.
-#define ROLLSENSE_COMPILER_TAG "gcc-" __VERSION__ "-cxx11abi" ROLLSENSE_STRINGIFY(_GLIBCXX_USE_CXX11_ABI)
+// Plugins and kernel must agree on the C++ ABI, not just on our headers: the compiler, the string ABI, and libstdc++'s
+// debug mode (-D_GLIBCXX_DEBUG lays its containers out otherwise: a plugin built so crashed the program).
+#ifdef _GLIBCXX_DEBUG
+#define ROLLSENSE_STDLIB_MODE "-glibcxxdebug"
+#else
+#define ROLLSENSE_STDLIB_MODE ""
+#endif
+#define ROLLSENSE_COMPILER_TAG \
+    "gcc-" __VERSION__ "-cxx11abi" ROLLSENSE_STRINGIFY(_GLIBCXX_USE_CXX11_ABI) ROLLSENSE_STDLIB_MODE
 
 enum class PluginKind : std::uint32_t { sensor = 1, actuator = 2, classifier = 3 };
 

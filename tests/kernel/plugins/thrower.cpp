@@ -9,7 +9,7 @@ using namespace rollsense;
 
 ParamSchema thrower_schema() {
     return {param_string("throw_in", std::string("none"), "hook that throws",
-                         {"none", "configure", "activate", "read", "recover", "invoke"})};
+                         {"none", "configure", "activate", "read", "recover", "invoke", "channels"})};
 }
 
 class Thrower final : public Sensor {
@@ -28,7 +28,10 @@ public:
         where_ = "none";  // recovering clears the fault
         return {};
     }
-    std::vector<ChannelInfo> channels() const override { return {{"ch1", "1", "constant"}}; }
+    std::vector<ChannelInfo> channels() const override {
+        if (where_ == "channels") throw std::runtime_error("boom in channels");
+        return {{"ch1", "1", "constant"}};
+    }
     Status read(const SampleInput&, Frame& out) override {
         if (where_ == "read") throw std::runtime_error("boom in read");
         out.values[0] = 1.0;

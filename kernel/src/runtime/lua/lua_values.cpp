@@ -104,6 +104,7 @@ void push_param_map(lua_State* L, const std::map<std::string, ParamValue>& value
 
 namespace {
 ParamValue parse_scalar(const std::string& t) {
+    if (t.size() >= 2 && t.front() == '"' && t.back() == '"') return t.substr(1, t.size() - 2);  // text as written
     if (t == "true") return true;
     if (t == "false") return false;
     std::int64_t i = 0;

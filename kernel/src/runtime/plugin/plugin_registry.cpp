@@ -71,7 +71,8 @@ PluginCandidate PluginRegistry::load_file(const fs::path& file) {
     if (auto cut = truncation(file); !cut.empty()) return fail(cut);
     boost::dll::shared_library lib;
     boost::dll::fs::error_code ec;  // not the throwing load: its what() adds an errno text unrelated to dlerror()'s
-    lib.load(file.string(), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
+    // Every symbol bound now: one missing is this file's failure here, not a process killed mid-run (review).
+    lib.load(file.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
     if (ec) {  // dlopen's own reason; about a library this one needs, it names that library, not this file
         const char* why = ::dlerror();
         return fail("cannot be loaded: " + (why ? std::string(why) : ec.message()) +
@@ -88,6 +89,8 @@ PluginCandidate PluginRegistry::load_file(const fs::path& file) {
         m = lib.get_alias<PluginManifestFn>(kPluginManifestSymbol)();
     } catch (const std::exception& e) {
         return fail(std::string("its manifest function failed: ") + e.what());
+    } catch (...) {
+        return fail("its manifest function threw a value that is not a std::exception");
     }
     if (!m || m->magic != kPluginMagic)
         return fail("not a rollsense plugin: the manifest symbol does not point at a rollsense manifest");
@@ -96,7 +99,8 @@ PluginCandidate PluginRegistry::load_file(const fs::path& file) {
                     std::to_string(kPluginAbiVersion) + " (rebuild the plugin against this SDK)");
     if (!m->compiler_tag || std::strcmp(m->compiler_tag, ROLLSENSE_COMPILER_TAG) != 0)
         return fail(std::string("ABI mismatch: built with compiler '") + (m->compiler_tag ? m->compiler_tag : "?") +
-                    "', this rollsense with '" + ROLLSENSE_COMPILER_TAG + "' (rebuild the plugin)");
+                    "', this rollsense with '" + ROLLSENSE_COMPILER_TAG +
+                    "' (rebuild the plugin with the same compiler, and without -D_GLIBCXX_DEBUG)");
     const bool factory_ok = (m->kind == PluginKind::sensor && m->create_sensor) ||
                             (m->kind == PluginKind::actuator && m->create_actuator) ||
                             (m->kind == PluginKind::classifier && m->create_classifier);
@@ -153,7 +157,12 @@ Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::str
             return c.library;
         }
     }
-    std::string msg = "no " + std::string(to_string(kind)) + " plugin named '" + name + "'. Searched:";
+    std::string msg = "no " + std::string(to_string(kind)) + " plugin named '" + name + "'";
+    // Its own file, found but refused (another compiler, a missing library): that first (review: it read as absent).
+    for (const auto& c : candidates_)
+        if (!c.library && c.path.filename().string().starts_with("librollsense_" + name + ".so"))
+            msg += " loads: " + c.path.string() + " is not used: " + c.failure;
+    msg += ". Searched:";
     for (const auto& d : search_path_) msg += "\n  " + d.string() + (fs::is_directory(d) ? "" : " (no such folder)");
     msg += candidates_.empty() ? "\nNo plugin files were found." : "\nFound:";
     for (const auto& c : candidates_)
@@ -162,11 +171,33 @@ Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::str
     return Error{ErrorCode::not_found, msg};
 }
 
+namespace {
+// A schema's own mistakes, which loading does not catch: a parameter declared twice, or a default its own range or
+// choices refuse (used silently, while the same value in a profile is refused). Empty if none.
+std::string schema_problem(const ParamSchema& schema) {
+    ParamSchema with_default;
+    std::map<std::string, ParamValue> defaults;
+    for (const auto& p : schema) {
+        if (std::ranges::count(schema, p.name, &ParamSpec::name) > 1) return "parameter '" + p.name + "' is declared twice";
+        if (p.default_value) with_default.push_back(p), defaults[p.name] = *p.default_value;
+    }
+    const auto checked = validate_params(with_default, defaults, "a default its own declaration refuses");
+    return checked ? std::string() : checked.error().message;
+}
+}  // namespace
+
+// Checked wherever it is used (review: `plugins --check` refused a schema that a run then used).
 Result<ParamSchema> PluginRegistry::schema_of(const LoadedLibrary& library) {
     try {
-        return library.manifest().schema();
+        ParamSchema schema = library.manifest().schema();
+        if (const auto problem = schema_problem(schema); !problem.empty())
+            return Error{ErrorCode::plugin_error, "plugin '" + library.name() + "': its schema is wrong: " + problem +
+                                                      " (fix the plugin's schema function)"};
+        return schema;
     } catch (const std::exception& e) {
         return Error{ErrorCode::plugin_error, "plugin '" + library.name() + "': schema() threw: " + e.what()};
+    } catch (...) {
+        return Error{ErrorCode::plugin_error, "plugin '" + library.name() + "': schema() threw a non-std::exception"};
     }
 }
 
@@ -181,6 +212,8 @@ Result<std::unique_ptr<Handle<T>>> create(PluginRegistry& reg, const std::string
         object = ((*lib)->manifest().*factory)();
     } catch (const std::exception& e) {
         return Error{ErrorCode::plugin_error, "plugin '" + plugin + "': constructor threw: " + e.what()};
+    } catch (...) {  // review: `throw 42` ended the process (std::terminate)
+        return Error{ErrorCode::plugin_error, "plugin '" + plugin + "': constructor threw a non-std::exception"};
     }
     if (!object) return Error{ErrorCode::plugin_error, "plugin '" + plugin + "': factory returned nothing"};
     return std::make_unique<Handle<T>>(instance, *lib, object);

@@ -98,8 +98,10 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         if (lib->manifest().kind == PluginKind::sensor) {
             auto h = registry.create_sensor(dev.plugin, dev.name);
             if (auto s = configure(h); !s.ok()) return s.error();
-            const std::size_t channels = (*h)->plugin().channels().size();
-            r->sensors_.push_back({std::move(*h), channels, {}});
+            std::vector<ChannelInfo> channels;  // read in the handle's guard: a throw names the device (review)
+            if (auto s = (*h)->call("channels", [&] { return channels = (*h)->plugin().channels(), Status{}; }); !s.ok())
+                return s.error();
+            r->sensors_.push_back({std::move(*h), std::move(channels), {}});
         } else if (lib->manifest().kind == PluginKind::actuator) {
             auto h = registry.create_actuator(dev.plugin, dev.name);
             if (auto s = configure(h); !s.ok()) return s.error();
@@ -118,7 +120,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
     };
     // Channel columns: a lone sensor's channel names; several sensors are prefixed.
     for (auto& s : r->sensors_) {
-        for (const auto& ch : s.handle->plugin().channels()) {
+        for (const auto& ch : s.channels) {
             const std::string column = r->sensors_.size() == 1 ? ch.name : s.handle->instance() + "_" + ch.name;
             if (unusable_column(column))
                 return Error{ErrorCode::plugin_error, profile.at("devices." + s.handle->instance()) + " (plugin '" +
@@ -128,7 +130,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
             r->channel_columns_.push_back(column);
             r->channel_units_.push_back(ch.unit);
         }
-        s.frame.values.assign(s.channels, 0.0);
+        s.frame.values.assign(s.channels.size(), 0.0);
     }
 
     // Joint table, with profile limits required for every joint.
@@ -474,13 +476,13 @@ Status Robot::sample(double time, TrialData& data) {
         std::fill(s.frame.values.begin(), s.frame.values.end(), 0.0);
         auto st = s.handle->call("read", [&] { return s.handle->plugin().read(in, s.frame); });
         if (!st.ok()) return st;
-        if (s.frame.values.size() != s.channels)
+        if (s.frame.values.size() != s.channels.size())
             return s.handle->call("read", [&] {
                 return Status(ErrorCode::plugin_error, "read() changed the frame size to " +
                                                            std::to_string(s.frame.values.size()) + " values, expected " +
-                                                           std::to_string(s.channels));
+                                                           std::to_string(s.channels.size()));
             });
-        for (std::size_t c = 0; c < s.channels && s.frame.valid; ++c)  // NaN is no reading, whatever the plugin says
+        for (std::size_t c = 0; c < s.channels.size() && s.frame.valid; ++c)  // NaN is no reading, whatever the plugin says
             if (!std::isfinite(s.frame.values[c]))
                 s.frame.valid = false, s.frame.reason = channel_columns_[column + c] + " read " + fmt(s.frame.values[c]);
         if (!s.frame.valid) {

@@ -117,7 +117,7 @@ private:
     };
     struct SensorSlot {
         std::unique_ptr<SensorHandle> handle;
-        std::size_t channels = 0;
+        std::vector<ChannelInfo> channels;  // as the plugin described them once
         Frame frame;  // scratch
     };
     struct ControllerSlot {
