@@ -572,6 +572,30 @@ TEST_CASE("a goal the servo's own position limits would silently drop from the s
     CHECK(st.message().find("2100") != std::string::npos);
 }
 
+// Review (hardware safety): a winch goal beyond one turn in position mode was
+// refused only after the mode switch had turned its torque off: the winch let go.
+TEST_CASE("a position goal outside the limits to come is refused before the mode switch") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    const auto winch = [&](std::uint16_t address, std::uint16_t size) {
+        return on_bus(*emu, [&](BusEmulator& b) { return b.servo(4)->item(address, size); });
+    };
+    const auto mode = winch(addr::operating_mode, 1);
+    REQUIRE(winch(addr::torque_enable, 1) == 1);
+    auto cmd = hold_all(a, s);
+    cmd[3].mode = ControlMode::position;
+    cmd[3].position = 300.0;  // mm: far beyond one turn of the drum
+    const auto refused = a.write(0, cmd);
+    CHECK(refused.code() == ErrorCode::limit_violation);
+    CHECK_THAT(refused.message(), Catch::Contains("winch") && Catch::Contains("in position mode"));
+    CHECK(winch(addr::torque_enable, 1) == 1);  // still holding the string
+    CHECK(winch(addr::operating_mode, 1) == mode);
+}
+
 TEST_CASE("velocity mode clamps the goal to the servo's Velocity Limit") {
     auto emu = start_emulator(false);
     DynamixelActuator a;

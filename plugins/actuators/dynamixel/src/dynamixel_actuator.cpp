@@ -188,8 +188,7 @@ Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
     const auto limit = j.current_limit_units();
     if (item(addr::current_limit, 2) != limit) changes.push_back({addr::current_limit, 2, limit});
     if (config_.write_position_limits && mode == ControlMode::position) {
-        auto lo = j.joint_to_ticks(j.min), hi = j.joint_to_ticks(j.max);
-        if (lo > hi) std::swap(lo, hi);
+        const auto [lo, hi] = tick_range(j);
         if (lo >= 0 && hi <= 4095) {
             if (item(addr::max_position_limit, 4) != hi) changes.push_back({addr::max_position_limit, 4, hi});
             if (item(addr::min_position_limit, 4) != lo) changes.push_back({addr::min_position_limit, 4, lo});
@@ -214,6 +213,19 @@ Status DynamixelActuator::prepare(std::size_t i, ControlMode mode) {
         if (c.address == addr::max_position_limit) rt_[i].max_ticks = static_cast<std::int32_t>(c.value);
     }
     return {};
+}
+
+std::pair<std::int32_t, std::int32_t> DynamixelActuator::tick_range(const JointMap& j) {
+    const auto a = j.joint_to_ticks(j.min), b = j.joint_to_ticks(j.max);
+    return {std::min(a, b), std::max(a, b)};
+}
+
+std::pair<std::int32_t, std::int32_t> DynamixelActuator::position_limits_after_switch(std::size_t i) const {
+    if (rt_[i].mode == ControlMode::position) return {rt_[i].min_ticks, rt_[i].max_ticks};
+    // prepare() writes the joint's own range when it fits one turn and it may; else the stored ones stay, within it.
+    if (const auto [lo, hi] = tick_range(config_.joints[i]); config_.write_position_limits && lo >= 0 && hi <= 4095)
+        return {lo, hi};
+    return {std::max(rt_[i].min_ticks, 0), std::min(rt_[i].max_ticks, 4095)};
 }
 
 Status DynamixelActuator::hold_here(std::size_t i) {
@@ -425,14 +437,15 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
                                                     " is outside [" + std::to_string(j.min) + ", " +
                                                     std::to_string(j.max) + "]"};
         goal_ticks[i] = is_position_mode(c.mode) ? j.joint_to_ticks(c.position) : rt_[i].present_ticks;
-        // The servo would silently drop a SYNC_WRITE entry outside its position limits.
-        if (c.mode == ControlMode::position && c.mode == rt_[i].mode &&
-            (goal_ticks[i] < rt_[i].min_ticks || goal_ticks[i] > rt_[i].max_ticks))
+        // The servo would silently drop a SYNC_WRITE entry outside its position limits; after a switch to position
+        // mode, the limits it will have: refused here, before the switch turns torque off (review: the winch let go).
+        if (const auto [lo, hi] = position_limits_after_switch(i);
+            c.mode == ControlMode::position && (goal_ticks[i] < lo || goal_ticks[i] > hi))
             return {ErrorCode::limit_violation,
                     who(i) + ": goal " + std::to_string(c.position) + " " + j.unit + " is tick " +
-                        std::to_string(goal_ticks[i]) + ", outside the servo's position limits " +
-                        std::to_string(rt_[i].min_ticks) + ".." + std::to_string(rt_[i].max_ticks) +
-                        " (check 'rollsense dxl info', or let the plugin write them: write_position_limits = true)"};
+                        std::to_string(goal_ticks[i]) + ", outside the servo's position limits " + std::to_string(lo) +
+                        ".." + std::to_string(hi) + " in position mode (check 'rollsense dxl info', let the plugin "
+                        "write them: write_position_limits = true, or use extended_position mode beyond one turn)"};
     }
 
     last_io_time_ = time;

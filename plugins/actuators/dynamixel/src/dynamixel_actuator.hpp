@@ -58,6 +58,9 @@ private:
     Status prepare(std::size_t i, ControlMode mode);
     // Goal = present position (or zero current), then torque on.
     Status hold_here(std::size_t i);
+    // A joint's min..max in ticks, low first; the position limits servo i has once in position mode.
+    static std::pair<std::int32_t, std::int32_t> tick_range(const JointMap& j);
+    std::pair<std::int32_t, std::int32_t> position_limits_after_switch(std::size_t i) const;
     Status set_torque(std::size_t i, bool on);
     // Hardware error check, watchdog, EEPROM items, hold here, watchdog armed.
     Status activate_servo(std::size_t i);
