@@ -24,7 +24,10 @@ local function channel_names(data)
 end
 
 for repetition = 1, 3 do
-  local samples, id = etroll.run_trial{ object = object, speed = 10, repetition = repetition }
+  -- Resumed (--resume), a roll already in the dataset is not rolled again.
+  local trial = { object = object, speed = 10, repetition = repetition }
+  if rs.has_trial(rs.trial_id(trial)) then goto next_roll end
+  local samples, id = etroll.run_trial(trial)
   local data = rs.recorded()
   -- The middle barometer of three (the second channel), or the only one.
   local channels = channel_names(data)
@@ -35,4 +38,5 @@ for repetition = 1, 3 do
   local finger = data.sensing_finger or {}
   rs.log(string.format("%s: %d samples, %s peak %.3f, finger %.1f -> %.1f deg",
     id, samples, label, peak, finger[1] or 0 / 0, finger[#finger] or 0 / 0))
+  ::next_roll::
 end
