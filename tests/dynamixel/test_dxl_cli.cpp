@@ -84,3 +84,29 @@ TEST_CASE("dxl set-id on the E-TRoll bus: the emulator's clamped object lets a s
     CHECK(std::regex_search(scan.output, std::regex(R"(id +7 +XM430-W350)")));
     CHECK(emu->with_bus([](BusEmulator& b) { return b.ids(); }) == std::vector<std::uint8_t>{7, 2, 3, 4});
 }
+
+// Safety review: after a killed run a servo stopped by its Bus Watchdog showed
+// only "torque on", like one that holds; `dxl info` says it tripped.
+TEST_CASE("dxl info shows the Bus Watchdog: off, its time, or tripped", "[dxl][cli]") {
+    auto emu = fresh_servo();
+    const auto info = [&] {
+        const auto r = testing::run_rollsense("dxl info --device " + emu->device() + " --id 1");
+        INFO(r.output);
+        CHECK(r.status == 0);
+        return r.output;
+    };
+    CHECK_THAT(info(), Catch::Contains("  bus watchdog     off\n"));
+    emu->with_bus([](BusEmulator& b) {
+        auto* s = b.servo(1);
+        Bytes one{1}, five{5};
+        REQUIRE(s->write(addr::torque_enable, one) == 0);
+        REQUIRE(s->write(addr::bus_watchdog, five) == 0);
+        return 0;
+    });
+    CHECK_THAT(info(), Catch::Contains("  bus watchdog     100 ms\n"));
+    emu->with_bus([](BusEmulator& b) {
+        b.advance(0.5);  // no instruction for longer than the watchdog: it trips
+        return 0;
+    });
+    CHECK_THAT(info(), Catch::Contains("  bus watchdog     TRIPPED: stopped, ignores goals until a run activates it\n"));
+}

@@ -143,6 +143,12 @@ int info(const Common& c, int id) {
     std::printf("  baud rate        %u\n", baud ? *baud : 0u);
     std::printf("  operating mode   %s\n", dxl::to_string(mode).c_str());
     std::printf("  torque           %s\n", u(dxl::addr::torque_enable, 1) ? "on" : "off");
+    // Address 98: a tripped watchdog (-1) makes the servo stop and ignore every goal until 98 is written 0, which
+    // the next run's activation does (review: after a killed run this looked like a servo merely holding).
+    const auto watchdog = v(dxl::addr::bus_watchdog, 1);
+    std::printf("  bus watchdog     %s\n", watchdog < 0   ? "TRIPPED: stopped, ignores goals until a run activates it"
+                                        : watchdog == 0 ? "off"
+                                                        : (std::to_string(watchdog * 20) + " ms").c_str());
     std::printf("  position limits  %.2f .. %.2f deg (ticks %d .. %d)\n",
                 dxl::ticks_to_degrees(v(dxl::addr::min_position_limit, 4)),
                 dxl::ticks_to_degrees(v(dxl::addr::max_position_limit, 4)), v(dxl::addr::min_position_limit, 4),
