@@ -36,7 +36,8 @@ Result<ChipPtr> open_chip(const GpioLineConfig& cfg) {
         if (err == ENOENT)
             return Error{ErrorCode::not_found,
                          "GPIO chip '" + cfg.chip + "' not found (no such device node under /dev): list the chips "
-                         "with 'gpiodetect'; without hardware use a fake chip, e.g. \"fake:estop\""};
+                         "with 'gpiodetect' (a fake chip such as \"fake:estop\" stands in only without hardware, in tests "
+                         "and the simulation: it never trips, so never on a real hand)"};
         if (err == EACCES || err == EPERM)
             return Error{ErrorCode::io_error, "permission denied opening GPIO chip '" + cfg.chip +
                                                   "': add your user to the 'gpio' group or install a udev rule"};
