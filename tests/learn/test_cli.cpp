@@ -129,6 +129,10 @@ TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][c
     const auto listed = r.output.substr(r.output.find("Available classifier plugins:"));
     CHECK_THAT(listed.substr(0, listed.find('(')), Catch::Contains("bagged_trees"));
     CHECK_THAT(r.output, !Catch::Contains("nonexistent.csv"));
+    // A plugin of another kind is said to be one (review: it read as absent).
+    r = rollsense_cli("evaluate /nonexistent.csv --classifier example_bump");
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains("plugin 'example_bump' at ") && Catch::Contains("is a sensor plugin, not a classifier"));
     r = rollsense_cli("evaluate /tmp --classifier bagged_trees,,x");
     CHECK(r.status == 2);
     CHECK_THAT(r.output, Catch::Contains("empty entry"));

@@ -74,7 +74,15 @@ Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegis
     if (specs.empty()) return Error{ErrorCode::invalid_argument, "no classifier requested"};
     // Every name first, so one typo in a list of several costs no extraction or training.
     for (const auto& s : specs) {
-        if (registry.find(s.plugin, PluginKind::classifier)) continue;
+        auto found = registry.find(s.plugin, PluginKind::classifier);
+        if (found) continue;
+        // A plugin of that name of another kind, or its own file refused: the registry's words say which (review:
+        // "no classifier plugin named" hid a file another compiler built).
+        const bool named = std::ranges::any_of(registry.scan(), [&](const runtime::PluginCandidate& c) {
+            return c.library ? c.library->name() == s.plugin
+                             : c.path.filename().string().starts_with("librollsense_" + s.plugin + ".so");
+        });
+        if (named) return found.error();
         const auto names = available_classifiers(registry);
         std::string list;
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
