@@ -78,11 +78,8 @@ Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegis
         if (found) continue;
         // A plugin of that name of another kind, or its own file refused: the registry's words say which (review:
         // "no classifier plugin named" hid a file another compiler built).
-        const bool named = std::ranges::any_of(registry.scan(), [&](const runtime::PluginCandidate& c) {
-            return c.library ? c.library->name() == s.plugin
-                             : c.path.filename().string().starts_with("librollsense_" + s.plugin + ".so");
-        });
-        if (named) return found.error();
+        const auto& found_files = registry.scan();
+        if (std::ranges::any_of(found_files, [&](const auto& c) { return c.is_plugin(s.plugin); })) return found.error();
         const auto names = available_classifiers(registry);
         std::string list;
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;

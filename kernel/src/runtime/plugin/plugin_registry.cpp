@@ -160,7 +160,7 @@ Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::str
     std::string msg = "no " + std::string(to_string(kind)) + " plugin named '" + name + "'";
     // Its own file, found but refused (another compiler, a missing library): that first (review: it read as absent).
     for (const auto& c : candidates_)
-        if (!c.library && c.path.filename().string().starts_with("librollsense_" + name + ".so"))
+        if (!c.library && c.is_plugin(name))
             msg += " loads: " + c.path.string() + " is not used: " + c.failure;
     msg += ". Searched:";
     for (const auto& d : search_path_) msg += "\n  " + d.string() + (fs::is_directory(d) ? "" : " (no such folder)");
