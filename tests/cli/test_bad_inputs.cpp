@@ -250,6 +250,24 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     CHECK(shipped.output.find("SCHEMA FAILED") == std::string::npos);
 }
 
+// Review: a plugin whose static initialiser throws ended `plugins` with "unexpected error" naming no file, and a
+// run that went on after it hung (the unwind out of dlopen leaves the loader's lock held).
+TEST_CASE("a plugin whose static initialiser throws stops the process with its file named") {
+    TempDir dir("rollsense-cli-static-thrower");
+    const std::string path = " --plugin-path " + shell_quoted(std::string(ROLLSENSE_TEST_STATIC_THROWER_DIR));
+    const auto listing = run_rollsense("plugins" + path);
+    INFO(listing.output);
+    CHECK(listing.status == 3);
+    CHECK(count_of(listing.output, "librollsense_test_static_thrower.so: its static initialisation threw an "
+                                   "exception") == 1);
+    CHECK(listing.output.find("unexpected error") == std::string::npos);
+    const auto run = run_rollsense("run " + kDemo + path + " --no-progress --out " + shell_quoted(dir / "out"));
+    INFO(run.output);
+    CHECK(run.status == 3);
+    CHECK(count_of(run.output, "fix the plugin or remove it from the search path") == 1);
+    CHECK_FALSE(fs::exists(dir / "out" / "manifest.csv"));
+}
+
 // A profile's content error was printed as a "parse error" with the file alone ("mock.lua: sample_rate_hz and
 // control_rate_hz must be > 0"): now once, as a bad profile, at the key's file:line with the way out, exit 3.
 TEST_CASE("a profile whose content is wrong is named once by file:line and key, as a bad profile (3)") {

@@ -1,24 +1,19 @@
 // Seeded random numbers that are the same on every machine.
 //
-// Why not <random>: std::uniform_int_distribution, std::normal_distribution
-// and friends are implementation-defined, so the same seed draws different
-// numbers with another standard library. A simulated dataset is identified by
-// its run seed and a trained model by its seed, so the generator and its
-// distributions are spelled out here, once, for every plugin:
+// Why not <random>: std::uniform_int_distribution, std::normal_distribution and friends are implementation-defined,
+// so the same seed draws different numbers with another standard library. A simulated dataset is identified by its
+// run seed and a trained model by its seed, so the generator and its distributions are spelled out here, once, for
+// every plugin:
 //   - splitmix64 (Steele, Lea, Flood 2014) to turn seeds into state,
 //   - xoshiro256** (Blackman, Vigna 2018) for the stream,
-//   - Lemire's multiply-shift for integers below n, 53-bit uniform doubles,
-//     Box–Muller for normals.
+//   - Lemire's multiply-shift for integers below n, 53-bit uniform doubles, Box–Muller for normals.
 //
-// Two ways of filling the state exist because recorded datasets and trained
-// models depend on each; both are kept bit-for-bit and named for what they do:
-//   splitmix64_sequence  state words = successive outputs of a splitmix64
-//                        generator (Vigna's recommendation; the bagged trees'
-//                        numbered streams),
-//   splitmix64_chain     each word = splitmix64 of the previous word (the
-//                        sim sensor's named streams).
-// Header-only: plugins get it through the SDK include path without a symbol
-// to export.
+// Two ways of filling the state exist because recorded datasets and trained models depend on each; both are kept
+// bit-for-bit and named for what they do:
+//   splitmix64_sequence  state words = successive outputs of a splitmix64 generator (Vigna's recommendation; the
+//                        bagged trees' numbered streams),
+//   splitmix64_chain     each word = splitmix64 of the previous word (the sim sensor's named streams).
+// Header-only: plugins get it through the SDK include path without a symbol to export.
 #pragma once
 
 #include <array>
@@ -28,12 +23,12 @@
 
 namespace rollsense::random {
 
-// splitmix64's increment (2^64 / golden ratio): a splitmix64 generator's
-// state advances by it, and its n-th output is splitmix64(seed + n·gamma).
+// splitmix64's increment (2^64 / golden ratio): a splitmix64 generator's state advances by it, and its n-th output
+// is splitmix64(seed + n·gamma).
 inline constexpr std::uint64_t kGoldenGamma = 0x9E3779B97F4A7C15ull;
 
-// splitmix64's output for counter value x: add the golden gamma, then the
-// finaliser. A bijective mixer, used to derive independent seeds.
+// splitmix64's output for counter value x: add the golden gamma, then the finaliser. A bijective mixer, used to
+// derive independent seeds.
 constexpr std::uint64_t splitmix64(std::uint64_t x) noexcept {
     x += kGoldenGamma;
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -41,8 +36,8 @@ constexpr std::uint64_t splitmix64(std::uint64_t x) noexcept {
     return x ^ (x >> 31);
 }
 
-// FNV-1a (64-bit) of a label: gives every named stream its own seed, so adding
-// a stream later does not shift the draws of the existing ones.
+// FNV-1a (64-bit) of a label: gives every named stream its own seed, so adding a stream later does not shift the
+// draws of the existing ones.
 constexpr std::uint64_t fnv1a64(std::string_view label) noexcept {
     std::uint64_t h = 0xcbf29ce484222325ull;
     for (char c : label) {
@@ -81,8 +76,7 @@ private:
 
 class Xoshiro256ss {
 public:
-    // The raw state (not all zero), e.g. to check against the reference
-    // implementation's published outputs.
+    // The raw state (not all zero), e.g. to check against the reference implementation's published outputs.
     static constexpr Xoshiro256ss from_state(std::uint64_t s0, std::uint64_t s1, std::uint64_t s2,
                                              std::uint64_t s3) noexcept {
         Xoshiro256ss g;
@@ -102,8 +96,8 @@ public:
         for (auto& word : g.s_) word = x = splitmix64(x);
         return g;
     }
-    // Stream `index` of `seed` (e.g. one per tree): depends on nothing else,
-    // so work split over threads draws the same numbers. Sequence-seeded.
+    // Stream `index` of `seed` (e.g. one per tree): depends on nothing else, so work split over threads draws the
+    // same numbers. Sequence-seeded.
     static constexpr Xoshiro256ss numbered_stream(std::uint64_t seed, std::uint64_t index) noexcept {
         return splitmix64_sequence(splitmix64(seed) ^ splitmix64(index ^ 0xD1B54A32D192ED03ull));
     }
@@ -129,8 +123,7 @@ public:
     constexpr double uniform() noexcept { return unit_interval(next()); }
     constexpr double uniform(double lo, double hi) noexcept { return lo + (hi - lo) * uniform(); }
 
-    // Standard normal (Box–Muller; the second value of each pair is kept for
-    // the next call).
+    // Standard normal (Box–Muller; the second value of each pair is kept for the next call).
     double normal() noexcept {
         if (has_spare_) {
             has_spare_ = false;

@@ -1,18 +1,16 @@
 // The Lua state a roll script runs in (ArduPilot-style sandbox):
-// - a memory-capped allocator (an allocation past the cap fails, which Lua
-//   reports as "not enough memory"; the allocator notes the script's line);
-// - a fresh environment with a whitelist: no io, no os.execute/remove/exit,
-//   no debug, no dofile/loadfile, no string.dump, no bytecode (load is text-only);
-// - `require` that finds only the rollsense module and text modules in the
-//   script's folder and share/lua, loaded into the same sandbox;
-// - an instruction-count hook for cancellation: once cancelled, the hook
-//   re-arms itself to fire on every instruction, so `pcall` cannot swallow it;
-//   xpcall skips the script's message handler once cancelled (a handler runs
-//   where hooks are off when the error came from the hook), and every task
-//   body runs under a pcall of the kernel's so that its `<close>` variables
-//   are closed with hooks on (see lua_task.cpp);
-// - no finalizers: setmetatable refuses a `__gc` field (Lua runs finalizers
-//   with hooks off, so no cancel could stop one);
+// - a memory-capped allocator (an allocation past the cap fails, which Lua reports as "not enough memory"; the
+//   allocator notes the script's line);
+// - a fresh environment with a whitelist: no io, no os.execute/remove/exit, no debug, no dofile/loadfile, no
+//   string.dump, no bytecode (load is text-only);
+// - `require` that finds only the rollsense module and text modules in the script's folder and share/lua, loaded
+//   into the same sandbox;
+// - an instruction-count hook for cancellation: once cancelled, the hook re-arms itself to fire on every
+//   instruction, so `pcall` cannot swallow it; xpcall skips the script's message handler once cancelled (a handler
+//   runs where hooks are off when the error came from the hook), and every task body runs under a pcall of the
+//   kernel's so that its `<close>` variables are closed with hooks on (see lua_task.cpp);
+// - no finalizers: setmetatable refuses a `__gc` field (Lua runs finalizers with hooks off, so no cancel could stop
+//   one);
 // - pattern matching bounded in cost (pattern_guard.hpp);
 // - copies C++ makes of script data are charged against the heap cap (charge()).
 #pragma once
@@ -41,8 +39,8 @@ struct SandboxLimits {
     double cancel_grace_ms = 5000;          // after a cancel, the watchdog's patience (cancel_watchdog.hpp)
 };
 
-// A Lua heap with a cap, for the sandbox and for profiles: an allocation past
-// it fails, and Lua raises "not enough memory" in the script.
+// A Lua heap with a cap, for the sandbox and for profiles: an allocation past it fails, and Lua raises "not enough
+// memory" in the script.
 struct LuaHeap {
     std::size_t cap = 0;
     std::size_t used = 0;
@@ -51,8 +49,8 @@ struct LuaHeap {
     static void* allocate(void* heap, void* ptr, std::size_t osize, std::size_t nsize);
 };
 
-// The sandbox is the run's Cancellation while a script runs: its instruction
-// hook must see the flag at once, and sets it itself (slice limit, Ctrl-C).
+// The sandbox is the run's Cancellation while a script runs: its instruction hook must see the flag at once, and
+// sets it itself (slice limit, Ctrl-C).
 class Sandbox final : public Cancellation {
 public:
     Sandbox(SandboxLimits limits, std::vector<std::filesystem::path> module_path);
@@ -80,15 +78,15 @@ public:
     ErrorCode cancel_code() const { return cancel_code_; }
     // Install the hook on a coroutine (new threads inherit it, this re-arms).
     void arm(lua_State* thread);
-    // Called by the scheduler right before resuming Lua code, and right after
-    // Lua hands control back (the cancel watchdog watches the gap).
+    // Called by the scheduler right before resuming Lua code, and right after Lua hands control back (the cancel
+    // watchdog watches the gap).
     void start_slice(lua_State* running);
     void end_slice() { in_lua_since_ms_.store(0); heap_.running = nullptr; }
     // Monotonic ms since Lua was entered, 0 when Lua is not running.
     std::int64_t in_lua_since_ms() const { return in_lua_since_ms_.load(); }
 
-    // A copy of `bytes` C++ makes for the script (`what`, for the message):
-    // refused when the Lua heap plus the copy would pass the cap.
+    // A copy of `bytes` C++ makes for the script (`what`, for the message): refused when the Lua heap plus the copy
+    // would pass the cap.
     Status charge(std::size_t bytes, const std::string& what) const;
 
     std::size_t memory_used() const { return heap_.used; }
@@ -99,8 +97,8 @@ public:
 
     static Sandbox& of(lua_State* L);  // the sandbox owning a Lua thread
 
-    // A flag set asynchronously (a signal handler, an e-stop thread); the hook
-    // turns it into a cancellation with `reason` at the next check.
+    // A flag set asynchronously (a signal handler, an e-stop thread); the hook turns it into a cancellation with
+    // `reason` at the next check.
     void watch_flag(const std::atomic<bool>* flag, std::string reason) {
         external_flag_ = flag;
         external_reason_ = std::move(reason);

@@ -1,6 +1,9 @@
 #include "runtime/plugin/plugin_registry.hpp"
 
+#include "rollsense/log.hpp"
+
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -72,7 +75,14 @@ PluginCandidate PluginRegistry::load_file(const fs::path& file) {
     boost::dll::shared_library lib;
     boost::dll::fs::error_code ec;  // not the throwing load: its what() adds an errno text unrelated to dlerror()'s
     // Every symbol bound now: one missing is this file's failure here, not a process killed mid-run (review).
-    lib.load(file.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
+    try {
+        lib.load(file.string(), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
+    } catch (...) {  // a static initialiser threw: the unwind left the loader's lock held, so any thread may hang now
+        log_error("plugins", file.string() + ": its static initialisation threw an exception, which leaves the dynamic "
+                             "loader locked: the process stops here (fix the plugin or remove it from the search path)");
+        std::fflush(stderr);
+        std::_Exit(3);
+    }
     if (ec) {  // dlopen's own reason; about a library this one needs, it names that library, not this file
         const char* why = ::dlerror();
         return fail("cannot be loaded: " + (why ? std::string(why) : ec.message()) +

@@ -1,8 +1,7 @@
-// Robot profiles: Lua files in share/profiles/ that say which plugin drives
-// which device, with what parameters, what the joint limits are and how the
-// run is clocked. A profile is configuration only (Cartographer-style): it runs
-// in an empty sandbox, and every key must be one the kernel knows, so a typo is
-// an error naming the file:line and the key instead of a silent default.
+// Robot profiles: Lua files in share/profiles/ that say which plugin drives which device, with what parameters, what
+// the joint limits are and how the run is clocked. A profile is configuration only (Cartographer-style): it runs in an
+// empty sandbox, and every key must be one the kernel knows, so a typo is an error naming the file:line and the key
+// instead of a silent default.
 //
 //   return {
 //     description = "...",
@@ -17,8 +16,8 @@
 //     safety = { estop = { chip = .., line = .., active_low = .. }, trigger = { chip = .., line = .., pulse_ms = .. } },
 //   }
 //
-// Inside a profile, `include("other")` returns another profile's table (to
-// extend it) and `setting("key", default)` reads a --set value.
+// Inside a profile, `include("other")` returns another profile's table (to extend it) and `setting("key", default)`
+// reads a --set value.
 #pragma once
 
 #include <filesystem>
@@ -83,9 +82,9 @@ struct Profile {
 };
 
 // Command-line settings (--set key=value). One namespace rule (docs/scripting.md, "Settings"): a profile entry
-// (sample_rate_hz) or a dotted path under one (devices., joints., ...) overrides that part of the profile, so a
-// plugin parameter is devices.NAME.params.KEY; every other key is a script setting: plain for the script (and a
-// profile's `setting`), MODULE.KEY for a Lua module (etroll.clamp_current).
+// (sample_rate_hz) or a dotted path under one (devices., joints., ...) overrides that part of the profile, so a plugin
+// parameter is devices.NAME.params.KEY; every other key is a script setting: plain for the script (and a profile's
+// `setting`), MODULE.KEY for a Lua module (etroll.clamp_current).
 class Settings {
 public:
     Status add(const std::string& key_equals_value);

@@ -25,25 +25,25 @@ struct Joint {
     JointState state;
 };
 
-// The position mode a joint holds and moves in: extended position where that is
-// the joint's default (a multi-turn winch), plain position otherwise.
+// The position mode a joint holds and moves in: extended position where that is the joint's default (a multi-turn
+// winch), plain position otherwise.
 ControlMode position_mode_of(const JointInfo& info);
-// "Stay where you are": the joint's position mode at its present position,
-// clamped into its limits. Used on activation, for the safe state and by hold().
+// "Stay where you are": the joint's position mode at its present position, clamped into its limits. Used on activation,
+// for the safe state and by hold().
 JointCommand hold_command(const Joint& joint);
 
 class Robot final : public JointAccess {
 public:
-    // Creates and configures every device of the profile (parameters checked
-    // against each plugin's schema). Nothing moves yet.
+    // Creates and configures every device of the profile (parameters checked against each plugin's schema). Nothing
+    // moves yet.
     static Result<std::unique_ptr<Robot>> create(const Profile& profile, PluginRegistry& registry,
                                                  const std::filesystem::path& share_dir);
     ~Robot() override;
 
     // Activate every device; each joint then holds where it is.
     Status activate(double time);
-    // Best effort, never throws: stop every joint (hold, or torque off where the
-    // profile says so), then deactivate (or recover, if failed) and clean up every device.
+    // Best effort, never throws: stop every joint (hold, or torque off where the profile says so), then deactivate (or
+    // recover, if failed) and clean up every device.
     void shutdown(double time) noexcept;
     // Stop every joint now: the profile's safe action (hold here, or torque off) to every actuator that is active or
     // failed, so the servos that still answer stop even when another one on their bus does not. Used on any failure

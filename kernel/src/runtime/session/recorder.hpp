@@ -27,8 +27,7 @@ public:
     Recorder(Robot& robot, const Clock& clock, double sample_rate_hz, std::uint64_t run_seed);
     ~Recorder();
 
-    // Open (or, resuming, reopen) the dataset trials are saved into. Without
-    // one, trials can be recorded but not saved.
+    // Open (or, resuming, reopen) the dataset trials are saved into. Without one, trials can be recorded but not saved.
     Status open_dataset(const std::filesystem::path& dir, const DatasetInfo& info, bool resume,
                         std::size_t commit_every);
     bool has_dataset() const { return dataset_ != nullptr; }
@@ -52,20 +51,20 @@ public:
     Status flush();
     // Already in the dataset (a resumed run skips it; counted as skipped), or recorded by another shard.
     bool has_trial(const std::string& id);
-    // rs.random's generator: in a trial the trial's (its seed), outside one the run's (--seed): a draw between
-    // trials does not shift a trial's, and none is the same for every seed.
+    // rs.random's generator: in a trial the trial's (its seed), outside one the run's (--seed): a draw between trials
+    // does not shift a trial's, and none is the same for every seed.
     std::mt19937_64& trial_random() { return trial_open_ ? trial_rng_ : run_rng_; }
 
-    // The scheduler's sampling: when the next sample is due (infinity when
-    // not recording), and taking it. A failed sample ends the recording.
+    // The scheduler's sampling: when the next sample is due (infinity when not recording), and taking it. A failed
+    // sample ends the recording.
     double next_sample() const { return recording_ ? next_sample_ : std::numeric_limits<double>::infinity(); }
     Status sample_tick(double now);
     std::function<void()> on_sample;  // after each sample taken (Session: its options' observer)
     // The run failed or ended while recording: stop the sensors, keep nothing.
     void abort_recording();
 
-    // Trials this run saved, less those a failed write lost: once flush() has
-    // returned, exactly the trials this run made durable (in the manifest).
+    // Trials this run saved, less those a failed write lost: once flush() has returned, exactly the trials this run
+    // made durable (in the manifest).
     std::size_t trials_saved() const;
     std::size_t trials_skipped() const { return trials_skipped_; }
     // run-info.csv of the dataset, if one is open (best effort).

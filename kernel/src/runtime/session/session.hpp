@@ -1,8 +1,8 @@
 // One run of a roll script on a robot profile: the assembly of the parts a run needs, in the order it needs them. The
-// profile's robot (plugins), the injected clock, the recorder (trials, dataset), the safety lines, the Lua sandbox
-// with the rollsense module, and the scheduler that runs the script's coroutines as tasks, then its cleanup
-// functions, and leaves the hand safe. The scheduler, recorder and safety know nothing of Lua (see scheduler.hpp);
-// this class and runtime/lua/ are the layer that drives them from a script.
+// profile's robot (plugins), the injected clock, the recorder (trials, dataset), the safety lines, the Lua sandbox with
+// the rollsense module, and the scheduler that runs the script's coroutines as tasks, then its cleanup functions, and
+// leaves the hand safe. The scheduler, recorder and safety know nothing of Lua (see scheduler.hpp); this class and
+// runtime/lua/ are the layer that drives them from a script.
 #pragma once
 
 #include <filesystem>
@@ -77,8 +77,8 @@ public:
 
     // -------- used by the Lua bindings --------
     static Session& of(lua_State* L);
-    // After a Lua panic or std::terminate in a run: the prepared last resort
-    // (no heap, no Lua), then run-info if the heap still serves; exit 134.
+    // After a Lua panic or std::terminate in a run: the prepared last resort (no heap, no Lua), then run-info if the
+    // heap still serves; exit 134.
     [[noreturn]] static void end_in_crash(ErrorCode code, const char* what, const char* detail) noexcept;
     double now() const { return clock_->now(); }
     // Round a duration to the virtual clock's grid (Clock::quantize).
@@ -93,8 +93,8 @@ public:
     Sandbox& sandbox() { return *sandbox_; }
     PluginRegistry& registry() { return *registry_; }
 
-    // Trials: the recorder's, plus what a recording means for the scheduler
-    // (control grid re-phased) and the safety lines (trigger pulse).
+    // Trials: the recorder's, plus what a recording means for the scheduler (control grid re-phased) and the safety
+    // lines (trigger pulse).
     Status begin_trial(TrialInfo info) { return recorder_->begin_trial(std::move(info)); }
     const TrialInfo& trial() const { return recorder_->trial(); }
     bool trial_open() const { return recorder_->trial_open(); }
@@ -110,8 +110,7 @@ public:
     bool has_trial(const std::string& id) { return recorder_->has_trial(id); }
     std::mt19937_64& trial_random() { return recorder_->trial_random(); }
 
-    // A concurrent task running the Lua function at `function_index` of L;
-    // refused past kMaxTasks tasks alive at once.
+    // A concurrent task running the Lua function at `function_index` of L; refused past kMaxTasks tasks alive at once.
     static constexpr std::size_t kMaxTasks = 1000;
     Status spawn(lua_State* L, int function_index, std::string name);
     void add_cleanup(int function_ref) { cleanup_refs_.push_back(function_ref); }
@@ -123,8 +122,8 @@ public:
     static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 
-    // The error code of the last Status a binding raised as a Lua error, so a
-    // script that dies of it keeps the code (limit violation, hardware fault).
+    // The error code of the last Status a binding raised as a Lua error, so a script that dies of it keeps the code
+    // (limit violation, hardware fault).
     void set_raised_code(ErrorCode code) { raised_code_ = code; }
     ErrorCode take_raised_code() {
         auto c = raised_code_;
@@ -141,13 +140,13 @@ private:
     Status open_dataset();
     Status run_cleanup();
     void write_run_info(const Status& status, double wall_start);
-    // The cancel watchdog's way out (its own thread): safe state (the prepared
-    // last resort if the script's thread holds the devices), run-info, exit 130.
+    // The cancel watchdog's way out (its own thread): safe state (the prepared last resort if the script's thread holds
+    // the devices), run-info, exit 130.
     [[noreturn]] void last_resort(const std::string& why, ErrorCode code, double wall_start);
     double wall_start_ = 0.0;  // of the current run(), for run-info on the way out
 
-    // Declared in the order they depend on each other: the scheduler (whose
-    // Lua tasks hold references into the sandbox) goes first, the robot last.
+    // Declared in the order they depend on each other: the scheduler (whose Lua tasks hold references into the sandbox)
+    // goes first, the robot last.
     SessionOptions options_;
     Profile profile_;
     std::unique_ptr<PluginRegistry> registry_;
