@@ -271,6 +271,21 @@ TEST_CASE("evaluate and train -o never overwrite a file of the dataset being rea
     const auto r = rollsense_cli("features " + d + " -o " + d + "/features.csv");
     INFO(r.output);
     CHECK(r.status == 0);
+    // Review: another command's result was replaced (evaluate -o RUN/model.rsm made the run's model an evaluation).
+    for (const char* f : {"model.rsm", "report.html", "evaluation.txt"}) std::ofstream(ds / f) << "kept " << f;
+    for (const std::string& args : {"evaluate " + d + " --repeats 1 -o " + d + "/model.rsm",
+                                    "features " + d + " -o " + d + "/report.html", "train " + d + " -o " + d +
+                                    "/evaluation.txt", "features " + d + " -o " + d + "/model.rsm"}) {
+        INFO(args);
+        const auto refused = rollsense_cli(args);
+        INFO(refused.output);
+        CHECK(refused.status == 2);
+        CHECK(count_of(refused.output, "with another kind of file; give -o another name") == 1);
+        CHECK_THAT(refused.output, !Catch::Contains("clean "));
+    }
+    for (const char* f : {"model.rsm", "report.html", "evaluation.txt"})
+        CHECK(file_text(ds / f) == std::string("kept ") + f);
+    CHECK(rollsense_cli("features " + d + " -o " + d + "/features.csv").status == 0);  // its own result: replaced
     fs::remove_all(dir);
 }
 

@@ -1,12 +1,44 @@
 #include "cli/output_paths.hpp"
 
 #include <cstdio>
+#include <string>
+#include <string_view>
 
 #include "cli/command.hpp"
 #include "rollsense/atomic_file.hpp"
 #include "rollsense/dataset_files.hpp"
 
 namespace rollsense::cli {
+namespace {
+// The results a stock run leaves beside its dataset, and the commands that write each (review: `evaluate -o
+// RUN/model.rsm` replaced the run's model with an evaluation, and `features -o RUN/report.html` its report).
+struct RunResult {
+    const char* file;
+    const char* what;
+    const char* writers[2];
+};
+constexpr RunResult kRunResults[] = {
+    {"features.csv", "the features table", {"features", nullptr}},
+    {"evaluation.txt", "the evaluation", {"evaluate", "report"}},
+    {"evaluation.json", "the evaluation", {"evaluate", "report"}},
+    {"model.rsm", "the trained model", {"train", nullptr}},
+    {"report.html", "the report", {"report", nullptr}},
+};
+
+// Empty when `command` may replace `file`; else why not (an existing result another command wrote).
+std::string replaces_other_result(const char* command, const std::filesystem::path& file) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) return {};
+    for (const auto& r : kRunResults) {
+        if (file.filename() != r.file) continue;
+        for (const char* writer : r.writers)
+            if (writer && std::string_view(writer) == command) return {};
+        return "-o " + file.string() + " would replace " + r.what + " that `rollsense " + r.writers[0] +
+               "` wrote there with another kind of file; give -o another name, or delete it first if it is unwanted";
+    }
+    return {};
+}
+}  // namespace
 
 int check_output_files(const char* command, const std::filesystem::path& input,
                        const std::vector<std::filesystem::path>& outputs) {
@@ -25,6 +57,10 @@ int check_output_files(const char* command, const std::filesystem::path& input,
                 std::fprintf(stderr, "rollsense %s: %s\n", command, st.message().c_str());
                 return kExitUsage;
             }
+        if (const auto why = replaces_other_result(command, file); !why.empty()) {
+            std::fprintf(stderr, "rollsense %s: %s\n", command, why.c_str());
+            return kExitUsage;
+        }
         if (auto st = check_can_write(file); !st) {
             std::fprintf(stderr, "rollsense %s: %s\n", command, st.message().c_str());
             return exit_code_for(st.code());

@@ -1,8 +1,7 @@
-// The output files of features, evaluate, train and report, checked before
-// any work: each can be written (rollsense/atomic_file.hpp: not a folder, its
-// folder exists and is writable), and none is a file of the dataset the command
-// reads (rollsense/dataset_files.hpp). An hour of evaluation is not lost to a
-// mistyped -o, and a slip never overwrites the data.
+// The output files of features, evaluate, train and report, checked before any work: each can be written
+// (rollsense/atomic_file.hpp: not a folder, its folder exists and is writable), none is a file of the dataset the
+// command reads (rollsense/dataset_files.hpp), nor an existing result of another command (a run's model.rsm given
+// to evaluate -o). An hour of evaluation is not lost to a mistyped -o, and a slip never overwrites the data.
 #pragma once
 
 #include <filesystem>
@@ -10,10 +9,9 @@
 
 namespace rollsense::cli {
 
-// 0 when every file of `outputs` may be written; else prints the first problem
-// once ("rollsense COMMAND: ...") and returns the exit code: 2 for a file of
-// the dataset `input` (when `input` is a dataset folder), 5 for a path that
-// cannot be written.
+// 0 when every file of `outputs` may be written; else prints the first problem once ("rollsense COMMAND: ...") and
+// returns the exit code: 2 for a file of the dataset `input` (when `input` is a dataset folder) or another command's
+// result, 5 for a path that cannot be written.
 int check_output_files(const char* command, const std::filesystem::path& input,
                        const std::vector<std::filesystem::path>& outputs);
 
