@@ -110,6 +110,13 @@ TEST_CASE("a shard's folder is resumed as that shard only, and a whole run's wit
     INFO(as_shard.output);
     CHECK(as_shard.status == 2);
     CHECK(as_shard.output.find("it holds a whole run") != std::string::npos);
+    // Review: a whole run killed before its end (no run-info.csv yet) was resumed as a shard, mixing the two.
+    std::filesystem::remove(whole / "run-info.csv");
+    auto killed = rt::record(whole, small + "--shard 0/2 --resume");
+    INFO(killed.output);
+    CHECK(killed.status == 2);
+    CHECK(killed.output.find("it has none: a whole run killed before its end") != std::string::npos);
+    CHECK(!std::filesystem::exists(whole / "shard-plan.csv"));
     CHECK(rt::record(whole, small + "--resume").status == 0);
 }
 

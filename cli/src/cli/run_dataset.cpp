@@ -84,6 +84,9 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
     }
     if (fs::exists(dir / kShardPlanFile, ec) && (!recorded || recorded->empty()))
         recorded = "K/N";  // a shard's plan without its record: which shard is not known
+    // A shard writes its run-info.csv when it starts, a whole run when it ends: a run's folder (run-config.csv)
+    // without one is a whole run killed before its end (review: it was resumed as a shard, mixing the two).
+    if (!recorded && fs::exists(dir / kRunConfigFile, ec)) recorded = "";
     const std::string asked = shard ? shard->text() : std::string();
     // A shard's plan without the run-info.csv that names the shard: any --shard is taken at its word.
     if (!recorded || *recorded == asked || (*recorded == "K/N" && !asked.empty())) return {};
@@ -91,7 +94,8 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
                               "and resume OUT (docs/cluster.md)";
     if (recorded->empty())
         return {ErrorCode::invalid_argument, "cannot resume " + dir.string() + " with --shard " + asked +
-                                                 ": it holds a whole run (its run-info.csv names no shard); "
+                                                 ": it holds a whole run (its run-info.csv names no shard, or it has none: a whole run killed before "
+                                                 "its end); "
                                                  "resume it without --shard"};
     const std::string holds = "cannot resume " + dir.string() + (asked.empty() ? "" : " as --shard " + asked) +
                               ": it holds shard " + *recorded + " of a run (" +
