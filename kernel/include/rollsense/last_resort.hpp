@@ -1,8 +1,7 @@
-// The last resort: actions a device prepares at activation that make it safe
-// with no heap, no locks and no Lua (e.g. a torque-off packet written with
-// write(2)). The kernel runs them when its ordinary safe state cannot be
-// trusted: a Lua panic, std::terminate, an escaping std::bad_alloc, a script
-// thread stuck inside a plugin call. They must be async-signal-safe and may run twice.
+// The last resort: actions a device prepares at activation that make it safe with no heap, no locks and no Lua (e.g. a
+// torque-off packet written with write(2)). The kernel runs them when its ordinary safe state cannot be trusted: a Lua
+// panic, std::terminate, an escaping std::bad_alloc, a script thread stuck inside a plugin call. They must be
+// async-signal-safe and may run twice.
 #pragma once
 
 #include "rollsense/export.hpp"

@@ -6,8 +6,8 @@
 //                      "What it measures, in one line", my_sensor_schema)
 //
 // which exports `rollsense_plugin_manifest` (through BOOST_DLL_ALIAS). The kernel reads the manifest's first fields
-// (magic, ABI version, compiler tag) before touching anything else, so a library built against another SDK is
-// reported as "ABI mismatch" instead of crashing the loader.
+// (magic, ABI version, compiler tag) before touching anything else, so a library built against another SDK is reported
+// as "ABI mismatch" instead of crashing the loader.
 #pragma once
 
 #include <cstdint>
@@ -22,8 +22,7 @@
 
 namespace rollsense {
 
-// Bump whenever a type in kernel/include/rollsense changes layout or a virtual
-// function is added, removed or reordered.
+// Bump whenever a type in kernel/include/rollsense changes layout or a virtual function is added, removed or reordered.
 inline constexpr std::uint32_t kPluginAbiVersion = 1;
 inline constexpr std::uint32_t kPluginMagic = 0x4c505352;  // "RSPL"
 inline constexpr const char* kPluginManifestSymbol = "rollsense_plugin_manifest";
@@ -55,8 +54,8 @@ struct PluginManifest {
     const char* version;
     const char* description;
     ParamSchema (*schema)();
-    // Exactly one of these is set, the one matching `kind`. Typed factories
-    // (rather than one returning Component*) avoid dynamic_cast across libraries.
+    // Exactly one of these is set, the one matching `kind`. Typed factories (rather than one returning Component*)
+    // avoid dynamic_cast across libraries.
     Sensor* (*create_sensor)();
     Actuator* (*create_actuator)();
     Classifier* (*create_classifier)();
@@ -81,8 +80,8 @@ void destroy(Component* c) noexcept { delete static_cast<T*>(c); }
 
 }  // namespace rollsense
 
-// KIND is one of: sensor, actuator, classifier. SCHEMA_FN is a function
-// `rollsense::ParamSchema fn()` listing the plugin's parameters.
+// KIND is one of: sensor, actuator, classifier. SCHEMA_FN is a function `rollsense::ParamSchema fn()` listing the
+// plugin's parameters.
 #define ROLLSENSE_PLUGIN(CLASS, KIND, NAME, VERSION, DESCRIPTION, SCHEMA_FN)                                  \
     static_assert(::rollsense::detail::of_kind<CLASS>(::rollsense::PluginKind::KIND),                        \
                   "the plugin class must derive from its KIND's interface: Sensor, Actuator or Classifier");    \

@@ -1,7 +1,7 @@
 // Sensor plugin interface.
 //
-// The kernel's sampling loop (C++, fixed rate, 31.1 Hz by default) calls read() once per sample while a script
-// records. A sensor describes its channels once; every frame has one value per channel.
+// The kernel's sampling loop (C++, fixed rate, 31.1 Hz by default) calls read() once per sample while a script records.
+// A sensor describes its channels once; every frame has one value per channel.
 #pragma once
 
 #include <vector>
@@ -26,9 +26,8 @@ public:
         (void)input;
         return {};
     }
-    // Fill `out` (values already sized to channels().size(), time set). A read
-    // failure is reported in the frame (valid=false, reason), not as a Status;
-    // a Status error means the sensor itself is broken and moves it to `error`.
+    // Fill `out` (values already sized to channels().size(), time set). A read failure is reported in the frame
+    // (valid=false, reason), not as a Status; a Status error means the sensor itself is broken and moves it to `error`.
     virtual Status read(const SampleInput& input, Frame& out) = 0;
     virtual Status stop_recording() { return {}; }
     virtual Status end_trial() { return {}; }

@@ -90,8 +90,7 @@ private:
     std::variant<T, Error> state_;
 };
 
-// Exception form of an Error, for code paths (Lua bindings, CLI) where
-// unwinding is the natural way out.
+// Exception form of an Error, for code paths (Lua bindings, CLI) where unwinding is the natural way out.
 class StatusError : public std::exception {
 public:
     explicit StatusError(Status status) : status_(std::move(status)), what_(status_.error().describe()) {}

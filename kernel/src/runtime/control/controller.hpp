@@ -14,8 +14,7 @@
 
 namespace rollsense::runtime {
 
-// What a controller may see and do. Commands go through the same limit checks
-// as a script's commands.
+// What a controller may see and do. Commands go through the same limit checks as a script's commands.
 class JointAccess {
 public:
     virtual ~JointAccess() = default;

@@ -1,5 +1,4 @@
-// Module assembly and the core of the rollsense Lua API: time, waiting,
-// settings, logging, progress, tasks and cleanup.
+// Module assembly and the core of the rollsense Lua API: time, waiting, settings, logging, progress, tasks and cleanup.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -208,8 +207,8 @@ int after_wait_until(lua_State* L, int, lua_KContext) {
     return 1;
 }
 
-// rs.wait_until(condition, timeout_ms) → true, or false on timeout. The
-// condition is checked once per control period; it must not wait itself.
+// rs.wait_until(condition, timeout_ms) → true, or false on timeout. The condition is checked once per control period;
+// it must not wait itself.
 bool l_wait_until(lua_State* L) {
     luaL_checktype(L, 1, LUA_TFUNCTION);
     const double ms = luaL_optnumber(L, 2, -1);
@@ -229,8 +228,8 @@ bool l_wait_until(lua_State* L) {
 }
 
 // rs.setting(key, default): a --set value (of the default's type where that is a number or boolean: another is the
-// command line's error), or the declared default (rs.settings), or `default`. No default: required. In a namespace
-// that declared its settings, an undeclared key is an error.
+// command line's error), or the declared default (rs.settings), or `default`. No default: required. In a namespace that
+// declared its settings, an undeclared key is an error.
 int l_setting(lua_State* L) {
     const Settings& st = Session::of(L).settings();
     const std::string key = luaL_checkstring(L, 1);
@@ -324,8 +323,8 @@ int l_spawn(lua_State* L) {
     return 0;
 }
 
-// rs.on_cleanup(fn): fn runs when the script ends, however it ends (error,
-// Ctrl-C, e-stop included), after the kernel has stopped every joint.
+// rs.on_cleanup(fn): fn runs when the script ends, however it ends (error, Ctrl-C, e-stop included), after the kernel
+// has stopped every joint.
 int l_on_cleanup(lua_State* L) {
     luaL_checktype(L, 1, LUA_TFUNCTION);
     lua_pushvalue(L, 1);

@@ -1,7 +1,6 @@
 // The safety side of a run, apart from any script: the emergency-stop input and the recording trigger output (through
 // the SDK's DigitalLines), and the interrupt flag that Ctrl-C sets. The scheduler polls the e-stop every control
-// period; a tripped e-stop stops every joint at once, locks out commands and returns the reason, which cancels the
-// run.
+// period; a tripped e-stop stops every joint at once, locks out commands and returns the reason, which cancels the run.
 #pragma once
 
 #include <atomic>
@@ -19,12 +18,12 @@ class Robot;
 
 class Safety {
 public:
-    // Open the profile's safety.estop and safety.trigger lines (none: nothing
-    // to open). Fails if the e-stop is asserted already.
+    // Open the profile's safety.estop and safety.trigger lines (none: nothing to open). Fails if the e-stop is asserted
+    // already.
     Status open(const Profile& profile, const DigitalLines& lines);
 
-    // Once per control period. The reason the run must stop, once, when the
-    // e-stop is asserted or unreadable; the robot is safe and locked by then.
+    // Once per control period. The reason the run must stop, once, when the e-stop is asserted or unreadable; the robot
+    // is safe and locked by then.
     std::optional<std::string> check_estop(Robot& robot, double now);
 
     // A pulse on the trigger output (start of a recording), for `seconds`.
@@ -49,8 +48,8 @@ private:
 
 // SIGINT/SIGTERM/SIGHUP for the lifetime of this object: the first asks the run to stop through `flag` (the script is
 // cancelled, its cleanup runs, the hand is made safe); the third exits at once, unless a watchdog has taken it over
-// (set_hard_interrupt_handled: it makes the hand safe and writes run-info before the exit). The previous handlers
-// come back after.
+// (set_hard_interrupt_handled: it makes the hand safe and writes run-info before the exit). The previous handlers come
+// back after.
 int interrupts_received();
 void set_hard_interrupt_handled(bool handled);
 

@@ -1,6 +1,6 @@
 // A task of the scheduler: a procedure that runs in steps on the run clock. Each resume runs it until it finishes or
-// asks to wait (for a time, for joints to arrive, for a condition); the scheduler resumes it again once the wait
-// ends, and says how it ended (ready, timed out, cancelled). Roll scripts are tasks through the Lua layer
+// asks to wait (for a time, for joints to arrive, for a condition); the scheduler resumes it again once the wait ends,
+// and says how it ended (ready, timed out, cancelled). Roll scripts are tasks through the Lua layer
 // (runtime/lua/lua_task.hpp); C++ procedures and tests implement the interface directly.
 #pragma once
 
@@ -17,15 +17,14 @@ struct Joint;
 
 enum class WaitOutcome { ready, timed_out, cancelled };
 
-// What a task waits for. `until` is the wake time of a time wait and the
-// timeout of the others (infinity: none).
+// What a task waits for. `until` is the wake time of a time wait and the timeout of the others (infinity: none).
 struct Wait {
     enum class Kind { none, time, joints, predicate } kind = Kind::none;
     double until = std::numeric_limits<double>::infinity();
     std::vector<const Joint*> joints;  // Kind::joints: each not moving and within
     double tolerance = 0.5;            //   tolerance of its goal (position modes)
-    // Kind::predicate: checked once per control period. An error ends the
-    // wait as cancelled and fails the run with that error.
+    // Kind::predicate: checked once per control period. An error ends the wait as cancelled and fails the run with that
+    // error.
     std::function<Result<bool>()> predicate;
     std::string what;  // "joint 'finger' to reach 3.000 deg", for timeout messages
 
@@ -55,11 +54,11 @@ public:
     Task& operator=(const Task&) = delete;
 
     const std::string& name() const { return name_; }
-    // Run until the task waits or ends. `last` is how its previous wait ended
-    // (ready on the first resume); a task should end soon after `cancelled`.
+    // Run until the task waits or ends. `last` is how its previous wait ended (ready on the first resume); a task
+    // should end soon after `cancelled`.
     virtual TaskStep resume(WaitOutcome last) = 0;
-    // The run was cancelled (called before each resume while it is): a task
-    // running code of its own makes that code stop (the Lua hook is re-armed).
+    // The run was cancelled (called before each resume while it is): a task running code of its own makes that code
+    // stop (the Lua hook is re-armed).
     virtual void on_cancel() {}
     // Where a waiting task waits, for messages: "script.lua:12" (empty: unknown).
     virtual std::string where() const { return {}; }
