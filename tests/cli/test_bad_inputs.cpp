@@ -268,6 +268,21 @@ TEST_CASE("a plugin whose static initialiser throws stops the process with its f
     CHECK_FALSE(fs::exists(dir / "out" / "manifest.csv"));
 }
 
+// Review (scripting): after rs.trial was refused (an object the sim does not know), the trial stayed open, and a
+// recording of it was saved into the manifest.
+TEST_CASE("a trial the devices refused is not open: nothing of it is recorded or saved") {
+    TempDir dir("rollsense-cli-refused-trial");
+    write_file(dir / "ghost.lua", "local rs = require 'rollsense'\n"
+                                  "print(pcall(rs.trial, { object = 'ZZ', speed = 10, repetition = 1 }))\n"
+                                  "rs.record_start()\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "ghost.lua") + " --no-progress --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(count_of(r.output, "ghost.lua:3: recording needs a trial") == 1);
+    CHECK(read_file(dir / "out" / "manifest.csv").find("ZZ") == std::string::npos);
+}
+
 // A profile's content error was printed as a "parse error" with the file alone ("mock.lua: sample_rate_hz and
 // control_rate_hz must be > 0"): now once, as a bad profile, at the key's file:line with the way out, exit 3.
 TEST_CASE("a profile whose content is wrong is named once by file:line and key, as a bad profile (3)") {

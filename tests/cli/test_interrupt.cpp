@@ -82,3 +82,23 @@ TEST_CASE("Ctrl-C during rollsense evaluate ends it as interrupted") {
     CHECK(r.status == 130);
     CHECK(r.output.find("interrupted by Ctrl-C or a SIGTERM/SIGHUP") != std::string::npos);
 }
+
+// Review (scripting): a task that spawns a task and ends kept the scheduler's pass going forever, past Ctrl-C, the
+// time limit and the control period; only the third Ctrl-C (the watchdog's last resort) ended it, without cleanup.
+TEST_CASE("Ctrl-C stops a chain of spawned tasks, and the cleanup runs") {
+    TempDir dir("rollsense-cli-interrupt-chain");
+    {
+        std::ofstream(dir / "chain.lua") << "local rs = require 'rollsense'\n"
+                                            "rs.on_cleanup(function() rs.log('cleanup ran') end)\n"
+                                            "rs.log('chain starts')\n"
+                                            "local function chain() rs.spawn(chain) end\n"
+                                            "chain()\n"
+                                            "rs.wait(1000)\n";
+    }
+    const auto r = interrupt_when({"run", (dir / "chain.lua").string(), "--no-progress", "--out", (dir / "out").string()},
+                                  "chain starts");
+    INFO(r.output);
+    CHECK(r.status == 130);
+    CHECK(r.output.find("cleanup ran") != std::string::npos);
+    CHECK(r.output.find("interrupted three times") == std::string::npos);
+}

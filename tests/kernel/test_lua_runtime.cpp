@@ -27,6 +27,19 @@ TEST_CASE("rs.wait advances the virtual clock by exactly the time asked", "[lua]
     CHECK(out == "0.250000 1.000000");
 }
 
+// Review (scripting): a polling loop on rs.wait(0) never let a control period run, so on the virtual clock the joint
+// never moved and the run hung; rs.wait(0) now waits for the next control period.
+TEST_CASE("rs.wait(0) lets one control period pass so a polling loop sees the joint move", "[lua]") {
+    kt::TempDir dir;
+    auto out = run_and_read(dir, R"(
+        local f = rs.joint("finger")
+        f:move(20, { velocity = 10, wait = false })
+        local polls = 0
+        while f:position() < 10 do rs.wait(0); polls = polls + 1 end
+        rs.write_output("result.txt", string.format("%s %s", tostring(polls > 1), tostring(rs.now() < 2))))");
+    CHECK(out == "true true");
+}
+
 TEST_CASE("a run of many robot-seconds takes little wall time on the virtual clock", "[lua]") {
     kt::TempDir dir;
     auto r = kt::run_script(dir, "local rs = require 'rollsense'\nrs.wait(600000)\n");
@@ -168,7 +181,10 @@ TEST_CASE("the waiting calls refuse bad arguments before any wait, naming the ca
           std::pair{"rs.wait_until(42)", "bad argument #1 to 'wait_until'"},
           // Review (user journeys) item 9: names for handles said "bad argument #-1 to 'wait_joints'".
           std::pair{"rs.wait_joints({ 'finger' })", "rs.wait_joints: item 1 is a string, not a joint (rs.joint(name))"},
-          std::pair{"rs.save_trial()", "no trial to save: rs.trial{...} first"}}) {
+          std::pair{"rs.save_trial()", "no trial to save: rs.trial{...} first"},
+          // Review (scripting): a NaN or negative timeout meant "wait forever".
+          std::pair{"rs.wait_until(function() return false end, 0/0)", "rs.wait_until: timeout_ms must be a number >= 0"},
+          std::pair{"rs.wait_until(function() return false end, -5)", "rs.wait_until: timeout_ms must be a number >= 0"}}) {
         INFO(call);
         kt::TempDir dir;
         auto r = kt::run_script(dir, std::string("local rs = require 'rollsense'\n") + call + "\n");

@@ -194,7 +194,9 @@ bool l_wait(lua_State* L) {
     const double ms = luaL_checknumber(L, 1);
     if (!(ms >= 0) || !std::isfinite(ms)) luaL_error(L, "rs.wait: milliseconds must be a number >= 0");
     Session& s = Session::of(L);
-    waiting_task(L, "rs.wait").request(Wait::for_time(s.now() + s.quantize(ms / 1000.0)));
+    // 0: the next control period, so a polling loop lets the joints move on the virtual clock too (review: it hung).
+    const double until = ms > 0 ? s.now() + s.quantize(ms / 1000.0) : s.scheduler().next_control();
+    waiting_task(L, "rs.wait").request(Wait::for_time(until));
     return true;
 }
 
@@ -211,7 +213,10 @@ int after_wait_until(lua_State* L, int, lua_KContext) {
 // it must not wait itself.
 bool l_wait_until(lua_State* L) {
     luaL_checktype(L, 1, LUA_TFUNCTION);
-    const double ms = luaL_optnumber(L, 2, -1);
+    const bool timed = !lua_isnoneornil(L, 2);
+    const double ms = timed ? luaL_checknumber(L, 2) : 0;
+    if (timed && (!(ms >= 0) || !std::isfinite(ms)))  // review: NaN and -5 meant "forever"
+        luaL_error(L, "rs.wait_until: timeout_ms must be a number >= 0, or nil for no timeout");
     Session& s = Session::of(L);
     LuaTask& t = waiting_task(L, "rs.wait_until");
     lua_pushvalue(L, 1);
@@ -221,7 +226,7 @@ bool l_wait_until(lua_State* L) {
     w.kind = Wait::Kind::predicate;
     // The script's line that called it, through pcall and other C functions.
     w.predicate = lua_predicate(s.sandbox(), ref, script_line(L, 1).data());
-    w.until = ms >= 0 ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
+    w.until = timed ? s.now() + s.quantize(ms / 1000.0) : HUGE_VAL;
     w.what = "a condition";
     t.request(std::move(w));
     return true;

@@ -34,6 +34,7 @@ double pattern_cost_log10(std::string_view p, std::size_t n, bool every_start) {
                 }
                 continue;
             }
+            if (p[i + 1] >= '1' && p[i + 1] <= '9') ++repeats;  // a back-reference compares up to n bytes (review)
             i += 2;
         } else if (c == '[') {
             ++i;

@@ -44,9 +44,10 @@ Status Recorder::begin_trial(TrialInfo info) {
     info.seed = trial_seed(run_seed_, info.id);
     trial_ = std::move(info);
     trial_rng_.seed(trial_.seed);
-    trial_open_ = true;
     data_ = TrialData{};
-    return robot_.begin_trial(trial_);
+    auto s = robot_.begin_trial(trial_);
+    trial_open_ = s.ok();  // one the devices refused is not open (review: it was recorded and saved all the same)
+    return s;
 }
 
 Status Recorder::can_start() const {

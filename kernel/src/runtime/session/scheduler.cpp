@@ -147,7 +147,7 @@ Status Scheduler::control_tick() {
 double Scheduler::next_event() const {
     double next = std::min({next_control_, recorder_.next_sample(), safety_.next_event()});
     for (const auto& s : slots_)
-        if (s->task && s->wait.kind != Wait::Kind::none) next = std::min(next, s->wait.until);
+        if (s->task) next = std::min(next, s->wait.kind == Wait::Kind::none ? now() : s->wait.until);
     return next;
 }
 
@@ -159,8 +159,9 @@ Status Scheduler::run(TaskRole phase, double deadline, const std::string& over_d
         if (cancellation_.cancelled()) cancel_waits();
         // Ended tasks leave their slots: a script that spawns short tasks for hours does not grow this list.
         slots_.erase(std::remove_if(slots_.begin(), slots_.end(), [](const auto& s) { return !s->task; }), slots_.end());
-        // Resume every task that is ready; spawned tasks join at the end.
-        for (std::size_t i = 0; i < slots_.size(); ++i) {
+        // Resume every task that is ready; one spawned in this pass starts in the next, at the same instant but after
+        // the checks above (review: a chain of spawns kept this loop going past Ctrl-C and the control period).
+        for (std::size_t i = 0, ready = slots_.size(); i < ready; ++i) {
             Slot& s = *slots_[i];
             if (!s.task) continue;
             if (s.wait.kind == Wait::Kind::time && now() >= s.wait.until) s.wait = Wait{};

@@ -55,6 +55,7 @@ public:
     // Recording started at `t`: on the virtual clock the control grid is re-phased on it, so what is recorded depends
     // only on the trial, not on where it falls in the run.
     void on_recording_start(double t);
+    double next_control() const { return next_control_; }
 
 private:
     struct Slot {
