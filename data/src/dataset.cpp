@@ -193,6 +193,9 @@ Result<TrialRecord> parse_manifest_row(const csv::Reader& reader, const std::vec
     for (std::size_t k = 0; k < kProtocolKeys.size(); ++k)
         if (col[8 + k] != SIZE_MAX && !f[col[8 + k]].empty()) r.info.extra[kProtocolKeys[k]] = f[col[8 + k]];
     if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader.where(col[0]) + ": empty trial id"};
+    if (r.info.object.empty())  // review: an empty label became a class of its own
+        return Error{ErrorCode::parse_error, reader.where(col[2]) + ": empty object: every trial names the object it "
+                                                                    "rolled, its class label (e.g. C1)"};
     // A manifest names files inside its dataset folder only.
     const fs::path listed(r.file);
     if (r.file.empty() || listed.is_absolute() ||
@@ -219,6 +222,7 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
     }
     std::vector<TrialRecord> out;
     std::unordered_set<std::string> ids;
+    std::unordered_map<std::string, std::string> listed_by;  // trial file → the trial id listing it
     std::vector<std::string> f;
     for (;;) {
         auto more = reader->next(f);
@@ -230,6 +234,12 @@ Result<std::vector<TrialRecord>> read_manifest(const fs::path& file) {
         if (!ids.insert(r->info.id).second)
             return Error{ErrorCode::parse_error,
                          reader->where(col[0]) + ": trial id '" + r->info.id + "' appears twice"};
+        // Review: one recording listed twice sat in a training fold and a test fold at once.
+        if (const auto [at, fresh] = listed_by.emplace(fs::path(r->file).lexically_normal().string(), r->info.id);
+            !fresh)
+            return Error{ErrorCode::parse_error, reader->where(col[1]) + ": trial '" + r->info.id + "' names the file " +
+                                                     r->file + ", which trial '" + at->second + "' names too: " +
+                                                     "each trial has a file of its own"};
         out.push_back(std::move(*r));
     }
     return out;

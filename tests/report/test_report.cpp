@@ -349,6 +349,9 @@ TEST_CASE("a report made inside the recording run shows that run's provenance, n
         REQUIRE(html.ok());
         CHECK_THAT(*html, !Catch::Contains("No run-info.csv") && Catch::Contains("still in progress") &&
                               Catch::Contains("rollsense run paper.lua --seed 11"));
+        // Review (data): the report named its own software "unknown" (the version was defined for the kernel only).
+        CHECK_THAT(*html, !Catch::Contains("rollsense unknown") && Catch::Contains("<meta name=\"generator\" "
+                                                                                   "content=\"rollsense 0."));
     }
     SECTION("a resumed run: the run-info.csv on disk is the interrupted run's, not this one's") {
         std::ofstream(in.dataset_dir / "run-info.csv") << "key,value\nstatus,cancelled: interrupted by Ctrl-C or a SIGTERM/SIGHUP\n";

@@ -17,8 +17,8 @@
 #include "analysis/report/svg.hpp"
 #include "analysis/report/tables.hpp"
 
-#ifndef ROLLSENSE_VERSION
-#define ROLLSENSE_VERSION "unknown"
+#ifndef ROLLSENSE_VERSION  // the report names the software that wrote it (review: it said "unknown")
+#error "ROLLSENSE_VERSION is set by analysis/CMakeLists.txt"
 #endif
 
 namespace rollsense::report {
