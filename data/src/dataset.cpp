@@ -568,7 +568,17 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
             return Error{read.error().code, "cannot resume: " + read.error().message + way};
         }
         if (!recorded)  // a hand-made dataset's setup, inferred from its first trial file
-            if (auto s = same_setup(read->info()); !s.ok()) return s.error();
+            if (auto s = same_setup(read->info()); !s.ok())  // review: a lost dataset-info.csv read as another setup
+                return Error{s.error().code, s.error().message + " (" + (dir / "dataset-info.csv").string() +
+                                                 " is missing, so its setup was read from its first trial file: "
+                                                 "restore that file if the run wrote one)"};
+        // Review: without run-config.csv a resume took any script and --set, then wrote one claiming its own.
+        if (!w->info_.run_config.empty() && !fs::exists(dir / kRunConfigFile, ec)) {
+            log_warning("dataset", (dir / kRunConfigFile).string() + " is missing: this run's script and --set "
+                                   "cannot be checked against the run that recorded the dataset (only its setup in "
+                                   "dataset-info.csv is), and none is written now");
+            w->info_.run_config.clear();
+        }
         on_disk = std::move(*read);
         if (auto s = keep_earlier_run_info(dir); !s.ok()) return s.error();
     }
@@ -593,7 +603,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
     w->durable_ = w->trials_.size();
     std::vector<PendingFile> files{{dir / "dataset-info.csv", format_info(info)},
                                    {dir / "manifest.csv", w->manifest_text()}};
-    if (!info.run_config.empty()) files.push_back({dir / kRunConfigFile, format_run_config(info.run_config)});
+    if (!w->info_.run_config.empty()) files.push_back({dir / kRunConfigFile, format_run_config(w->info_.run_config)});
     if (auto s = write_files_atomic(files); !s.ok()) return s.error();
     return w;
 }

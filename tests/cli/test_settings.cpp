@@ -212,7 +212,7 @@ TEST_CASE("nan and inf are refused where a setting declares a range, as a bad co
     CHECK(bad.output.find("bad.lua:2: rs.settings: speed: min and max must be finite numbers") != std::string::npos);
 }
 
-TEST_CASE("in a script that declares its settings, reading an undeclared one is an error; required ones must be given") {
+TEST_CASE("in a script that declares its settings, reading an undeclared one is an error, required ones must be given") {
     TempDir dir("rollsense-settings");
     write_file(dir / "s.lua", "local rs = require 'rollsense'\n"
                               "rs.settings{ speed = { default = 10, min = 1, help = 'roll speed' },\n"
@@ -324,7 +324,7 @@ TEST_CASE("a misspelled option of a Lua call is an error at the call, naming the
 
 // --------------------------------------------------------------- resume --
 
-TEST_CASE("run-config.csv records what decides the trials; --resume refuses any difference, naming it") {
+TEST_CASE("run-config.csv records what decides the trials, --resume refuses any difference, naming it") {
     TempDir dir("rollsense-resume");
     const auto out = dir / "out";
     const auto first = run_rollsense("run " + kPaper + kSmall + " --seed 5 --out " + shell_quoted(out));
@@ -354,6 +354,23 @@ TEST_CASE("run-config.csv records what decides the trials; --resume refuses any 
     INFO(same.output);
     CHECK(same.status == 0);
     CHECK(same.output.find("0 trials saved, 6 already on disk") != std::string::npos);
+
+    // Review (data): without run-config.csv a resume took other --set values silently and wrote a run-config.csv
+    // claiming them; now it warns that they cannot be checked, and writes none.
+    std::filesystem::remove(out / "run-config.csv");
+    const auto unchecked = run_rollsense("run " + kPaper + kSmall + " --set runs=4 --seed 5 --resume --out " +
+                                         shell_quoted(out));
+    INFO(unchecked.output);
+    CHECK(unchecked.status == 0);
+    CHECK(count_of(unchecked.output, "run-config.csv is missing: this run's script and --set cannot be checked") == 1);
+    CHECK_FALSE(std::filesystem::exists(out / "run-config.csv"));
+    // A lost dataset-info.csv is named, not taken for another setup.
+    std::filesystem::remove(out / "dataset-info.csv");
+    const auto no_info = run_rollsense("run " + kPaper + kSmall + " --seed 5 --resume --out " + shell_quoted(out));
+    INFO(no_info.output);
+    CHECK(no_info.status == 2);
+    CHECK(no_info.output.find("dataset-info.csv is missing, so its setup was read from its first trial file") !=
+          std::string::npos);
 }
 
 TEST_CASE("run --out holding files that are not a dataset is refused, with or without --resume, and nothing is touched") {
