@@ -16,6 +16,12 @@ function(rollsense_add_test name)
       message(FATAL_ERROR "${path}: a TEST_CASE name starts with '-' (${dashed}): Catch reads it as an option; "
                           "start the name with a word")
     endif()
+    # A ';' splits the name where catch_discover_tests registers it: ctest then runs a name that matches no test
+    # case, which Catch reports as passed (27 test cases never ran that way).
+    file(STRINGS "${path}" semicolon REGEX "TEST_CASE\\(\"[^\"]*;")
+    if(semicolon)
+      message(FATAL_ERROR "${path}: a TEST_CASE name has a ';': ctest would never run it; use ',' instead")
+    endif()
   endforeach()
   add_executable(${name} ${ARG_SOURCES})
   # rollsense_hands: the controllers the stock E-TRoll profiles name, as the program has them.
@@ -24,5 +30,6 @@ function(rollsense_add_test name)
   if(ARG_DEPENDS)
     add_dependencies(${name} ${ARG_DEPENDS})
   endif()
-  catch_discover_tests(${name} TEST_PREFIX "${name}: " PROPERTIES TIMEOUT 300)
+  # -w NoTests: a name that matches no test case fails instead of passing having run nothing.
+  catch_discover_tests(${name} TEST_PREFIX "${name}: " EXTRA_ARGS -w NoTests PROPERTIES TIMEOUT 300)
 endfunction()

@@ -112,7 +112,7 @@ end
 // Determinism review: the shipped speed sweep, interrupted, printed a resume
 // command that failed for ever ("trial 'C3-v5-r001' is already in ..."), with
 // no word on how a script skips the trials on disk.
-TEST_CASE("the shipped speed sweep resumes; a script that records a trial on disk again is told how to skip it") {
+TEST_CASE("the shipped speed sweep resumes, a script that records a trial on disk again is told how to skip it") {
     TempDir dir("rollsense-cli-way-on-sweep");
     const std::string sweep = "run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "examples" / "speed_sweep.lua") +
                               " --seed 2 --no-progress --out " + shell_quoted(dir / "sweep");

@@ -172,7 +172,7 @@ TEST_CASE("a byte-order mark before a quoted first header field is read past", "
 // Review (bad input) items 5 and 6: a channel named twice in dataset-info.csv
 // blamed every trial file, and a UTF-8 byte-order mark (Excel's "CSV UTF-8")
 // made "no column 'trial_id' (columns: trial_id, ...)".
-TEST_CASE("a column named twice in dataset-info.csv is refused there; a byte-order mark is read past", "[data][bounds]") {
+TEST_CASE("a column named twice in dataset-info.csv is refused there, a byte-order mark is read past", "[data][bounds]") {
     TempDir dir;
     write(dir / "ds" / "trials" / "t1.csv", "time,ch1,valid\n0,1,1\n0.1,2,1\n");
     write(dir / "ds" / "manifest.csv", "\xEF\xBB\xBF" + manifest("trials/t1.csv", "2"));

@@ -210,7 +210,7 @@ TEST_CASE("a manifest cut just after a line end inside a quoted extra value is t
     CHECK(back->trials().back().info.extra.at("note") == "first line\nsecond line");
 }
 
-TEST_CASE("mount and index_in_mount have manifest columns of their own; reading puts them back", "[data][manifest]") {
+TEST_CASE("mount and index_in_mount have manifest columns of their own, reading puts them back", "[data][manifest]") {
     TempDir dir;
     {
         auto w = DatasetWriter::open(dir.path() / "ds", tiny_info(), DatasetOpenMode::create);

@@ -160,7 +160,7 @@ TEMPLATE_TEST_CASE("a servo that never answers ends in a timeout error after the
     CHECK(rig.bus->ping(1).ok());
 }
 
-TEMPLATE_TEST_CASE("a corrupted reply is retried; a servo that always corrupts ends in a CRC error", "", PtyRig, VirtualRig) {
+TEMPLATE_TEST_CASE("a corrupted reply is retried, a servo that always corrupts ends in a CRC error", "", PtyRig, VirtualRig) {
     TestType rig;
     rig.with_bus([](BusEmulator& b) { b.set_faults(1, {0, 2}); return 0; });
     REQUIRE(rig.bus->ping(1).ok());
@@ -199,7 +199,7 @@ TEMPLATE_TEST_CASE("garbage on the line before a reply is skipped", "", PtyRig, 
     CHECK(rig.bus->statistics().garbage_bytes > 0);
 }
 
-TEMPLATE_TEST_CASE("an injected hardware error shows as the alert bit; reboot clears it", "", PtyRig, VirtualRig) {
+TEMPLATE_TEST_CASE("an injected hardware error shows as the alert bit, reboot clears it", "", PtyRig, VirtualRig) {
     TestType rig;
     rig.with_bus([](BusEmulator& b) { b.raise_hardware_error(2, hw_error::overheating); return 0; });
     auto r = rig.bus->read(2, addr::hardware_error_status, 1);

@@ -49,7 +49,7 @@ TEST_CASE("the Bus Watchdog trips after its time without an instruction, holds, 
     CHECK(write(s, addr::goal_position, 1000, 4) == 0);
 }
 
-TEST_CASE("a tripped Bus Watchdog in current mode stops the push; with torque off it never trips") {
+TEST_CASE("a tripped Bus Watchdog in current mode stops the push, with torque off it never trips") {
     EmulatedServo s(ServoSetup{2, find_model("XM430-W350"), 0.0, OperatingMode::current, 10.0, 1});
     REQUIRE(write(s, addr::torque_enable, 1, 1) == 0);
     REQUIRE(write(s, addr::goal_current, 45, 2) == 0);  // about 121 mA
@@ -68,7 +68,7 @@ TEST_CASE("a tripped Bus Watchdog in current mode stops the push; with torque of
     CHECK_FALSE(off.watchdog_tripped());
 }
 
-TEST_CASE("instruction packets reaching a servo restart its watchdog count; broadcast reaches all") {
+TEST_CASE("instruction packets reaching a servo restart its watchdog count, broadcast reaches all") {
     BusEmulator bus;
     for (std::uint8_t id : {1, 2}) bus.add_servo(ServoSetup{id, nullptr, 0.0, OperatingMode::position, std::nullopt, 1});
     for (std::uint8_t id : {1, 2}) {

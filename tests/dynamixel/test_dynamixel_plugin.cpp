@@ -336,7 +336,7 @@ TEST_CASE("configuration refusals name the profile file, the parameter, the join
 // A position-mode joint reaches one turn (ticks 0..4095); limits beyond it only
 // warned at activation ("servo position limits left unchanged"), and a goal
 // there was then refused or dropped by the servo mid-run.
-TEST_CASE("a position-mode joint's min or max beyond one turn is refused at configure; extended position may exceed it") {
+TEST_CASE("a position-mode joint's min or max beyond one turn is refused at configure, extended position may exceed it") {
     auto emu = start_emulator(false);
     PluginContext context;
     context.instance = "hand";
@@ -612,7 +612,7 @@ TEST_CASE("velocity mode clamps the goal to the servo's Velocity Limit") {
     CHECK(s[0].mode == ControlMode::velocity);
 }
 
-TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one first; the watchdog verb sets it") {
+TEST_CASE("activation arms every servo's Bus Watchdog, clears a tripped one first, the watchdog verb sets it") {
     auto emu = start_emulator(false);
     // The previous run was killed: servo 2's watchdog tripped.
     on_bus(*emu, [](BusEmulator& b) {
@@ -727,7 +727,7 @@ TEST_CASE("rest turns every Bus Watchdog off until control resumes: the next wri
 // went unnoticed and every later goal was dropped by the servo. A watchdog
 // trips only after a pause in our instructions: after one of half its time,
 // read() reads 98; a steady run costs nothing more.
-TEST_CASE("a Bus Watchdog tripped during a run is a fault naming it, on read and write; a steady run costs no READ") {
+TEST_CASE("a Bus Watchdog tripped during a run is a fault naming it, on read and write, a steady run costs no READ") {
     auto raw = etroll_raw("emulator");
     raw["emulated_object"] = 0.0;
     raw["bus_watchdog_ms"] = std::int64_t{500};

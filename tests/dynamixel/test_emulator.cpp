@@ -29,7 +29,7 @@ std::uint8_t write(EmulatedServo& s, std::uint16_t a, std::int64_t v, std::size_
 
 }  // namespace
 
-TEST_CASE("EEPROM items are writable only with torque off; read-only items never") {
+TEST_CASE("EEPROM items are writable only with torque off, read-only items never") {
     EmulatedServo s(setup(1, find_model("XM430-W350")));
     CHECK(write(s, addr::operating_mode, 4, 1) == 0);
     CHECK(write(s, addr::torque_enable, 1, 1) == 0);

@@ -72,7 +72,7 @@ DatasetReader open(const fs::path& dir) {
 
 }  // namespace
 
-TEST_CASE("a trial file that cannot be read is skipped with its reason; the others are extracted",
+TEST_CASE("a trial file that cannot be read is skipped with its reason, the others are extracted",
           "[features][dataset][issue24]") {
     const auto dir = temp_dir("unreadable");
     write_dataset(dir, three_channels(), {{record("a", trial()), trial()}, {record("b", trial()), trial()},
@@ -101,7 +101,7 @@ TEST_CASE("a trial file that cannot be read is skipped with its reason; the othe
     fs::remove_all(dir);
 }
 
-TEST_CASE("invalid samples after the recording's end do not reject a trial; one inside the roll still does",
+TEST_CASE("invalid samples after the recording's end do not reject a trial, one inside the roll still does",
           "[features][dataset][issue24]") {
     const auto dir = temp_dir("edges");
     const TrialData plain = trial();

@@ -77,7 +77,7 @@ TEST_CASE("an output drives the physical level and records its history", "[gpio]
     CHECK(chip->output_history() == H{{7, false}, {7, true}, {7, false}, {8, false}, {8, true}});
 }
 
-TEST_CASE("a line has one consumer at a time; releasing frees it", "[gpio][fake]") {
+TEST_CASE("a line has one consumer at a time, releasing frees it", "[gpio][fake]") {
     auto chip = FakeGpioChip::get("busy");
     chip->reset();
     auto first = open_gpio_input({"fake:busy", 1, false, "kernel-estop"});

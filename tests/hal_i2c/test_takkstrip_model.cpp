@@ -105,7 +105,7 @@ TEST_CASE("two chips selected at once garble a read (wired-AND)", "[takkstrip][m
     CHECK(raw == expected);
 }
 
-TEST_CASE("a conversion takes its time on the bus clock; early reads see the old result", "[takkstrip][model]") {
+TEST_CASE("a conversion takes its time on the bus clock, early reads see the old result", "[takkstrip][model]") {
     Rig rig("conversion", {.conversion_time = 3e-3});
     auto& chip = rig.strip->chip(0);
     const auto before = chip.last_result();

@@ -76,7 +76,7 @@ TEST_CASE("a dataset round-trips (values to 9 significant digits), quoting inclu
     CHECK(r->info().seed == 7);
 }
 
-TEST_CASE("creating over an existing dataset is refused; resuming with another setup too", "[dataset]") {
+TEST_CASE("creating over an existing dataset is refused, resuming with another setup too", "[dataset]") {
     kt::TempDir dir;
     { REQUIRE(DatasetWriter::open(dir.path(), info(), DatasetOpenMode::create).ok()); }
     auto again = DatasetWriter::open(dir.path(), info(), DatasetOpenMode::create);
@@ -86,7 +86,7 @@ TEST_CASE("creating over an existing dataset is refused; resuming with another s
     other.seed = 8;
     auto resumed = DatasetWriter::open(dir.path(), other, DatasetOpenMode::resume);
     REQUIRE_FALSE(resumed.ok());
-    CHECK_THAT(resumed.error().message, Catch::Contains("seed 7"));
+    CHECK_THAT(resumed.error().message, Catch::Contains("seed was '7', this run's '8'"));
     CHECK(resumed.error().code == ErrorCode::bad_setting);  // a bad --seed: exit 2, as run-config.csv's check gives
 }
 

@@ -147,7 +147,7 @@ TEST_CASE("the mock actuator's reads leave nothing stale in reused states", "[mo
     CHECK(states[0].current == 0.0);
 }
 
-TEST_CASE("a silent joint: reads and writes fail naming it from its time on, the others are served; "
+TEST_CASE("a silent joint: reads and writes fail naming it from its time on, the others are served, "
           "reconfiguring brings it back", "[mock][fault]") {
     runtime::PluginRegistry reg({ROLLSENSE_PLUGIN_DIR});
     auto lib = reg.find("mock_actuator", PluginKind::actuator);

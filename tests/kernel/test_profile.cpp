@@ -189,7 +189,7 @@ TEST_CASE("command-line settings reach profiles through setting() and dotted pat
     CHECK_THAT(q.error().message, Catch::Contains("has no table 'nothing'"));
 }
 
-TEST_CASE("a profile names the identification channels; the robot knows each channel's unit", "[profile][issue24]") {
+TEST_CASE("a profile names the identification channels, the robot knows each channel's unit", "[profile][issue24]") {
     kt::TempDir dir;
     auto p = load_text(dir, replace(kt::kTestProfile, "clock = \"virtual\",",
                                     "clock = \"virtual\", identification_channels = { \"ch1\", \"ch2\", \"ch3\" },"));

@@ -243,7 +243,7 @@ TEST_CASE("a client that stops reading is dropped, and publishing never waits fo
 // Review finding: eight clients that asked for the stream and never read
 // held every place for minutes (the socket buffers took the stream), and
 // everyone else got 503 ("too many viewers") with no way out.
-TEST_CASE("viewers that never read leave their places within seconds; the refused are told what to do", "[live][http]") {
+TEST_CASE("viewers that never read leave their places within seconds, the refused are told what to do", "[live][http]") {
     EventHub hub;
     auto server = HttpServer::start("127.0.0.1", 0, live_site("demo.lua", "sim"), &hub);
     REQUIRE(server.ok());

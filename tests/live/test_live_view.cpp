@@ -332,7 +332,7 @@ private:
 
 }  // namespace
 
-TEST_CASE("rollsense run --live: headless Chromium draws the running trial; clients cannot stall the run",
+TEST_CASE("rollsense run --live: headless Chromium draws the running trial, clients cannot stall the run",
           "[live][browser]") {
     auto emu = etroll_bus::start();
     const rollsense::testing::TempDir tmp("rollsense-live");

@@ -181,7 +181,7 @@ rollsense::Status read_at(rollsense::Sensor& s, double t, rollsense::Frame& f) {
 
 }  // namespace
 
-TEST_CASE("inject: a chip that NACKs from time T; fault_after samples later the run ends naming it",
+TEST_CASE("inject: a chip that NACKs from time T, fault_after samples later the run ends naming it",
           "[mpl115a][faults][inject]") {
     plugins::Mpl115aSensor s;
     REQUIRE(s.on_configure(simulated("inject-nack", {{"inject", std::vector<std::string>{"ch2:nack:1.0"}},

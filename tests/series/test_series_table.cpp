@@ -24,7 +24,7 @@ const std::vector<std::string> kChannels{"ch1", "ch2", "ch3"};
 
 }  // namespace
 
-TEST_CASE("a stock run becomes a table of prepared series; refused trials keep their reasons", "[series][table]") {
+TEST_CASE("a stock run becomes a table of prepared series, refused trials keep their reasons", "[series][table]") {
     const auto& run = stock_run();
     const auto& trials = run.trials();
     REQUIRE(trials.size() == 27);

@@ -365,7 +365,7 @@ TEST_CASE("a merge into a link fills the folder it names, and an empty folder ke
 // Review: a merge locked each shard exclusively to read it, so a second merge
 // of the same shards was refused as "being written by another rollsense run;
 // ... choose another folder with --out" (merge has no --out).
-TEST_CASE("merges read shards side by side; a shard being recorded and a merge's shard are not shared", "[merge][lock]") {
+TEST_CASE("merges read shards side by side, a shard being recorded and a merge's shard are not shared", "[merge][lock]") {
     rt::TempDir dir;
     const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
     SECTION("another merge reading the shards") {

@@ -77,7 +77,7 @@ TEST_CASE("a uniform segment including the tail matches numerical integration", 
     }
 }
 
-TEST_CASE("a flat face gives a plateau about 0.96 F/a; an edge peaks 3-4x higher", "[sim][layer]") {
+TEST_CASE("a flat face gives a plateau about 0.96 F/a, an edge peaks 3-4x higher", "[sim][layer]") {
     const LayerKernel k(4.5, 0.015, 8.0, 4.0);
     const double F = 0.03;
     for (double a : {13.0, 18.0}) {

@@ -81,7 +81,7 @@ TEST_CASE("channels are ch1..ch3 in the paper's unitless reading", "[sim][sensor
     CHECK(ch[1].unit == "1");
 }
 
-TEST_CASE("the same seed gives the same trial; another seed another", "[sim][sensor]") {
+TEST_CASE("the same seed gives the same trial, another seed another", "[sim][sensor]") {
     for (const char* object : {"C2", "P1"}) {
         auto a = configured();
         auto b = configured();
