@@ -148,3 +148,23 @@ TEST_CASE("rs.trial refuses extras the manifest cannot give back, naming them", 
     CHECK_THAT(r.output, Catch::Contains("extra.lua:2:") && Catch::Contains("extra 'note' = 'a;b=c'") &&
                              !Catch::Contains("trial accepted"));
 }
+
+// Review (scripting): extra = 5 and keys that are not names were dropped silently, and a table value was written
+// into the manifest as 'table: 0x...', different in every process.
+TEST_CASE("rs.trial refuses an extra that is not name = text, number or boolean, at its line") {
+    for (const auto& [extra, expected] :
+         {std::pair{"5", "rs.trial: extra is a number, not a table {name = value}"},
+          std::pair{"{ 'x' }", "rs.trial: extra holds a number key with a string value"},
+          std::pair{"{ a = {} }", "rs.trial: extra holds a string key with a table value"}}) {
+        INFO(extra);
+        TempDir dir;
+        const auto script = dir / "extra.lua";
+        std::ofstream(script) << "local rs = require \"rollsense\"\nrs.trial{ object = \"C1\", extra = " << extra
+                              << " }\nrs.log(\"trial accepted\")\n";
+        auto r = rollsense::testing::run_rollsense("run " + script.string() + " --no-progress -q --out " +
+                                                   (dir / "out").string());
+        INFO(r.output);
+        CHECK(r.status == 1);
+        CHECK_THAT(r.output, Catch::Contains(std::string("extra.lua:2: ") + expected) && !Catch::Contains("trial accepted"));
+    }
+}

@@ -182,7 +182,9 @@ TEST_CASE("the waiting calls refuse bad arguments before any wait, naming the ca
           // Review (user journeys) item 9: names for handles said "bad argument #-1 to 'wait_joints'".
           std::pair{"rs.wait_joints({ 'finger' })", "rs.wait_joints: item 1 is a string, not a joint (rs.joint(name))"},
           std::pair{"rs.save_trial()", "no trial to save: rs.trial{...} first"},
-          // Review (scripting): a NaN or negative timeout meant "wait forever".
+          // Review (scripting): current= was ignored outside current-based position, and a NaN or negative timeout
+          // meant "wait forever".
+          std::pair{"rs.joint('finger'):move(10, { current = 100 })", "move: current= is the current limit of mode ="},
           std::pair{"rs.wait_until(function() return false end, 0/0)", "rs.wait_until: timeout_ms must be a number >= 0"},
           std::pair{"rs.wait_until(function() return false end, -5)", "rs.wait_until: timeout_ms must be a number >= 0"}}) {
         INFO(call);

@@ -82,6 +82,9 @@ bool l_move(lua_State* L) {
     } else if (!mode.empty()) {
         c.mode = mode == "extended_position" ? ControlMode::extended_position : ControlMode::position;
     }
+    if (c.mode != ControlMode::current_based_position && lua_istable(L, 3) && lua_getfield(L, 3, "current") != LUA_TNIL)
+        luaL_error(L, "move: current= is the current limit of mode = 'current_based_position', not of this move's mode");
+    lua_settop(L, 3);  // review: it was ignored silently
     command_or_raise(L, j, c);
     if (!wait) return false;
     char what[160];

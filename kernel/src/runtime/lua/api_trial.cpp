@@ -54,27 +54,27 @@ int l_trial(lua_State* L) {
     // heap: bounded, so a script cannot grow C++ memory past its cap.
     constexpr std::size_t kMaxExtra = 4096, kMaxExtras = 64 * 1024;
     std::size_t extras_bytes = 0;
-    lua_getfield(L, 1, "extra");
+    // Names to text, numbers or booleans (review: a table was written as 'table: 0x...', other keys dropped).
+    if (lua_getfield(L, 1, "extra") != LUA_TNIL && !lua_istable(L, -1))
+        return luaL_error(L, "rs.trial: extra is a %s, not a table {name = value}", luaL_typename(L, -1));
     if (lua_istable(L, -1)) {
         lua_pushnil(L);
         while (lua_next(L, -2)) {
-            if (lua_type(L, -2) == LUA_TSTRING) {
-                std::size_t klen = 0, vlen = 0;
-                const char* key = lua_tolstring(L, -2, &klen);
-                const char* value = luaL_tolstring(L, -1, &vlen);
-                extras_bytes += klen + vlen;
-                if (vlen > kMaxExtra || extras_bytes > kMaxExtras)
-                    return luaL_error(L,
-                                      "rs.trial: extra '%s' is %d bytes (%d in all); extras go into the manifest row, "
-                                      "at most %d bytes each and %d bytes in all: write large data with "
-                                      "rs.write_output",
-                                      std::string(key, std::min<std::size_t>(klen, 60)).c_str(), static_cast<int>(vlen),
-                                      static_cast<int>(extras_bytes), static_cast<int>(kMaxExtra),
-                                      static_cast<int>(kMaxExtras));
-                info.extra[std::string(key, klen)] = std::string(value, vlen);
-                lua_pop(L, 1);
-            }
-            lua_pop(L, 1);
+            const int vt = lua_type(L, -1);
+            if (lua_type(L, -2) != LUA_TSTRING || (vt != LUA_TSTRING && vt != LUA_TNUMBER && vt != LUA_TBOOLEAN))
+                return luaL_error(L, "rs.trial: extra holds a %s key with a %s value: give name = text, number or "
+                                     "boolean", luaL_typename(L, -2), luaL_typename(L, -1));
+            std::size_t klen = 0, vlen = 0;
+            const char* key = lua_tolstring(L, -2, &klen);
+            const char* value = luaL_tolstring(L, -1, &vlen);
+            extras_bytes += klen + vlen;
+            if (vlen > kMaxExtra || extras_bytes > kMaxExtras)
+                return luaL_error(L, "rs.trial: extra '%s' is %d bytes (%d in all); extras go into the manifest row, at "
+                                     "most %d bytes each and %d bytes in all: write large data with rs.write_output",
+                                  std::string(key, std::min<std::size_t>(klen, 60)).c_str(), int(vlen), int(extras_bytes),
+                                  int(kMaxExtra), int(kMaxExtras));
+            info.extra[std::string(key, klen)] = std::string(value, vlen);
+            lua_pop(L, 2);  // the value and its text
         }
     }
     lua_pop(L, 1);
