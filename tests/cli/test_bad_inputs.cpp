@@ -283,6 +283,20 @@ TEST_CASE("a trial the devices refused is not open: nothing of it is recorded or
     CHECK(read_file(dir / "out" / "manifest.csv").find("ZZ") == std::string::npos);
 }
 
+// Review (scripting): a recording never stopped grew by 45 MB a second until the machine ran out of memory.
+TEST_CASE("a recording is bounded by the script's memory cap, and the run ends naming the trial") {
+    TempDir dir("rollsense-cli-endless-recording");
+    write_file(dir / "forever.lua", "local rs = require 'rollsense'\n"
+                                    "rs.trial{ object = 'C2', speed = 10, repetition = 1 }\n"
+                                    "rs.record_start()\n"
+                                    "rs.wait_until(function() return false end)\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "forever.lua") + " --memory-limit-mb 4 --no-progress --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(count_of(r.output, "trial 'C2-v10-r001': its recording reached the memory cap (--memory-limit-mb) after ") == 1);
+}
+
 // A profile's content error was printed as a "parse error" with the file alone ("mock.lua: sample_rate_hz and
 // control_rate_hz must be > 0"): now once, as a bad profile, at the key's file:line with the way out, exit 3.
 TEST_CASE("a profile whose content is wrong is named once by file:line and key, as a bad profile (3)") {

@@ -376,22 +376,11 @@ int l_random_normal(lua_State* L) {
 }  // namespace
 
 void register_core(lua_State* L) {
-    static const luaL_Reg fns[] = {{"now", l_now},
-                                   {"wait", waiting<l_wait, finish_wait>},
-                                   {"wait_until", waiting<l_wait_until, after_wait_until>},
-                                   {"setting", l_setting},
-                                   {"seed", l_seed},
-                                   {"profile", l_profile},
-                                   {"log", l_log},
-                                   {"warn", l_warn},
-                                   {"progress", l_progress},
-                                   {"spawn", l_spawn},
-                                   {"on_cleanup", l_on_cleanup},
-                                   {"write_output", l_write_output},
-                                   {"output_dir", l_output_dir},
-                                   {"random", l_random},
-                                   {"random_normal", l_random_normal},
-                                   {nullptr, nullptr}};
+    static const luaL_Reg fns[] = {
+        {"now", l_now}, {"wait", waiting<l_wait, finish_wait>}, {"wait_until", waiting<l_wait_until, after_wait_until>},
+        {"setting", l_setting}, {"seed", l_seed}, {"profile", l_profile}, {"log", l_log}, {"warn", l_warn},
+        {"progress", l_progress}, {"spawn", l_spawn}, {"on_cleanup", l_on_cleanup}, {"write_output", l_write_output},
+        {"output_dir", l_output_dir}, {"random", l_random}, {"random_normal", l_random_normal}, {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
 }
 

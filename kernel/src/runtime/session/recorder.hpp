@@ -60,6 +60,7 @@ public:
     double next_sample() const { return recording_ ? next_sample_ : std::numeric_limits<double>::infinity(); }
     Status sample_tick(double now);
     std::function<void()> on_sample;  // after each sample taken (Session: its options' observer)
+    std::size_t max_recording_bytes = SIZE_MAX;  // held until saved: the script's memory cap bounds it too (Session)
     // The run failed or ended while recording: stop the sensors, keep nothing.
     void abort_recording();
 

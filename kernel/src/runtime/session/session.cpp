@@ -111,6 +111,7 @@ Status Session::prepare() {
     recorder_ = std::make_unique<Recorder>(*robot_, *clock_, profile_.sample_rate_hz, options_.seed);
     if (options_.shard) recorder_->set_shard(*options_.shard);
     if (options_.on_sample) recorder_->on_sample = [this] { options_.on_sample(*this); };
+    recorder_->max_recording_bytes = options_.sandbox.memory_bytes;
 
     std::vector<fs::path> modules;
     if (!options_.script.empty()) modules.push_back(options_.script.parent_path().empty() ? fs::path(".") : options_.script.parent_path());
