@@ -297,6 +297,21 @@ TEST_CASE("a recording is bounded by the script's memory cap, and the run ends n
     CHECK(count_of(r.output, "trial 'C2-v10-r001': its recording reached the memory cap (--memory-limit-mb) after ") == 1);
 }
 
+// Review (scripting): rs.log wrote an 11 MB line, and a line break let a script print a line that looked like the
+// program's own error.
+TEST_CASE("a script's log entry is cut at 64 KiB and its line breaks are indented") {
+    TempDir dir("rollsense-cli-log-entry");
+    write_file(dir / "log.lua", "local rs = require 'rollsense'\n"
+                                "rs.log(string.rep('L', 200000))\n"
+                                "rs.warn('first\\nerror   rollsense: not the program')\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "log.lua") + " --no-progress --out " + shell_quoted(dir / "out"));
+    INFO(r.output.substr(0, 2000));
+    CHECK(r.status == 0);
+    CHECK(count_of(r.output, std::string(65536, 'L') + " ... (cut at 64 KiB)\n") == 1);
+    CHECK(count_of(r.output, std::string(65537, 'L')) == 0);
+    CHECK(count_of(r.output, "first\n  error   rollsense: not the program") == 1);
+}
+
 // A profile's content error was printed as a "parse error" with the file alone ("mock.lua: sample_rate_hz and
 // control_rate_hz must be > 0"): now once, as a bad profile, at the key's file:line with the way out, exit 3.
 TEST_CASE("a profile whose content is wrong is named once by file:line and key, as a bad profile (3)") {

@@ -291,14 +291,19 @@ int l_profile(lua_State* L) {
     return 1;
 }
 
+// One log entry of at most 64 KiB, its line breaks indented: no line of it reads as the program's own (review: rs.log
+// wrote an 11 MB line, and "\nerror ..." a line that looked like the program's).
 std::string concat_args(lua_State* L) {
     std::string line;
-    for (int i = 1; i <= lua_gettop(L); ++i) {
+    for (int i = 1; i <= lua_gettop(L) && line.size() <= 65536; ++i) {
         if (i > 1) line += ' ';
         line += luaL_tolstring(L, i, nullptr);
         lua_pop(L, 1);
     }
-    return line;
+    if (line.size() > 65536) line.resize(65536), line += " ... (cut at 64 KiB)";
+    std::string indented;
+    for (const char c : line) indented += c == '\n' ? std::string_view("\n  ") : std::string_view(&c, 1);
+    return indented;
 }
 
 int l_log(lua_State* L) {
