@@ -336,6 +336,22 @@ TEST_CASE("an unreadable trial file is named once on the terminal, with file and
         CHECK_THAT(r.output, Catch::Contains("trial 'P1-r4' left out") && Catch::Contains("'1.2.3'") &&
                                  Catch::Contains("unreadable 1"));
     }
+    // Review (data): a channel that dataset-info.csv names wrongly made every file unreadable: one warning per
+    // trial blaming the files, and exit 0. Now one error, naming dataset-info.csv, exit 3.
+    std::string info = file_text(ds / "dataset-info.csv");
+    const auto channels = info.find("\nchannels,");
+    REQUIRE(channels != std::string::npos);
+    info.replace(channels, info.find('\n', channels + 1) - channels, "\nchannels,ch1 ch2 chX");
+    std::ofstream(ds / "dataset-info.csv", std::ios::binary) << info;
+    for (const std::string& args : {"features " + ds.string() + " -o " + (dir / "f.csv").string(),
+                                    "evaluate " + ds.string() + " --repeats 1 --folds 3 --set learners=5"}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 3);
+        CHECK(count_of(r.output, "could be read") == 1);
+        CHECK_THAT(r.output, Catch::Contains("check dataset-info.csv (its channels)") && !Catch::Contains("left out"));
+    }
     fs::remove_all(dir);
 }
 

@@ -159,7 +159,7 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
     auto result = learn::run_pipeline(
         registry, request,
         [print_rejections](const std::vector<features::FeatureRow>& rows) {
-            warn_unreadable_trials(rows);
+            if (auto unread = warn_unreadable_trials(rows); !unread) return unread;
             if (print_rejections) std::printf("%s\n", learn::summarize_rejections(rows).c_str());
             std::fflush(stdout);
             return Status{};
@@ -209,7 +209,10 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
         return exit_code_for(loaded.error().code, kExitConfig);
     }
     rows = std::move(loaded).value();
-    warn_unreadable_trials(rows);
+    if (auto st = warn_unreadable_trials(rows); !st) {
+        std::fprintf(stderr, "rollsense %s: %s\n", command, st.error().describe().c_str());
+        return exit_code_for(st.code(), kExitConfig);
+    }
     std::printf("%s\n", learn::summarize_rejections(rows).c_str());
     return kExitOk;
 }

@@ -142,7 +142,10 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense features: %s\n", rows.error().describe().c_str());
         return exit_code_for(rows.error().code, kExitConfig);
     }
-    warn_unreadable_trials(*rows);
+    if (auto st = warn_unreadable_trials(*rows); !st) {
+        std::fprintf(stderr, "rollsense features: %s\n", st.error().describe().c_str());
+        return exit_code_for(st.code(), kExitConfig);
+    }
     if (auto s = features::write_features_csv(out, *rows); !s) {
         std::fprintf(stderr, "rollsense features: cannot write '%s': %s\n", out.c_str(), s.error().describe().c_str());
         return exit_code_for(s.code());

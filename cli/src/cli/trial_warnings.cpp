@@ -1,21 +1,38 @@
 #include "cli/trial_warnings.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "rollsense/log.hpp"
 
 namespace rollsense::cli {
+namespace {
+constexpr std::string_view kUnreadable = "unreadable (";
 
-void warn_unreadable_trials(const std::vector<features::FeatureRow>& rows) {
-    const std::string prefix = "unreadable (";
-    for (const auto& r : rows) {
-        if (r.clean || r.reason.rfind(prefix, 0) != 0) continue;
-        std::string why = r.reason.substr(prefix.size());
-        if (!why.empty() && why.back() == ')') why.pop_back();
-        log_warning("rollsense", "trial '" + r.trial_id + "' left out: " + why +
-                                     "; repair or restore the file (a run records it again with its command line "
-                                     "plus --resume)");
-    }
+bool unreadable(const features::FeatureRow& r) { return !r.clean && r.reason.starts_with(kUnreadable); }
+
+// The reader's words inside "unreadable (...)".
+std::string why_unreadable(const features::FeatureRow& r) {
+    std::string why = r.reason.substr(kUnreadable.size());
+    if (!why.empty() && why.back() == ')') why.pop_back();
+    return why;
+}
+}  // namespace
+
+Status warn_unreadable_trials(const std::vector<features::FeatureRow>& rows) {
+    // Every file failing alike is the dataset's fault, said once (review: 81 warnings blamed the trial files for a
+    // channel that dataset-info.csv named wrongly, and the command went on to exit 0).
+    if (!rows.empty() && std::all_of(rows.begin(), rows.end(), unreadable))
+        return {ErrorCode::parse_error, "none of the " + std::to_string(rows.size()) + " trials could be read; the "
+                                            "first, '" + rows.front().trial_id + "': " + why_unreadable(rows.front()) +
+                                            ". When every file fails alike, check dataset-info.csv (its channels) "
+                                            "against the trial files' header"};
+    for (const auto& r : rows)
+        if (unreadable(r))
+            log_warning("rollsense", "trial '" + r.trial_id + "' left out: " + why_unreadable(r) +
+                                         "; repair or restore the file (a run records it again with its command line "
+                                         "plus --resume)");
+    return {};
 }
 
 }  // namespace rollsense::cli

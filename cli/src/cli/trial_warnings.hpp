@@ -8,10 +8,12 @@
 #include <vector>
 
 #include "rollsense/features.hpp"
+#include "rollsense/status.hpp"
 
 namespace rollsense::cli {
 
-// Logs one warning per unreadable trial: its id, file:line and the reason.
-void warn_unreadable_trials(const std::vector<features::FeatureRow>& rows);
+// Logs one warning per unreadable trial: its id, file:line and the reason; an error instead when no trial could be
+// read (then the fault is likely the dataset's, not each file's).
+Status warn_unreadable_trials(const std::vector<features::FeatureRow>& rows);
 
 }  // namespace rollsense::cli
