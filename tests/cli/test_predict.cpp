@@ -152,6 +152,23 @@ TEST_CASE("predict warns when the input is unlike the training data") {
     CHECK(named.output.find("not checked") == std::string::npos);
 }
 
+// Review (data): a dataset that does not say which three channels identify the object got "no decision" with that
+// reason on every trial, exit 0; the dataset's fault is now said once, as a bad input (3).
+TEST_CASE("predict refuses a dataset whose identification channels are not known, once") {
+    const fs::path run = fixture();
+    TempDir dir("rollsense-cli-predict-channels");
+    const fs::path ds = copy_dataset(run, dir / "ds");
+    std::string info = read_file(ds / "dataset-info.csv");
+    info = std::regex_replace(info, std::regex("\nchannels,[^\n]*"), "\nchannels,ch1 ch2 ch3 ch4");
+    info = std::regex_replace(info, std::regex("\nchannel_units,[^\n]*"), "\nchannel_units,1 1 1 1");
+    write_file(ds / "dataset-info.csv", info);
+    const auto r = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(ds));
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "does not say which three identify the object") == 1);
+    CHECK(r.output.find("no decision") == std::string::npos);
+}
+
 TEST_CASE("predict's errors name the model, the plugin and the way out") {
     const fs::path run = fixture();
     TempDir dir("rollsense-cli-predict");

@@ -275,13 +275,12 @@ Result<std::vector<Outcome>> predict_features(const Classifier& clf, const Input
     features::FeatureExtractor extractor(fs_);
     // The channels and samples of features::extract_dataset.
     const auto columns = features::identification_channels(in.dataset.info(), in.dataset.dir().string());
+    if (!columns) return columns.error();  // the dataset's fault, said once (review: it was each trial's, exit 0)
     for (const auto& rec : in.trials) {
         Outcome o{rec.info.id, rec.info.object, {}, {}, {}, {}};
         auto data = in.dataset.load(rec);
         if (!data) {
             o.reason = data.error().describe();
-        } else if (!columns) {
-            o.reason = columns.error().message;
         } else {
             const features::IdentificationInput ch = features::identification_input(*data, *columns);
             auto f = extractor.extract(std::span<const std::span<const double>>(ch.channels), ch.time);
