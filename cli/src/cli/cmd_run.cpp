@@ -45,8 +45,9 @@ options:
                         for a shard's dataset without its --shard K/N (a
                         refused folder is left as it was). The earlier run's
                         run-info.csv is kept as run-info.N.csv
-  --seed N              run seed (per-trial seeds derive from it); default: 1,
-                        or, replaying a dataset, the seed it was recorded with
+  --seed N              run seed, 0 to 2^63-1 (per-trial seeds derive from it);
+                        default: 1, or, replaying a dataset, the seed it was
+                        recorded with
   --shard K/N           record only shard K of N (0 <= K < N, N >= 2): the
                         trials whose index in the run is K mod N; the shards'
                         datasets are joined with 'rollsense merge'
@@ -165,7 +166,8 @@ int run(const std::vector<std::string>& argv) {
     auto out = args.option("--out");
     if (out.empty() && o.resume) throw UsageError("--resume needs --out DIR (the dataset to continue)");
     o.out_dir = out.empty() ? default_out(o.script) : out;
-    o.seed = args.unsigned_option("--seed", 1, 0, UINT64_MAX);
+    // Up to 2^63 - 1: rs.seed() gives it to the script as a Lua integer (review: larger ones read negative).
+    o.seed = args.unsigned_option("--seed", 1, 0, INT64_MAX);
     if (auto shard = args.option("--shard"); !shard.empty()) {
         auto parsed = parse_shard(shard, "--shard");
         if (!parsed) throw UsageError(parsed.error().message);
@@ -183,6 +185,9 @@ int run(const std::vector<std::string>& argv) {
     if (o.shard) deciding.emplace_back("--shard", o.shard->text());  // not in run-config.csv: a part of the run
     SetOptions sets;
     for (const auto& kv : args.options("--set")) {
+        const std::string key = kv.substr(0, kv.find('='));
+        for (const auto& [k, v] : sets)  // review: the last one was kept silently
+            if (k == key) throw UsageError("--set " + key + " is given twice ('" + v + "' and '" + kv.substr(kv.find('=') + 1) + "'): give it once");
         if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());
         sets.emplace_back(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1));
         deciding.emplace_back("--set", kv);
