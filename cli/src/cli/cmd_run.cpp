@@ -62,12 +62,13 @@ options:
                         --set the script, the profile or a plugin refuses is a
                         bad command line (exit 2)
   --plugin-path DIR     search plugins here first (repeatable)
-  --time-limit S        cancel the run after S seconds of run time
+  --time-limit S        cancel the run after S seconds of run time (0, the
+                        default: no limit)
   --slice-limit-ms MS   stop a script (or profile) that runs MS ms without
                         waiting: its failure, at its file:line (default 5000)
   --memory-limit-mb MB  Lua heap cap (default 256)
-  --commit-every N      trials per durable group commit (default 1 on hardware,
-                        64 in simulation)
+  --commit-every N      trials per durable group commit (0, the default: 1 on
+                        hardware, 64 in simulation)
   --no-progress         no progress bar (it is off anyway when stderr is not a terminal)
   --live[=PORT]         serve a live view of the run in the browser on
                         http://127.0.0.1:PORT/ (default port 8027; 0: any free
