@@ -7,6 +7,7 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <optional>
 
 namespace rollsense::csv {
@@ -367,10 +368,14 @@ Result<KeyValues> read_key_values(const std::filesystem::path& file) {
     if (!value) return value.error();
     KeyValues out;
     std::vector<std::string> fields;
+    std::map<std::string, std::size_t> line_of;  // a key given twice: which one holds is not for us to guess
     for (;;) {
         auto more = reader->next(fields);
         if (!more) return more.error();
         if (!*more) break;
+        if (const auto [at, fresh] = line_of.emplace(fields[*key], reader->line()); !fresh)
+            return Error{ErrorCode::parse_error, reader->where(*key) + ": '" + fields[*key] + "' is given twice (first "
+                                                     "at line " + std::to_string(at->second) + "): keep one"};
         out.emplace_back(fields[*key], fields[*value]);
     }
     return out;

@@ -97,12 +97,16 @@ Result<DatasetInfo> read_info(const fs::path& file) {
     DatasetInfo info;
     std::vector<std::string> f;
     bool format_seen = false;
+    std::unordered_map<std::string, std::size_t> line_of;  // review: a key given twice, the last one silently won
     for (;;) {
         auto more = reader->next(f);
         if (!more) return more.error();
         if (!*more) break;
         const auto& key = f[*key_col];
         const auto& value = f[*val_col];
+        if (const auto [at, fresh] = line_of.emplace(key, reader->line()); !fresh)
+            return Error{ErrorCode::parse_error, reader->where(*key_col) + ": '" + key + "' is given twice (first at "
+                                                     "line " + std::to_string(at->second) + "): keep one"};
         if (key == "format") {
             if (value != kDatasetFormat)
                 return Error{ErrorCode::parse_error, reader->where(*val_col) + ": format is '" + value +

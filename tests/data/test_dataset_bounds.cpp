@@ -186,4 +186,13 @@ TEST_CASE("a column named twice in dataset-info.csv is refused there, a byte-ord
     r = DatasetReader::open(dir / "ds");
     REQUIRE_FALSE(r);
     CHECK_THAT(r.status().message(), Catch::Contains("dataset-info.csv:5: column 'value': channels names 'ch1' twice"));
+    // Review (data): a key given twice was taken silently, the last one winning (here a sample rate appended).
+    write(dir / "ds" / "dataset-info.csv", std::string(kInfo) + "sample_rate_hz,50\n");
+    r = DatasetReader::open(dir / "ds");
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.status().message(), Catch::Contains("column 'key': 'sample_rate_hz' is given twice (first at line"));
+    write(dir / "ds" / "run-info.csv", "key,value\nseed,1\nseed,2\n");
+    const auto kv = csv::read_key_values(dir / "ds" / "run-info.csv");
+    REQUIRE_FALSE(kv);
+    CHECK_THAT(kv.error().message, Catch::Contains("run-info.csv:3: column 'key': 'seed' is given twice (first at line 2)"));
 }

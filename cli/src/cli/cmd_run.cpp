@@ -52,7 +52,8 @@ options:
                         trials whose index in the run is K mod N; the shards'
                         datasets are joined with 'rollsense merge'
                         (docs/cluster.md)
-  --set KEY=VALUE       a setting (repeatable): a key starting with a profile
+  --set KEY=VALUE       a setting (repeatable; of one key given twice, the later
+                        holds): a key starting with a profile
                         entry overrides it (plugin parameters:
                         devices.NAME.params.KEY, e.g. devices.tactile.params.kernel_fwhm=5);
                         any other key is a script setting: plain for the
@@ -186,9 +187,6 @@ int run(const std::vector<std::string>& argv) {
     if (o.shard) deciding.emplace_back("--shard", o.shard->text());  // not in run-config.csv: a part of the run
     SetOptions sets;
     for (const auto& kv : args.options("--set")) {
-        const std::string key = kv.substr(0, kv.find('='));
-        for (const auto& [k, v] : sets)  // review: the last one was kept silently
-            if (k == key) throw UsageError("--set " + key + " is given twice ('" + v + "' and '" + kv.substr(kv.find('=') + 1) + "'): give it once");
         if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());
         sets.emplace_back(kv.substr(0, kv.find('=')), kv.substr(kv.find('=') + 1));
         deciding.emplace_back("--set", kv);
