@@ -109,3 +109,16 @@ TEST_CASE("a non-standard exception and a throwing constructor are caught too", 
     CHECK(s.code() == ErrorCode::plugin_error);
     CHECK(h2->state() == LifecycleState::error);
 }
+
+// Review (plugin author): a device whose deactivation threw was logged, but the run ended ok (exit 0), so a hand
+// left in an unknown state looked like a good run.
+TEST_CASE("a run whose device does not shut down cleanly ends as a hardware fault", "[lifecycle]") {
+    kt::TempDir dir;
+    std::string profile = kt::kTestProfile;
+    const std::string bump = R"(tactile = { plugin = "example_bump", params = { joint = "finger" } })";
+    profile.replace(profile.find(bump), bump.size(), R"(tactile = { plugin = "test_thrower", params = { throw_in = "deactivate" } })");
+    const auto r = kt::run_script(dir, "local rs = require 'rollsense'\nrs.wait(100)\n", profile);
+    INFO(r.summary.status.message());
+    CHECK(r.summary.status.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("a device did not shut down cleanly"));
+}

@@ -9,7 +9,7 @@ using namespace rollsense;
 
 ParamSchema thrower_schema() {
     return {param_string("throw_in", std::string("none"), "hook that throws",
-                         {"none", "configure", "activate", "read", "recover", "invoke", "channels"})};
+                         {"none", "configure", "activate", "deactivate", "read", "recover", "invoke", "channels"})};
 }
 
 class Thrower final : public Sensor {
@@ -21,6 +21,10 @@ public:
     }
     Status on_activate() override {
         if (where_ == "activate") throw std::runtime_error("boom in activate");
+        return {};
+    }
+    Status on_deactivate() override {
+        if (where_ == "deactivate") throw std::runtime_error("boom in deactivate");
         return {};
     }
     Status on_recover() override {

@@ -339,20 +339,22 @@ void Robot::safe_state(double time) noexcept {
     }
 }
 
-void Robot::shutdown(double time) noexcept {
+bool Robot::shutdown(double time) noexcept {
     const auto devices = lock_devices();
     safe_state(time);
+    bool clean = true;
     // Nobody else sees these statuses: logged here (a device logs no fault itself).
     // A failed device is recovered: its plugin releases what still answers (torque off), as deactivate would.
-    const auto stop = [](ComponentHandle& h) {
+    const auto stop = [&clean](ComponentHandle& h) {
         Status s = h.state() == LifecycleState::active  ? h.deactivate()
                    : h.state() == LifecycleState::error ? h.recover()
                                                         : Status{};
         if (s.ok() && h.state() == LifecycleState::inactive) s = h.cleanup();
-        if (!s.ok()) log_error("kernel", "shutdown: " + s.message());
+        if (!s.ok()) clean = false, log_error("kernel", "shutdown: " + s.message());
     };
     for (auto& a : actuators_) stop(*a.handle);
     for (auto& s : sensors_) stop(*s.handle);
+    return clean;
 }
 
 void Robot::set_commands_locked(bool locked, std::string reason) {

@@ -171,7 +171,8 @@ RunSummary Session::run() {
                                                        std::to_string(sent) + " last-resort actions sent");
         }
     }
-    if (robot_) robot_->shutdown(clock_ ? clock_->now() : 0.0);
+    if (robot_ && !robot_->shutdown(clock_ ? clock_->now() : 0.0) && s.ok())  // review: such a run exited 0
+        s = Status(ErrorCode::hardware_fault, "a device did not shut down cleanly (above): check it before the next run");
     if (recorder_ && recorder_->has_dataset()) {
         if (auto f = recorder_->flush(); !f.ok() && s.ok()) s = f;
         else if (!f.ok() && s.code() != ErrorCode::io_error) log_error("dataset", f.error().describe());  // not in s
