@@ -197,9 +197,6 @@ Result<TrialRecord> parse_manifest_row(const csv::Reader& reader, const std::vec
     for (std::size_t k = 0; k < kProtocolKeys.size(); ++k)
         if (col[8 + k] != SIZE_MAX && !f[col[8 + k]].empty()) r.info.extra[kProtocolKeys[k]] = f[col[8 + k]];
     if (r.info.id.empty()) return Error{ErrorCode::parse_error, reader.where(col[0]) + ": empty trial id"};
-    if (r.info.object.empty())  // review: an empty label became a class of its own
-        return Error{ErrorCode::parse_error, reader.where(col[2]) + ": empty object: every trial names the object it "
-                                                                    "rolled, its class label (e.g. C1)"};
     // A manifest names files inside its dataset folder only.
     const fs::path listed(r.file);
     if (r.file.empty() || listed.is_absolute() ||

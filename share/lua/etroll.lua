@@ -52,6 +52,11 @@ function M.configure(overrides)
   end
 end
 
+-- A pause of `ms`; none for 0 (rs.wait(0) waits for the next control period: a setting of 0 means no pause).
+local function pause(ms)
+  if ms > 0 then rs.wait(ms) end
+end
+
 local function has_controller(name)
   for _, c in ipairs(rs.profile().controllers) do if c == name then return true end end
   return false
@@ -98,7 +103,7 @@ function M.clamp()
       pushing:position(), c.sensing_start))
   end
   winch:wait({ timeout_ms = 5000 })
-  rs.wait(c.clamp_settle_ms)
+  pause(c.clamp_settle_ms)
 end
 
 -- Step 3: roll and record at `speed` profile-velocity units. Returns the
@@ -117,7 +122,7 @@ function M.roll(speed, opts)
     margin = margin + c.record_margin_jitter_ms * (2 * rs.random() - 1)
   end
   rs.record_start()
-  rs.wait(margin)
+  pause(margin)
   local goal = opts.to or c.sensing_end
   local motion = {
     velocity = speed * M.DXL_VELOCITY_UNIT_DPS,
@@ -136,7 +141,7 @@ function M.roll(speed, opts)
   else
     sensing:move(goal, motion)
   end
-  rs.wait(margin)
+  pause(margin)
   return rs.record_stop(), stopped
 end
 

@@ -299,17 +299,20 @@ TEST_CASE("a recording is bounded by the script's memory cap, and the run ends n
 
 // Review (scripting): rs.log wrote an 11 MB line, and a line break let a script print a line that looked like the
 // program's own error.
-TEST_CASE("a script's log entry is cut at 64 KiB and its line breaks are indented") {
+TEST_CASE("a script's log entry is cut at 64 KiB and its line breaks are indented, print's too") {
     TempDir dir("rollsense-cli-log-entry");
     write_file(dir / "log.lua", "local rs = require 'rollsense'\n"
                                 "rs.log(string.rep('L', 200000))\n"
-                                "rs.warn('first\\nerror   rollsense: not the program')\n");
+                                "rs.warn('first\\nerror   rollsense: not the program')\n"
+                                "print('second\\rerror   rollsense: not the program either', string.rep('P', 70000))\n");
     const auto r = run_rollsense("run " + shell_quoted(dir / "log.lua") + " --no-progress --out " + shell_quoted(dir / "out"));
     INFO(r.output.substr(0, 2000));
     CHECK(r.status == 0);
     CHECK(count_of(r.output, std::string(65536, 'L') + " ... (cut at 64 KiB)\n") == 1);
     CHECK(count_of(r.output, std::string(65537, 'L')) == 0);
     CHECK(count_of(r.output, "first\n  error   rollsense: not the program") == 1);
+    CHECK(count_of(r.output, "second\\rerror   rollsense: not the program either\t" + std::string(100, 'P')) == 1);
+    CHECK(count_of(r.output, std::string(65536, 'P')) == 0);
 }
 
 // A profile's content error was printed as a "parse error" with the file alone ("mock.lua: sample_rate_hz and

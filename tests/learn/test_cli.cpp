@@ -280,7 +280,7 @@ TEST_CASE("evaluate and train -o never overwrite a file of the dataset being rea
         const auto refused = rollsense_cli(args);
         INFO(refused.output);
         CHECK(refused.status == 2);
-        CHECK(count_of(refused.output, "with another kind of file; give -o another name") == 1);
+        CHECK(count_of(refused.output, "would replace, with another kind of file, ") == 1);
         CHECK_THAT(refused.output, !Catch::Contains("clean "));
     }
     for (const char* f : {"model.rsm", "report.html", "evaluation.txt"})
@@ -335,6 +335,27 @@ TEST_CASE("an unreadable trial file is named once on the terminal, with file and
         CHECK(count_of(r.output, where) == 1);
         CHECK_THAT(r.output, Catch::Contains("trial 'P1-r4' left out") && Catch::Contains("'1.2.3'") &&
                                  Catch::Contains("unreadable 1"));
+    }
+    // Review (data): an empty object became a class of its own. A dataset may hold unlabelled trials (for predict):
+    // features reads them, training and evaluation refuse them.
+    {
+        const std::string manifest = file_text(ds / "manifest.csv");
+        std::string unlabelled = manifest;
+        const auto row = unlabelled.find("\nP1-r4,");
+        REQUIRE(row != std::string::npos);
+        const auto object = unlabelled.find(',', unlabelled.find(',', row + 1) + 1) + 1;  // after trial_id and file
+        unlabelled.erase(object, unlabelled.find(',', object) - object);
+        std::ofstream(ds / "manifest.csv", std::ios::binary) << unlabelled;
+        CHECK(rollsense_cli("features " + ds.string() + " -o " + (dir / "u.csv").string()).status == 0);
+        for (const std::string& args : {"evaluate " + ds.string() + " --repeats 1 --folds 3 --set learners=5",
+                                        "train " + (dir / "u.csv").string() + " -o " + (dir / "u.rsm").string()}) {
+            INFO(args);
+            const auto r = rollsense_cli(args);
+            INFO(r.output);
+            CHECK(r.status == 3);
+            CHECK(count_of(r.output, "trial 'P1-r4' has no object (class label)") == 1);
+        }
+        std::ofstream(ds / "manifest.csv", std::ios::binary) << manifest;
     }
     // Review (data): a channel that dataset-info.csv names wrongly made every file unreadable: one warning per
     // trial blaming the files, and exit 0. Now one error, naming dataset-info.csv, exit 3.

@@ -86,11 +86,7 @@ TEST_CASE("malformed datasets: bad manifests", "[replay][malformed]") {
         CHECK(replay_error(dir).find(manifest + ":3: column 'trial_id': trial id 't1' appears twice") !=
               std::string::npos);
     }
-    // Review (data): an empty label became a class, and one file listed twice sat in two folds at once.
-    SECTION("an empty object") {
-        rt::write_file(dir / "ds/manifest.csv", "trial_id,file,object,speed,repetition,samples\nt1,trials/t1.csv,,10,1,3\n");
-        CHECK(replay_error(dir).find(manifest + ":2: column 'object': empty object") != std::string::npos);
-    }
+    // Review (data): one file listed twice sat in two folds at once.
     SECTION("one trial file named by two trials") {
         rt::write_file(dir / "ds/manifest.csv", std::string(kManifest) + "t2,trials/./t1.csv,C1,10,2,3\n");
         CHECK(replay_error(dir).find(manifest + ":3: column 'file': trial 't2' names the file trials/./t1.csv, which "

@@ -67,7 +67,8 @@ options:
                         default: no limit)
   --slice-limit-ms MS   stop a script (or profile) that runs MS ms without
                         waiting: its failure, at its file:line (default 5000)
-  --memory-limit-mb MB  Lua heap cap (default 256)
+  --memory-limit-mb MB  Lua heap cap, and the most a recording may hold in
+                        memory (default 256)
   --commit-every N      trials per durable group commit (0, the default: 1 on
                         hardware, 64 in simulation)
   --no-progress         no progress bar (it is off anyway when stderr is not a terminal)

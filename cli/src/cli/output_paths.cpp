@@ -33,8 +33,8 @@ std::string replaces_other_result(const char* command, const std::filesystem::pa
         if (file.filename() != r.file) continue;
         for (const char* writer : r.writers)
             if (writer && std::string_view(writer) == command) return {};
-        return "-o " + file.string() + " would replace " + r.what + " that `rollsense " + r.writers[0] +
-               "` wrote there with another kind of file; give -o another name, or delete it first if it is unwanted";
+        return "-o " + file.string() + " would replace, with another kind of file, " + r.what + " (by its name: `rollsense " +
+               r.writers[0] + "` writes it); give -o another name, or delete it first if it is unwanted";
     }
     return {};
 }

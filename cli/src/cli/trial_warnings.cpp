@@ -26,7 +26,8 @@ Status warn_unreadable_trials(const std::vector<features::FeatureRow>& rows) {
         return {ErrorCode::parse_error, "none of the " + std::to_string(rows.size()) + " trials could be read; the "
                                             "first, '" + rows.front().trial_id + "': " + why_unreadable(rows.front()) +
                                             ". When every file fails alike, check dataset-info.csv (its channels) "
-                                            "against the trial files' header"};
+                                            "against the trial files' header; otherwise repair or restore the files "
+                                            "(a run records them again with its command line plus --resume)"};
     for (const auto& r : rows)
         if (unreadable(r))
             log_warning("rollsense", "trial '" + r.trial_id + "' left out: " + why_unreadable(r) +

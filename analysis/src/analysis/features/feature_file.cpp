@@ -186,8 +186,6 @@ Result<std::vector<FeatureRow>> read_features_csv(const std::filesystem::path& f
                              std::to_string(at->second) + "); remove the copy, or write the file again with rollsense "
                                                           "features"};
         row.object = f[*obj_col];
-        if (row.object.empty())  // review: an empty label became a class of its own
-            return Error{ErrorCode::parse_error, r.where(*obj_col) + ": empty object: every row names its class label"};
         const std::string& cl = f[*clean_col];
         if (cl == "1" || cl == "true" || cl == "TRUE" || cl == "True") row.clean = true;
         else if (cl == "0" || cl == "false" || cl == "FALSE" || cl == "False") row.clean = false;

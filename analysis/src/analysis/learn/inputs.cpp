@@ -4,6 +4,20 @@
 #include <map>
 
 namespace rollsense::learn {
+namespace {
+// Training and evaluation need every trial's class label; a dataset may hold unlabelled trials for predict (review:
+// an empty label became a class of its own).
+Result<std::vector<features::FeatureRow>> labelled(Result<std::vector<features::FeatureRow>> rows,
+                                                   const std::filesystem::path& file) {
+    if (rows)
+        for (const auto& r : *rows)
+            if (r.object.empty())
+                return Error{ErrorCode::parse_error, file.string() + ": trial '" + r.trial_id + "' has no object "
+                                                     "(class label): label it to train or evaluate on it (predict "
+                                                     "needs none), or leave it out"};
+    return rows;
+}
+}  // namespace
 
 Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesystem::path& input,
                                                             const features::FeatureSettings& settings,
@@ -13,13 +27,14 @@ Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesyste
     if (std::filesystem::is_directory(input, ec)) {
         auto ds = DatasetReader::open(input);
         if (!ds) return ds.error();
-        if (recorded) return recorded->extract(*ds, threads, stop);
-        return features::extract_dataset(*ds, settings, threads, stop);
+        return labelled(recorded ? recorded->extract(*ds, threads, stop)
+                                 : features::extract_dataset(*ds, settings, threads, stop),
+                        input / "manifest.csv");
     }
     if (!std::filesystem::exists(input, ec))
         return Error{ErrorCode::not_found, "'" + input.string() +
                                                "' does not exist (expected a dataset folder or a features CSV)"};
-    return features::read_features_csv(input);
+    return labelled(features::read_features_csv(input), input);
 }
 
 Status parse_assignment(const std::string& text, ParamSet& into) {

@@ -194,8 +194,9 @@ bool l_wait(lua_State* L) {
     const double ms = luaL_checknumber(L, 1);
     if (!(ms >= 0) || !std::isfinite(ms)) luaL_error(L, "rs.wait: milliseconds must be a number >= 0");
     Session& s = Session::of(L);
-    // 0: the next control period, so a polling loop lets the joints move on the virtual clock too (review: it hung).
-    const double until = ms > 0 ? s.now() + s.quantize(ms / 1000.0) : s.scheduler().next_control();
+    // 0 (or less than the clock's step): the next control period, so a polling loop lets the joints move on the
+    // virtual clock too (review: it hung).
+    const double d = s.quantize(ms / 1000.0), until = d > 0 ? s.now() + d : s.scheduler().next_control();
     waiting_task(L, "rs.wait").request(Wait::for_time(until));
     return true;
 }
@@ -291,27 +292,12 @@ int l_profile(lua_State* L) {
     return 1;
 }
 
-// One log entry of at most 64 KiB, its line breaks indented: no line of it reads as the program's own (review: rs.log
-// wrote an 11 MB line, and "\nerror ..." a line that looked like the program's).
-std::string concat_args(lua_State* L) {
-    std::string line;
-    for (int i = 1; i <= lua_gettop(L) && line.size() <= 65536; ++i) {
-        if (i > 1) line += ' ';
-        line += luaL_tolstring(L, i, nullptr);
-        lua_pop(L, 1);
-    }
-    if (line.size() > 65536) line.resize(65536), line += " ... (cut at 64 KiB)";
-    std::string indented;
-    for (const char c : line) indented += c == '\n' ? std::string_view("\n  ") : std::string_view(&c, 1);
-    return indented;
-}
-
 int l_log(lua_State* L) {
-    log_info("script", concat_args(L));
+    log_info("script", script_log_entry(L, ' '));
     return 0;
 }
 int l_warn(lua_State* L) {
-    log_warning("script", concat_args(L));
+    log_warning("script", script_log_entry(L, ' '));
     return 0;
 }
 

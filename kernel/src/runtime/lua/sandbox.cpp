@@ -205,15 +205,23 @@ int Sandbox::lua_load_text(lua_State* L) {
     return 1;
 }
 
-int Sandbox::lua_print(lua_State* L) {
-    std::string line;
-    int n = lua_gettop(L);
-    for (int i = 1; i <= n; ++i) {
-        if (i > 1) line += '\t';
-        line += luaL_tolstring(L, i, nullptr);
+std::string script_log_entry(lua_State* L, char separator) {
+    constexpr std::size_t kMax = 64 * 1024;
+    std::string entry;
+    for (int i = 1; i <= lua_gettop(L) && entry.size() <= kMax; ++i) {
+        std::size_t n = 0;
+        const char* text = luaL_tolstring(L, i, &n);
+        if (i > 1) entry += separator;
+        for (std::size_t k = 0; k < n && entry.size() <= kMax; ++k)
+            entry += text[k] == '\n' ? "\n  " : text[k] == '\r' ? "\\r" : std::string(1, text[k]);
         lua_pop(L, 1);
     }
-    log_info("script", line);
+    if (entry.size() > kMax) entry.resize(kMax), entry += " ... (cut at 64 KiB)";
+    return entry;
+}
+
+int Sandbox::lua_print(lua_State* L) {
+    log_info("script", script_log_entry(L, '\t'));
     return 0;
 }
 

@@ -39,6 +39,11 @@ struct SandboxLimits {
     double cancel_grace_ms = 5000;          // after a cancel, the watchdog's patience (cancel_watchdog.hpp)
 };
 
+// The values at L's stack as one log entry (print, rs.log, rs.warn): at most 64 KiB, each line break indented and a
+// carriage return shown as \r, so no line of it reads as the program's own (review: an 11 MB line; "\nerror ..." and
+// "\rerror ..." faked one).
+std::string script_log_entry(lua_State* L, char separator);
+
 // A Lua heap with a cap, for the sandbox and for profiles: an allocation past it fails, and Lua raises "not enough
 // memory" in the script.
 struct LuaHeap {

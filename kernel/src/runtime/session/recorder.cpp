@@ -79,7 +79,7 @@ Status Recorder::sample_tick(double now) {
     const std::size_t bytes = data_.samples() * (8 * (1 + data_.channels.size() + data_.joints.size()) + 1);
     if (auto s = bytes <= max_recording_bytes ? robot_.sample(now, data_) : Status{ErrorCode::limit_violation,
             "trial '" + trial_.id + "': its recording reached the memory cap (--memory-limit-mb) after " +
-                std::to_string(data_.samples()) + " samples: stop it with rs.record_stop()"}; !s.ok()) {
+                std::to_string(data_.samples()) + " samples: stop it with rs.record_stop(), or raise the cap"}; !s.ok()) {
         recording_ = false;  // review: a forgotten record_stop() grew the recording by 45 MB a second
         return s;
     }
