@@ -28,6 +28,12 @@ std::string record_four_trials(const fs::path& ds) {
     return "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --seed 11 --set runs=2 " +
            "--set objects=C1,P1 --set speeds=10 --set analyse=false --no-progress -q --out " + ds.string();
 }
+// Runs the script `lines` (after `local rs = require 'rollsense'`), written as dir/NAME, on the simulated hand into
+// dir/out.
+CommandRun run_lines(const TempDir& dir, const std::string& name, const std::string& lines, const std::string& options = "") {
+    write_file(dir / name, "local rs = require 'rollsense'\n" + lines);
+    return run_rollsense("run " + shell_quoted(dir / name) + options + " --no-progress --out " + shell_quoted(dir / "out"));
+}
 }  // namespace
 
 // Item 1: the folder was searched, found empty, and the command went on with the installed plugins.
@@ -272,11 +278,8 @@ TEST_CASE("a plugin whose static initialiser throws stops the process with its f
 // recording of it was saved into the manifest.
 TEST_CASE("a trial the devices refused is not open: nothing of it is recorded or saved") {
     TempDir dir("rollsense-cli-refused-trial");
-    write_file(dir / "ghost.lua", "local rs = require 'rollsense'\n"
-                                  "print(pcall(rs.trial, { object = 'ZZ', speed = 10, repetition = 1 }))\n"
-                                  "rs.record_start()\n");
-    const auto r = run_rollsense("run " + shell_quoted(dir / "ghost.lua") + " --no-progress --out " +
-                                 shell_quoted(dir / "out"));
+    const auto r = run_lines(dir, "ghost.lua", "print(pcall(rs.trial, { object = 'ZZ', speed = 10, repetition = 1 }))\n"
+                                               "rs.record_start()\n");
     INFO(r.output);
     CHECK(r.status == 1);
     CHECK(count_of(r.output, "ghost.lua:3: recording needs a trial") == 1);
@@ -286,12 +289,10 @@ TEST_CASE("a trial the devices refused is not open: nothing of it is recorded or
 // Review (scripting): a recording never stopped grew by 45 MB a second until the machine ran out of memory.
 TEST_CASE("a recording is bounded by the script's memory cap, and the run ends naming the trial") {
     TempDir dir("rollsense-cli-endless-recording");
-    write_file(dir / "forever.lua", "local rs = require 'rollsense'\n"
-                                    "rs.trial{ object = 'C2', speed = 10, repetition = 1 }\n"
-                                    "rs.record_start()\n"
-                                    "rs.wait_until(function() return false end)\n");
-    const auto r = run_rollsense("run " + shell_quoted(dir / "forever.lua") + " --memory-limit-mb 4 --no-progress --out " +
-                                 shell_quoted(dir / "out"));
+    const auto r = run_lines(dir, "forever.lua", "rs.trial{ object = 'C2', speed = 10, repetition = 1 }\n"
+                                                 "rs.record_start()\n"
+                                                 "rs.wait_until(function() return false end)\n",
+                             " --memory-limit-mb 4");
     INFO(r.output);
     CHECK(r.status == 1);
     CHECK(count_of(r.output, "trial 'C2-v10-r001': its recording reached the memory cap (--memory-limit-mb) after ") == 1);
@@ -301,11 +302,10 @@ TEST_CASE("a recording is bounded by the script's memory cap, and the run ends n
 // program's own error.
 TEST_CASE("a script's log entry is cut at 64 KiB and its line breaks are indented, print's too") {
     TempDir dir("rollsense-cli-log-entry");
-    write_file(dir / "log.lua", "local rs = require 'rollsense'\n"
-                                "rs.log(string.rep('L', 200000))\n"
-                                "rs.warn('first\\nerror   rollsense: not the program')\n"
-                                "print('second\\rerror   rollsense: not the program either', string.rep('P', 70000))\n");
-    const auto r = run_rollsense("run " + shell_quoted(dir / "log.lua") + " --no-progress --out " + shell_quoted(dir / "out"));
+    const auto r = run_lines(dir, "log.lua", "rs.log(string.rep('L', 200000))\n"
+                                             "rs.warn('first\\nerror   rollsense: not the program')\n"
+                                             "print('second\\rerror   rollsense: not the program either', "
+                                             "string.rep('P', 70000))\n");
     INFO(r.output.substr(0, 2000));
     CHECK(r.status == 0);
     CHECK(count_of(r.output, std::string(65536, 'L') + " ... (cut at 64 KiB)\n") == 1);
