@@ -7,7 +7,6 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <optional>
 
 namespace rollsense::csv {
@@ -368,17 +367,23 @@ Result<KeyValues> read_key_values(const std::filesystem::path& file) {
     if (!value) return value.error();
     KeyValues out;
     std::vector<std::string> fields;
-    std::map<std::string, std::size_t> line_of;  // a key given twice: which one holds is not for us to guess
+    std::unordered_map<std::string, std::size_t> line_of;
     for (;;) {
         auto more = reader->next(fields);
         if (!more) return more.error();
         if (!*more) break;
-        if (const auto [at, fresh] = line_of.emplace(fields[*key], reader->line()); !fresh)
-            return Error{ErrorCode::parse_error, reader->where(*key) + ": '" + fields[*key] + "' is given twice (first "
-                                                     "at line " + std::to_string(at->second) + "): keep one"};
+        if (auto s = refuse_repeated_key(line_of, *reader, *key, fields[*key]); !s) return s.error();
         out.emplace_back(fields[*key], fields[*value]);
     }
     return out;
+}
+
+Status refuse_repeated_key(std::unordered_map<std::string, std::size_t>& seen, const Reader& reader,
+                           std::size_t key_column, const std::string& key) {
+    if (const auto [at, fresh] = seen.emplace(key, reader.line()); !fresh)
+        return {ErrorCode::parse_error, reader.where(key_column) + ": '" + key + "' is given twice (first at line " +
+                                            std::to_string(at->second) + "): keep one"};
+    return {};
 }
 
 std::string format_key_values(const KeyValues& entries) {

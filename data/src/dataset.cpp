@@ -104,9 +104,7 @@ Result<DatasetInfo> read_info(const fs::path& file) {
         if (!*more) break;
         const auto& key = f[*key_col];
         const auto& value = f[*val_col];
-        if (const auto [at, fresh] = line_of.emplace(key, reader->line()); !fresh)
-            return Error{ErrorCode::parse_error, reader->where(*key_col) + ": '" + key + "' is given twice (first at "
-                                                     "line " + std::to_string(at->second) + "): keep one"};
+        if (auto s = csv::refuse_repeated_key(line_of, *reader, *key_col, key); !s) return s.error();
         if (key == "format") {
             if (value != kDatasetFormat)
                 return Error{ErrorCode::parse_error, reader->where(*val_col) + ": format is '" + value +

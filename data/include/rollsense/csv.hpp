@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -85,6 +86,11 @@ Result<std::uint64_t> parse_unsigned(std::string_view text, std::uint64_t max, c
 // order. A missing file reads as empty: older datasets have none.
 using KeyValues = std::vector<std::pair<std::string, std::string>>;
 Result<KeyValues> read_key_values(const std::filesystem::path& file);
+
+// A key-value file names each key once: an error at the reader's line for `key` if `seen` (key → its line) has it
+// already (which of two would hold is not for a reader to guess), else `key` is added.
+Status refuse_repeated_key(std::unordered_map<std::string, std::size_t>& seen, const Reader& reader,
+                           std::size_t key_column, const std::string& key);
 // "key,value\n" and one row per entry: the content of such a file.
 std::string format_key_values(const KeyValues& entries);
 
