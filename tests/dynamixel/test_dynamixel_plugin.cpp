@@ -14,6 +14,7 @@
 #include "rollsense/testing/conformance.hpp"
 #include "dynamixel_actuator.hpp"
 #include "fork_first.hpp"
+#include "log_capture.hpp"
 #include "rollsense/hal/dynamixel/emulator_config.hpp"
 #include "rollsense/hal/dynamixel/pty_emulator.hpp"
 #include "rollsense/hal/dynamixel/virtual_link.hpp"
@@ -449,6 +450,36 @@ TEST_CASE("a hardware error becomes a fault on the joint, a typed error on write
     CHECK(s[2].torque_enabled);
     CHECK(a.write(0, hold_all(a, s)).ok());
     CHECK(a.invoke("reboot", {{"joint", std::string("thumb")}}).error().code == ErrorCode::not_found);
+}
+
+// Review: the hardware error was logged when read, then printed again as the run's error. A joint under control
+// reports it once, as write()'s error (above); a released joint, whose write has nothing to refuse, as one warning.
+TEST_CASE("a hardware error on a released joint is warned of once, and not logged when read") {
+    auto emu = start_emulator(false);
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    auto cmd = hold_all(a, s);
+    cmd[2].torque_enabled = false;
+    REQUIRE(a.write(0, cmd).ok());
+    const testing::LogCapture log;
+    on_bus(*emu, [](BusEmulator& b) { b.raise_hardware_error(3, hw_error::overload); return 0; });
+    REQUIRE(a.read(0, s).ok());
+    CHECK(s[2].fault == "overload");
+    CHECK(log.lines().empty());
+    for (int period = 0; period < 3; ++period) {
+        REQUIRE(a.read(0, s).ok());
+        CHECK(a.write(0, cmd).ok());
+    }
+    INFO(log.all());
+    REQUIRE(log.lines().size() == 1);
+    CHECK_THAT(log.lines()[0], Catch::StartsWith("warning ") && Catch::Contains("'palm'") &&
+                                   Catch::Contains("overload") && Catch::Contains("reboot"));
+    cmd[2].torque_enabled = true;
+    CHECK(a.write(0, cmd).code() == ErrorCode::hardware_fault);
+    CHECK(log.lines().size() == 1);
 }
 
 TEST_CASE("activation refuses a servo with a latched hardware error") {

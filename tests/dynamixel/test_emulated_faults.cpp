@@ -11,6 +11,8 @@
 #include <initializer_list>
 #include <string>
 
+#include <tuple>
+
 #include "runtime/session/session.hpp"
 #include "log_capture.hpp"
 #include "temp_dir.hpp"
@@ -80,18 +82,24 @@ TEST_CASE("each injected servo fault ends the run with a typed error, complete t
 // Review finding 9: a silent servo was printed three times: when the device
 // entered its error state, again by the script's cleanup (whose park() the
 // device refused), and as the run's error. It is the run's error only now;
-// the cleanup's refusal names the fault's kind, not its text.
+// the cleanup's refusal names the fault's kind, not its text. A hardware error
+// was printed twice: by the plugin when it read the alert, then as the run's error.
 TEST_CASE("a servo fault is reported once, as the run's error", "[fault]") {
-    const testing::TempDir tmp("rollsense-emulated-fault-once");
-    const testing::LogCapture log(LogLevel::info);
-    const auto summary = run_with_fault(tmp.path(), "1:silent:25");
-    INFO(log.all());
-    REQUIRE(summary.status.code() == ErrorCode::timeout);
-    CHECK_THAT(summary.status.message(), Catch::Contains("did not answer"));
-    CHECK(log.count("did not answer") == 0);
-    CHECK(log.count("cleanup stopped") == 1);
-    CHECK(log.count("needs the active state, it is error (after a timeout error)") == 1);
-    for (const auto& line : log.lines()) CHECK(line.rfind("error ", 0) != 0);  // nothing else at error level
+    for (auto [spec, code, text, kind] :
+         {std::tuple{"1:silent:25", ErrorCode::timeout, "did not answer", "(after a timeout error)"},
+          std::tuple{"1:hardware-error:25", ErrorCode::hardware_fault, "overload", "(after a hardware fault error)"}}) {
+        INFO(spec);
+        const testing::TempDir tmp("rollsense-emulated-fault-once");
+        const testing::LogCapture log(LogLevel::info);
+        const auto summary = run_with_fault(tmp.path(), spec);
+        INFO(log.all());
+        REQUIRE(summary.status.code() == code);
+        CHECK_THAT(summary.status.message(), Catch::Contains(text));
+        CHECK(log.count(text) == 0);
+        CHECK(log.count("cleanup stopped") == 1);
+        CHECK(log.count(std::string("needs the active state, it is error ") + kind) == 1);
+        for (const auto& line : log.lines()) CHECK(line.rfind("error ", 0) != 0);  // nothing else at error level
+    }
 }
 
 // The independent hardware review's repros on etroll-virtual: a finger pushing

@@ -378,8 +378,7 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
             auto hw = bus_->read_value(ids_[i], addr::hardware_error_status, 1);
             if (!hw.ok()) return with_joint(i, hw.status());
             const auto bits = static_cast<std::uint8_t>(*hw);
-            if (bits != rt_[i].hardware_error)
-                log_error(kLog, who(i) + ": hardware error: " + describe_hardware_error(bits));
+            if (bits != rt_[i].hardware_error) rt_[i].hardware_error_told = false;  // said once, by write()
             rt_[i].hardware_error = bits;
             rt_[i].torque = false;  // the firmware turned it off
         } else {
@@ -426,6 +425,13 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         const auto& j = config_.joints[i];
         const auto& c = commands[i];
+        // A joint under control: the run's error. A released one: a warning, once (review: it was logged when read,
+        // then printed again as the run's error).
+        if (rt_[i].hardware_error && !c.torque_enabled && !rt_[i].hardware_error_told)
+            log_warning(kLog, who(i) + ": hardware error (" + describe_hardware_error(rt_[i].hardware_error) +
+                                  ") while released; the servo turned its torque off. Remove the cause, then "
+                                  "device:call('reboot', {joint='" + j.name + "'}) before it moves again");
+        rt_[i].hardware_error_told = rt_[i].hardware_error != 0;
         if (rt_[i].hardware_error && c.torque_enabled)
             return {ErrorCode::hardware_fault,
                     who(i) + ": hardware error (" + describe_hardware_error(rt_[i].hardware_error) +

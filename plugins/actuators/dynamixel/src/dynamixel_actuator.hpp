@@ -42,6 +42,7 @@ private:
         bool torque = false;
         std::int32_t present_ticks = hal::dxl::kCentreTick;
         std::uint8_t hardware_error = 0;
+        bool hardware_error_told = false;  // reported (the run's error, or a warning for a released joint)
         // The servo's own limits, as read back at prepare(): a SYNC_WRITE has
         // no reply, so a value the servo would refuse must be caught here.
         std::int32_t velocity_limit = 0;
