@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rollsense/log.hpp"
+#include "rollsense/random.hpp"
 #include "runtime/lua/api_internal.hpp"
 #include "runtime/lua/lua_values.hpp"
 
@@ -351,16 +352,13 @@ int l_output_dir(lua_State* L) {
     return 1;
 }
 
-// rs.random() → uniform [0, 1); rs.random_normal() → N(0, 1). Seeded per trial.
-int l_random(lua_State* L) {
-    auto& rng = Session::of(L).trial_random();
-    lua_pushnumber(L, static_cast<double>(rng() >> 11) * 0x1.0p-53);
-    return 1;
-}
+// rs.random() → uniform [0, 1); rs.random_normal() → N(0, 1) by Box–Muller, two draws each (std::normal_distribution
+// is implementation-defined: another standard library would draw other numbers). Seeded per trial.
+int l_random(lua_State* L) { return lua_pushnumber(L, random::unit_interval(Session::of(L).trial_random()())), 1; }
 int l_random_normal(lua_State* L) {
     auto& rng = Session::of(L).trial_random();
-    std::normal_distribution<double> n(0.0, 1.0);
-    lua_pushnumber(L, n(rng));
+    const double u1 = 1.0 - random::unit_interval(rng()), u2 = random::unit_interval(rng());  // u1 in (0, 1]: finite log
+    lua_pushnumber(L, std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2));
     return 1;
 }
 
