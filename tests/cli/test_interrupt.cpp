@@ -102,3 +102,24 @@ TEST_CASE("Ctrl-C stops a chain of spawned tasks, and the cleanup runs") {
     CHECK(r.output.find("cleanup ran") != std::string::npos);
     CHECK(r.output.find("interrupted three times") == std::string::npos);
 }
+
+// The watchdog's way out ends the process inside the run, where `rollsense run` could not say how to go on (review:
+// no "continue with" line, though the trials recorded before stayed on disk).
+TEST_CASE("the watchdog's way out names the resume command when trials were saved") {
+    TempDir dir("rollsense-cli-watchdog-way-on");
+    {
+        std::ofstream(dir / "stuck.lua") << "local rs = require 'rollsense'\n"
+                                            "rs.trial{ object = 'C1', speed = 20, repetition = 1 }\n"
+                                            "rs.record_start() rs.wait(100) rs.record_stop() rs.save_trial()\n"
+                                            "rs.end_trial()\n"
+                                            "table.move({}, 1, 1 << 62, 1, {})  -- one C call no hook reaches\n";
+    }
+    const auto r = run_rollsense("run " + shell_quoted(dir / "stuck.lua") + " --slice-limit-ms 200 --no-progress --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);  // the script's failure, a limit it passed
+    CHECK(r.output.find("the watchdog made the hand safe") != std::string::npos);
+    CHECK(r.output.find("continue with: rollsense run " + (dir / "stuck.lua").string() + " --out " +
+                        (dir / "out").string() + " --resume") != std::string::npos);  // plain paths: unquoted
+    CHECK(fs::exists(dir / "out" / "trials" / "C1-v20-r001.csv"));
+}

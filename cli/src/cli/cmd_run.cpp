@@ -219,6 +219,8 @@ int run(const std::vector<std::string>& argv) {
     o.digital_lines = hal::gpio_digital_lines();
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
+    // The watchdog's way out (three Ctrl-C, a script stuck in one C call) ends the process inside the run.
+    o.way_on = "the trials saved stay on disk; continue with: " + resume_command(pos[0], o.out_dir, deciding);
 
     ProgressBar bar(!args.flag("--no-progress"));  // before the live view's threads (it wraps the log sink)
     std::unique_ptr<live::LiveView> view;
