@@ -3,8 +3,10 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 namespace rollsense {
@@ -71,7 +73,38 @@ Status sync_filesystem_of(const std::filesystem::path& file) {
     return {};
 }
 
+// /dev/fd/N, /proc/self/fd/N (where /dev/stdout leads), /proc/thread-self/fd/N or /proc/<this pid>/fd/N: N.
+int own_descriptor(const std::filesystem::path& path) {
+    const std::string p = path.lexically_normal().string();
+    for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"),
+                                      std::string("/proc/thread-self/fd/"), "/proc/" + std::to_string(::getpid()) + "/fd/"}) {
+        if (p.rfind(prefix, 0) != 0) continue;
+        const std::string n = p.substr(prefix.size());
+        if (!n.empty() && n.size() < 10 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return std::stoi(n);
+    }
+    return -1;
+}
+
 }  // namespace
+
+Landing landing_of(const std::filesystem::path& file) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    Landing out;
+    fs::path p = file;
+    for (int hop = 0; hop < 40; ++hop) {  // links followed by hand: a dangling one names the file to create
+        if ((out.descriptor = own_descriptor(p)) >= 0) return out;
+        if (!fs::is_symlink(p, ec)) break;
+        const fs::path to = fs::read_symlink(p, ec);
+        if (ec) break;
+        p = to.is_absolute() ? to : p.parent_path() / to;
+    }
+    const auto st = fs::status(p, ec);
+    out.in_place = fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
+    out.file = p;
+    return out;
+}
 
 Status write_files_synced(const std::vector<PendingFile>& files) {
     // As write_files_atomic: one file is fdatasync'ed (and its folder synced),
@@ -84,6 +117,21 @@ Status write_files_synced(const std::vector<PendingFile>& files) {
 }
 
 Status write_files_atomic(std::vector<PendingFile>& files) {
+    for (auto it = files.begin(); it != files.end();) {
+        const Landing to = landing_of(it->file);
+        if (!to.written_in_place()) {
+            it++->file = to.file;
+            continue;
+        }
+        // No folder entry to replace, nor data to sync: written as the shell's `>` would (an open descriptor as the
+        // shell set it up: `>>` appends).
+        if (to.descriptor == STDOUT_FILENO) std::fflush(stdout);
+        if (auto s = to.descriptor >= 0 ? write_all(to.descriptor, it->file, it->content)
+                                        : write_and_sync(to.file, it->content, false, it->file);
+            !s.ok())
+            return s;
+        it = files.erase(it);
+    }
     std::vector<std::filesystem::path> temps;
     temps.reserve(files.size());
     auto discard = [&] {
@@ -151,7 +199,16 @@ Status check_can_write(const std::filesystem::path& file) {
     std::error_code ec;
     const std::string cannot = "cannot write '" + file.string() + "': ";
     if (fs::is_directory(file, ec)) return {ErrorCode::io_error, cannot + "it is a folder; name a file"};
-    const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    const Landing to = landing_of(file);  // where the write goes: through links, or in place
+    if (to.descriptor >= 0) {
+        const int flags = ::fcntl(to.descriptor, F_GETFL);
+        if (flags < 0 || (flags & O_ACCMODE) == O_RDONLY)
+            return {ErrorCode::io_error, cannot + "descriptor " + std::to_string(to.descriptor) + " is not open for writing"};
+        return {};
+    }
+    if (to.in_place)
+        return ::access(to.file.c_str(), W_OK) == 0 ? Status{} : Status{ErrorCode::io_error, cannot + errno_text()};
+    const fs::path folder = to.file.parent_path().empty() ? fs::path(".") : to.file.parent_path();
     if (!fs::is_directory(folder, ec))
         return {ErrorCode::io_error, cannot + "the folder " + folder.string() +
                                          (fs::exists(folder, ec) ? " is not a folder" : " does not exist; create it first")};

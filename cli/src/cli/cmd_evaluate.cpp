@@ -160,8 +160,8 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
         registry, request,
         [print_rejections](const std::vector<features::FeatureRow>& rows) {
             if (auto unread = warn_unreadable_trials(rows); !unread) return unread;
-            if (print_rejections) std::printf("%s\n", learn::summarize_rejections(rows).c_str());
-            std::fflush(stdout);
+            // On stderr: stdout is the evaluation's text alone, as evaluation.txt holds it.
+            if (print_rejections) std::fprintf(stderr, "%s\n", learn::summarize_rejections(rows).c_str());
             return Status{};
         },
         &failed);
@@ -213,7 +213,7 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
         std::fprintf(stderr, "rollsense %s: %s\n", command, st.error().describe().c_str());
         return exit_code_for(st.code(), kExitConfig);
     }
-    std::printf("%s\n", learn::summarize_rejections(rows).c_str());
+    std::fprintf(stderr, "%s\n", learn::summarize_rejections(rows).c_str());
     return kExitOk;
 }
 
@@ -310,7 +310,7 @@ int run(const std::vector<std::string>& argv) {
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
     if (int rc = run_learning_pipeline("evaluate", args, s, registry, result, true); rc != kExitOk) return rc;
-    std::printf("\n%s", learn::format_evaluation(result.evaluation).c_str());
+    std::fputs(learn::format_evaluation(result.evaluation).c_str(), stdout);  // evaluation.txt's text, nothing else
     if (!out.empty()) {
         if (auto st = learn::write_evaluation_files(result.evaluation, files); !st) {
             std::fprintf(stderr, "rollsense evaluate: %s\n", st.error().describe().c_str());

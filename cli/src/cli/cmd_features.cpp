@@ -23,8 +23,10 @@ of it), decide clean or rejected (max > 0.01 and a complete peak on every
 channel) and compute the 13 features F1..F13 in the paper's order.
 
 The CSV has one row per trial: trial_id, object, speed, repetition, clean (1/0),
-reason, F1..F13 (empty for rejected trials), window_ch1..3. MATLAB:
-readtable(FILE); pandas: pd.read_csv(FILE).
+reason, F1..F13 (empty for rejected trials), window_ch1..3, then one
+extra_NAME column per extra manifest column (e.g. extra_mount), in name order.
+MATLAB: readtable(FILE); pandas: pd.read_csv(FILE). -o /dev/stdout writes
+the table alone on stdout (this summary goes to stderr).
 
 options (defaults reproduce the paper):
   -o, --output FILE        the features CSV to write (required)
@@ -150,7 +152,8 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense features: cannot write '%s': %s\n", out.c_str(), s.error().describe().c_str());
         return exit_code_for(s.code());
     }
-    std::printf("%s\nwrote %s\n", learn::summarize_rejections(*rows).c_str(), out.c_str());
+    // On stderr: stdout may be the table itself (-o /dev/stdout).
+    std::fprintf(stderr, "%s\nwrote %s\n", learn::summarize_rejections(*rows).c_str(), out.c_str());
     return kExitOk;
 }
 

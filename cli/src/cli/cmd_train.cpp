@@ -101,9 +101,10 @@ int run(const std::vector<std::string>& argv) {
         std::fprintf(stderr, "rollsense train: %s\n", st.error().describe().c_str());
         return exit_code_for(st.code());
     }
-    if (!model->tuning_folds.empty()) std::printf("tuning folds: %s\n", model->tuning_folds.c_str());
+    // On stderr, as every command's account of its work: stdout carries results only (the model, with -o /dev/stdout).
+    if (!model->tuning_folds.empty()) std::fprintf(stderr, "tuning folds: %s\n", model->tuning_folds.c_str());
     const std::string params = learn::describe_param_values(model->params);
-    std::printf("trained '%s' on %zu classes%s%s\nwrote %s\n", s.classifier.c_str(),
+    std::fprintf(stderr, "trained '%s' on %zu classes%s%s\nwrote %s\n", s.classifier.c_str(),
                 model->classifier->class_names().size(), params.empty() ? "" : ", parameters: ", params.c_str(),
                 out.c_str());
     return kExitOk;

@@ -42,14 +42,30 @@ std::string replaces_other_result(const char* command, const std::filesystem::pa
 
 int check_output_files(const char* command, const std::filesystem::path& input,
                        const std::vector<std::filesystem::path>& outputs) {
+    namespace fs = std::filesystem;
     std::error_code ec;
-    const bool dataset = std::filesystem::is_directory(input, ec);
+    const bool dataset = fs::is_directory(input, ec);
     for (const auto& file : outputs) {
+        // Review: `evaluate in.csv -o in.csv` replaced the features it read with the evaluation.
+        if (!dataset && fs::exists(file, ec) && fs::equivalent(input, file, ec)) {
+            std::fprintf(stderr, "rollsense %s: -o %s is the file %s reads; give -o another name\n", command,
+                         file.c_str(), command);
+            return kExitUsage;
+        }
+        // A FIFO, a terminal or /dev/stdout takes one file in place (rollsense/atomic_file.hpp); the files written
+        // beside it would land in its folder (review: /dev/stdout.json as root).
+        if (outputs.size() > 1 && landing_of(file).written_in_place()) {
+            std::fprintf(stderr, "rollsense %s: -o %s is not a regular file; %s writes %zu files side by side (%s and %s); "
+                                 "name a file in a folder\n",
+                         command, outputs.front().c_str(), command, outputs.size(),
+                         outputs.front().filename().c_str(), outputs.back().filename().c_str());
+            return kExitUsage;
+        }
         // The input's files, and any other dataset's the output lands in (review: -o OTHER/manifest.csv replaced
         // another dataset's manifest with a features table).
         std::vector<std::filesystem::path> datasets;
         if (dataset) datasets.push_back(input);
-        const auto folder = std::filesystem::absolute(file, ec).parent_path();
+        const auto folder = fs::absolute(file, ec).parent_path();
         for (const auto& dir : {folder, folder.parent_path()})  // beside the file, or the file under its trials/
             if (holds_dataset(dir)) datasets.push_back(dir);
         for (const auto& dir : datasets)
