@@ -26,7 +26,7 @@ TEST_CASE("a run whose analysis fails after its trials are recorded points at th
     const auto failed = run_rollsense("run " + kPaper + kFour + " --out " + shell_quoted(out));
     INFO(failed.output);
     REQUIRE(failed.status == 1);
-    CHECK(count_of(failed.output, "5 folds need at least 5 rows") == 1);
+    CHECK(count_of(failed.output, "5 folds need at least 5 trials") == 1);
     CHECK(failed.output.find("failed: 4 trials saved, 0 already on disk") != std::string::npos);
     CHECK(failed.output.find("continue with:") == std::string::npos);
     CHECK(failed.output.find("the analysis failed, not the recording: the 4 trials of " + out.string() +
@@ -40,7 +40,7 @@ TEST_CASE("a run whose analysis fails after its trials are recorded points at th
     const auto resumed = run_rollsense("run " + kPaper + kFour + " -q --resume --out " + shell_quoted(out));
     INFO(resumed.output);
     CHECK(resumed.status == 1);
-    CHECK(count_of(resumed.output, "5 folds need at least 5 rows") == 1);
+    CHECK(count_of(resumed.output, "5 folds need at least 5 trials") == 1);
     CHECK(resumed.output.find("failed: 0 trials saved, 4 already on disk") != std::string::npos);
     CHECK(resumed.output.find("continue with:") == std::string::npos);
     // ... and the printed commands, with an option that fits the dataset, analyse it.

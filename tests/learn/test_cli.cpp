@@ -505,3 +505,88 @@ TEST_CASE("evaluate --series-time-axis roll_relative: every output says it is ou
     CHECK_THAT(r.output, Catch::Contains("applies to series classifiers"));
     fs::remove_all(dir);
 }
+
+// Review (machine-readable outputs): `-o /dev/stdout` as root replaced the /dev/stdout link with a regular file,
+// `-o link.csv` the link, and a summary line shared stdout with the table. Now /dev/stdout is this process's stdout,
+// as the shell set it up (`>>` appends), links are followed, and the accounts of the work go to stderr.
+TEST_CASE("features -o /dev/stdout writes the table alone on stdout, and a link's file through the link", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string();
+    const std::string out = (dir / "out.csv").string(), err = (dir / "err.txt").string();
+    REQUIRE(rollsense_cli("features " + d + " -o " + (dir / "file.csv").string()).status == 0);
+    const std::string table = file_text(dir / "file.csv");
+    std::ofstream(out) << "before\n";
+    Run r = rollsense::testing::run_command("(" + std::string(ROLLSENSE_BIN_DIR) + "/rollsense features " + d +
+                                            " -o /dev/stdout >> " + out + " 2> " + err + ")");
+    CHECK(r.status == 0);
+    CHECK(file_text(out) == "before\n" + table);  // appended, as `>>` asked, and nothing but the table
+    CHECK_THAT(file_text(err), Catch::Contains("clean ") && Catch::Contains("wrote /dev/stdout"));
+    CHECK(fs::is_symlink("/dev/stdout"));
+    fs::create_symlink("target.csv", dir / "link.csv");
+    REQUIRE(rollsense_cli("features " + d + " -o " + (dir / "link.csv").string()).status == 0);
+    CHECK(fs::is_symlink(dir / "link.csv"));
+    CHECK(file_text(dir / "target.csv") == table);
+    // evaluate writes two files side by side: the second would land in /dev (as /dev/stdout.json).
+    r = rollsense_cli("evaluate " + d + " --repeats 1 -o /dev/stdout");
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(count_of(r.output, "-o /dev/stdout is not a regular file; evaluate writes 2 files side by side") == 1);
+    CHECK_FALSE(fs::exists("/dev/stdout.json"));
+    fs::remove_all(dir);
+}
+
+// Review: `evaluate in.csv -o in.csv` replaced the features it read with the evaluation, `train` with the model.
+TEST_CASE("an -o that names the input file is refused, and the input kept", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string table = (dir / "features.csv").string();
+    REQUIRE(rollsense_cli("features " + (dir / "dataset").string() + " -o " + table).status == 0);
+    const std::string before = file_text(table);
+    for (const std::string& args : {"evaluate " + table + " --repeats 1 -o " + table, "train " + table + " -o " + table}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(count_of(r.output, "-o " + table + " is the file") == 1);
+    }
+    CHECK(file_text(table) == before);
+    fs::remove_all(dir);
+}
+
+// Review: train made a one-class model of a one-object input (and predict then called every trial that object),
+// while evaluate refused it without naming the class or the way out.
+TEST_CASE("train and evaluate refuse an input of one class, naming it and the way out", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const fs::path all = dir / "all.csv", one = dir / "one.csv";
+    REQUIRE(rollsense_cli("features " + (dir / "dataset").string() + " -o " + all.string()).status == 0);
+    {
+        std::ifstream in(all);
+        std::ofstream out(one);
+        std::string line;
+        for (bool header = true; std::getline(in, line); header = false)
+            if (header || line.rfind("C1-", 0) == 0) out << line << "\n";
+    }
+    for (const std::string& command : {"train", "evaluate"}) {
+        const fs::path model = dir / (command + ".out");
+        const auto r = rollsense_cli(command + " " + one.string() + " -o " + model.string());
+        INFO(r.output);
+        CHECK(r.status == 1);
+        CHECK(count_of(r.output, (command == "train" ? "training" : "evaluation") +
+                                     std::string(" needs clean trials of at least two classes (objects); these have "
+                                                 "one, 'C1': record or select trials of two objects or more")) == 1);
+        CHECK_FALSE(fs::exists(model));
+    }
+    fs::remove_all(dir);
+}
+
+// Review: predict's unknown --classifier listed every plugin (sensors, actuators), evaluate's the classifiers only.
+TEST_CASE("predict names the classifier plugins only for an unknown --classifier", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string(), model = (dir / "m.rsm").string();
+    REQUIRE(rollsense_cli("train " + d + " -o " + model).status == 0);
+    const auto r = rollsense_cli("predict " + model + " " + d + " --classifier no_such_thing");
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "no classifier plugin named 'no_such_thing'. Available classifier plugins: ") == 1);
+    CHECK_THAT(r.output, !Catch::Contains("mock_actuator"));
+    fs::remove_all(dir);
+}

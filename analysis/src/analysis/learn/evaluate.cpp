@@ -164,8 +164,7 @@ Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows
     const FeatureTable& table = input.tables.front();
     const auto& row_of = input.row_of;
     if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to evaluate"};
-    if (table.class_names.size() < 2)
-        return Error{ErrorCode::invalid_argument, "evaluation needs at least two classes among the clean trials"};
+    if (auto st = check_two_classes(table, "evaluation"); !st) return st.error();
     if (row_of.size() != table.rows)
         return Error{ErrorCode::invalid_argument, "the input table has " + std::to_string(table.rows) +
                                                       " rows but " + std::to_string(row_of.size()) +
@@ -282,11 +281,20 @@ Status check_final_tuning(const EvaluationOptions& options) {
                 "); give one (--cv grouped or --cv blocked; rs.analyse: cv = \"grouped\"), see docs/identification.md"};
 }
 
+Status check_two_classes(const FeatureTable& table, const char* task) {
+    if (table.class_names.size() >= 2) return {};
+    return {ErrorCode::invalid_argument,
+            std::string(task) + " needs clean trials of at least two classes (objects); these have " +
+                (table.class_names.empty() ? std::string("none") : "one, '" + table.class_names.front() + "'") +
+                ": record or select trials of two objects or more"};
+}
+
 Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                              const EvaluationOptions& options) {
     std::vector<std::size_t> row_of;
     const FeatureTable table = features::to_feature_table(rows, &row_of);
     if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no clean trials to train on"};
+    if (auto st = check_two_classes(table, "training"); !st) return st.error();
     FinalModel out;
     out.params = options.params;
     if (options.optimize) {

@@ -69,27 +69,29 @@ std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry
     return names;
 }
 
+Status find_classifier_plugin(runtime::PluginRegistry& registry, const std::string& plugin) {
+    auto found = registry.find(plugin, PluginKind::classifier);
+    if (found) return {};
+    // A plugin of that name of another kind, or its own file refused: the registry's words say which (review:
+    // "no classifier plugin named" hid a file another compiler built).
+    const auto& found_files = registry.scan();
+    if (std::ranges::any_of(found_files, [&](const auto& c) { return c.is_plugin(plugin); })) return found.error();
+    const auto names = available_classifiers(registry);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    std::string where;
+    for (const auto& d : registry.search_path()) where += (where.empty() ? "" : ", ") + d.string();
+    return {ErrorCode::not_found, "no classifier plugin named '" + plugin + "'. Available classifier plugins: " +
+                                      (list.empty() ? std::string("none") : list) + " (searched " + where +
+                                      "; add a folder with --plugin-path, `rollsense plugins` lists what loads)"};
+}
+
 Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegistry& registry,
                                                             const std::vector<ClassifierSpec>& specs) {
     if (specs.empty()) return Error{ErrorCode::invalid_argument, "no classifier requested"};
     // Every name first, so one typo in a list of several costs no extraction or training.
-    for (const auto& s : specs) {
-        auto found = registry.find(s.plugin, PluginKind::classifier);
-        if (found) continue;
-        // A plugin of that name of another kind, or its own file refused: the registry's words say which (review:
-        // "no classifier plugin named" hid a file another compiler built).
-        const auto& found_files = registry.scan();
-        if (std::ranges::any_of(found_files, [&](const auto& c) { return c.is_plugin(s.plugin); })) return found.error();
-        const auto names = available_classifiers(registry);
-        std::string list;
-        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-        std::string where;
-        for (const auto& d : registry.search_path()) where += (where.empty() ? "" : ", ") + d.string();
-        return Error{ErrorCode::not_found,
-                     "no classifier plugin named '" + s.plugin + "'. Available classifier plugins: " +
-                         (list.empty() ? std::string("none") : list) + " (searched " + where +
-                         "; add a folder with --plugin-path, `rollsense plugins` lists what loads)"};
-    }
+    for (const auto& s : specs)
+        if (auto st = find_classifier_plugin(registry, s.plugin); !st) return st.error();
     std::vector<PreparedClassifier> out;
     for (const auto& s : specs) {
         auto factory = plugin_classifier_factory(registry, s.plugin);
@@ -324,6 +326,7 @@ Result<FinalModel> fit_final_prepared(const std::vector<features::FeatureRow>& r
     if (!input) return input.error();
     const FeatureTable& table = input->tables.front();
     if (table.rows == 0) return Error{ErrorCode::invalid_argument, "no trials to train on"};
+    if (auto st = check_two_classes(table, "training"); !st) return st.error();
     auto model = train_classifier(table, classifier.factory, o.params);
     if (!model) return model.error();
     FinalModel out;
