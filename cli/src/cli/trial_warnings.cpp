@@ -27,12 +27,13 @@ Status warn_unreadable_trials(const std::vector<features::FeatureRow>& rows) {
                                             "first, '" + rows.front().trial_id + "': " + why_unreadable(rows.front()) +
                                             ". When every file fails alike, check dataset-info.csv (its channels) "
                                             "against the trial files' header; otherwise repair or restore the files "
-                                            "(a run records them again with its command line plus --resume)"};
+                                            "(in a dataset a run recorded, that run's command line plus --resume "
+                                            "records them again)"};
     for (const auto& r : rows)
         if (unreadable(r))
             log_warning("rollsense", "trial '" + r.trial_id + "' left out: " + why_unreadable(r) +
-                                         "; repair or restore the file (a run records it again with its command line "
-                                         "plus --resume)");
+                                         "; repair or restore the file (in a dataset a run recorded, that run's "
+                                         "command line plus --resume records it again)");
     return {};
 }
 
