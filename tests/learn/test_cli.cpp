@@ -2,6 +2,7 @@
 // small recorded dataset, with the bagged_trees plugin loaded by the registry.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -355,6 +356,11 @@ TEST_CASE("an unreadable trial file is named once on the terminal, with file and
             CHECK(r.status == 3);
             CHECK(count_of(r.output, "trial 'P1-r4' has no object (class label)") == 1);
         }
+        // In a features CSV, at its line (review: the file only).
+        const std::string table = file_text(dir / "u.csv");
+        const auto line = 1 + std::count(table.begin(), table.begin() + table.find("\nP1-r4,") + 1, '\n');
+        const auto r = rollsense_cli("evaluate " + (dir / "u.csv").string() + " --repeats 1 --folds 3");
+        CHECK(count_of(r.output, "u.csv:" + std::to_string(line) + ": trial 'P1-r4' has no object") == 1);
         std::ofstream(ds / "manifest.csv", std::ios::binary) << manifest;
     }
     // Review (data): a channel that dataset-info.csv names wrongly made every file unreadable: one warning per
@@ -565,7 +571,7 @@ TEST_CASE("train and evaluate refuse an input of one class, naming it and the wa
         for (bool header = true; std::getline(in, line); header = false)
             if (header || line.rfind("C1-", 0) == 0) out << line << "\n";
     }
-    for (const std::string& command : {"train", "evaluate"}) {
+    for (const std::string& command : {std::string("train"), std::string("evaluate")}) {
         const fs::path model = dir / (command + ".out");
         const auto r = rollsense_cli(command + " " + one.string() + " -o " + model.string());
         INFO(r.output);

@@ -7,12 +7,15 @@ namespace rollsense::learn {
 namespace {
 // Training and evaluation need every trial's class label; a dataset may hold unlabelled trials for predict (review:
 // an empty label became a class of its own).
+// `one_row_per_line`: the rows are the file's lines after its header, in order (a features CSV), so the error can
+// name the line (review: it named the file only).
 Result<std::vector<features::FeatureRow>> labelled(Result<std::vector<features::FeatureRow>> rows,
-                                                   const std::filesystem::path& file) {
+                                                   const std::filesystem::path& file, bool one_row_per_line) {
     if (rows)
-        for (const auto& r : *rows)
-            if (r.object.empty())
-                return Error{ErrorCode::parse_error, file.string() + ": trial '" + r.trial_id + "' has no object "
+        for (std::size_t i = 0; i < rows->size(); ++i)
+            if (const auto& r = (*rows)[i]; r.object.empty())
+                return Error{ErrorCode::parse_error, file.string() + (one_row_per_line ? ":" + std::to_string(i + 2) : "") +
+                                                     ": trial '" + r.trial_id + "' has no object "
                                                      "(class label): label it to train or evaluate on it (predict "
                                                      "needs none), or leave it out"};
     return rows;
@@ -29,12 +32,12 @@ Result<std::vector<features::FeatureRow>> load_feature_rows(const std::filesyste
         if (!ds) return ds.error();
         return labelled(recorded ? recorded->extract(*ds, threads, stop)
                                  : features::extract_dataset(*ds, settings, threads, stop),
-                        input / "manifest.csv");
+                        input / "manifest.csv", false);
     }
     if (!std::filesystem::exists(input, ec))
         return Error{ErrorCode::not_found, "'" + input.string() +
                                                "' does not exist (expected a dataset folder or a features CSV)"};
-    return labelled(features::read_features_csv(input), input);
+    return labelled(features::read_features_csv(input), input, true);
 }
 
 Status parse_assignment(const std::string& text, ParamSet& into) {
