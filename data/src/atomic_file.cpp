@@ -73,17 +73,19 @@ Status sync_filesystem_of(const std::filesystem::path& file) {
     return {};
 }
 
-// /dev/fd/N, /proc/self/fd/N (where /dev/stdout leads), /proc/thread-self/fd/N or /proc/<this pid>/fd/N: N.
+// N when `path` is this process's descriptor N: a name of digits in the folder /proc/<pid>/fd (or a thread's), as
+// /dev/fd/N, /proc/self/fd/N and /proc/thread-self/fd/N are once the folder's links are resolved (review: matching
+// the text took /dev/fd/2/../1 and /dev/fd/01, and missed a relative link to /dev/fd/1).
 int own_descriptor(const std::filesystem::path& path) {
-    const std::string p = path.lexically_normal().string();
-    for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"),
-                                      std::string("/proc/thread-self/fd/"), "/proc/" + std::to_string(::getpid()) + "/fd/"}) {
-        if (p.rfind(prefix, 0) != 0) continue;
-        const std::string n = p.substr(prefix.size());
-        if (!n.empty() && n.size() < 10 && std::all_of(n.begin(), n.end(), [](char c) { return c >= '0' && c <= '9'; }))
-            return std::stoi(n);
-    }
-    return -1;
+    const std::string name = path.filename().string();
+    if (name.empty() || name.size() > 9 || (name.size() > 1 && name[0] == '0') ||
+        !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        return -1;
+    std::error_code ec;
+    const std::string folder = std::filesystem::canonical(path.parent_path(), ec).string();
+    const std::string proc = "/proc/" + std::to_string(::getpid());
+    const bool ours = folder == proc + "/fd" || (folder.starts_with(proc + "/task/") && folder.ends_with("/fd"));
+    return !ec && ours ? std::stoi(name) : -1;
 }
 
 }  // namespace
@@ -91,18 +93,18 @@ int own_descriptor(const std::filesystem::path& path) {
 Landing landing_of(const std::filesystem::path& file) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    Landing out;
+    Landing out{file};
     fs::path p = file;
-    for (int hop = 0; hop < 40; ++hop) {  // links followed by hand: a dangling one names the file to create
+    for (int hop = 0; hop < 40; ++hop) {  // the links only tell whether they lead to one of our descriptors
         if ((out.descriptor = own_descriptor(p)) >= 0) return out;
         if (!fs::is_symlink(p, ec)) break;
         const fs::path to = fs::read_symlink(p, ec);
         if (ec) break;
         p = to.is_absolute() ? to : p.parent_path() / to;
     }
-    const auto st = fs::status(p, ec);
-    out.in_place = fs::exists(st) && !fs::is_regular_file(st) && !fs::is_directory(st);
-    out.file = p;
+    const auto type = fs::status(file, ec).type();  // the kernel follows the links
+    out.in_place = type == fs::file_type::fifo || type == fs::file_type::character || type == fs::file_type::socket;
+    out.block_device = type == fs::file_type::block;
     return out;
 }
 
@@ -119,8 +121,9 @@ Status write_files_synced(const std::vector<PendingFile>& files) {
 Status write_files_atomic(std::vector<PendingFile>& files) {
     for (auto it = files.begin(); it != files.end();) {
         const Landing to = landing_of(it->file);
+        if (to.block_device) return {ErrorCode::io_error, it->file.string() + ": is a block device (a disk); name a file"};
         if (!to.written_in_place()) {
-            it++->file = to.file;
+            ++it;
             continue;
         }
         // No folder entry to replace, nor data to sync: written as the shell's `>` would (an open descriptor as the
@@ -206,6 +209,7 @@ Status check_can_write(const std::filesystem::path& file) {
             return {ErrorCode::io_error, cannot + "descriptor " + std::to_string(to.descriptor) + " is not open for writing"};
         return {};
     }
+    if (to.block_device) return {ErrorCode::io_error, cannot + "it is a block device (a disk); name a file"};
     if (to.in_place)
         return ::access(to.file.c_str(), W_OK) == 0 ? Status{} : Status{ErrorCode::io_error, cannot + errno_text()};
     const fs::path folder = to.file.parent_path().empty() ? fs::path(".") : to.file.parent_path();

@@ -109,17 +109,28 @@ TEST_CASE("the watchdog's way out names the resume command when trials were save
     TempDir dir("rollsense-cli-watchdog-way-on");
     {
         std::ofstream(dir / "stuck.lua") << "local rs = require 'rollsense'\n"
-                                            "rs.trial{ object = 'C1', speed = 20, repetition = 1 }\n"
-                                            "rs.record_start() rs.wait(100) rs.record_stop() rs.save_trial()\n"
-                                            "rs.end_trial()\n"
+                                            "local id = rs.trial_id{ object = 'C1', speed = 20, repetition = 1 }\n"
+                                            "if not rs.has_trial(id) then\n"
+                                            "  rs.trial{ object = 'C1', speed = 20, repetition = 1 }\n"
+                                            "  rs.record_start() rs.wait(100) rs.record_stop() rs.save_trial()\n"
+                                            "  rs.end_trial()\n"
+                                            "end\n"
                                             "table.move({}, 1, 1 << 62, 1, {})  -- one C call no hook reaches\n";
     }
-    const auto r = run_rollsense("run " + shell_quoted(dir / "stuck.lua") + " --slice-limit-ms 200 --no-progress --out " +
-                                 shell_quoted(dir / "out"));
+    const std::string command = "run " + shell_quoted(dir / "stuck.lua") + " --slice-limit-ms 200 --no-progress --out " +
+                                shell_quoted(dir / "out");
+    const std::string way_on = "continue with: rollsense run " + (dir / "stuck.lua").string() + " --out " +
+                               (dir / "out").string() + " --resume";  // plain paths: unquoted
+    const auto r = run_rollsense(command);
     INFO(r.output);
     CHECK(r.status == 1);  // the script's failure, a limit it passed
     CHECK(r.output.find("the watchdog made the hand safe") != std::string::npos);
-    CHECK(r.output.find("continue with: rollsense run " + (dir / "stuck.lua").string() + " --out " +
-                        (dir / "out").string() + " --resume") != std::string::npos);  // plain paths: unquoted
+    CHECK(r.output.find("after a script stuck in one call, fix it and record into a new --out") != std::string::npos);
+    CHECK(r.output.find(way_on) != std::string::npos);
     CHECK(fs::exists(dir / "out" / "trials" / "C1-v20-r001.csv"));
+    // Resumed, it saves nothing new before it sticks again: the trial on disk still makes the way on worth saying.
+    const auto again = run_rollsense(command + " --resume");
+    INFO(again.output);
+    CHECK(again.status == 1);
+    CHECK(again.output.find(way_on) != std::string::npos);
 }

@@ -158,9 +158,10 @@ TEST_CASE("the mock refuses a malformed fault injection, naming it", "[fault]") 
 }
 
 // Review: after a fault the safe state runs again and again, and a device that
-// still counts as active fails its read and its write each time, for one cause.
-// Only a repeat of the last message was held back, so the two alternated: the
-// one fault was printed six times in three periods.
+// still counts as active fails its read (a warning: last known positions used)
+// and its write (an error: the safe command did not reach it) each time. Only
+// a repeat of the last message was held back, so the two alternated: six lines
+// in three periods. Each is said once now.
 TEST_CASE("repeated safe states log each failure once", "[safety][fault]") {
     const Profile profile = faulty_bus("finger:silent:0.5");
     PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
@@ -171,7 +172,8 @@ TEST_CASE("repeated safe states log each failure once", "[safety][fault]") {
     const testing::LogCapture log;
     for (double t : {1.0, 1.01, 1.02}) robot.safe_state(t);  // active still: read and write both fail each time
     INFO(log.all());
-    CHECK(log.count("safe state:") == 1);
+    CHECK(log.count("safe state:") == 2);
     CHECK(log.count("(last known positions used)") == 1);
+    CHECK(log.count("error kernel: safe state:") == 1);
     robot.shutdown(1.1);
 }

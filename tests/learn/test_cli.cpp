@@ -512,10 +512,10 @@ TEST_CASE("evaluate --series-time-axis roll_relative: every output says it is ou
     fs::remove_all(dir);
 }
 
-// Review (machine-readable outputs): `-o /dev/stdout` as root replaced the /dev/stdout link with a regular file,
-// `-o link.csv` the link, and a summary line shared stdout with the table. Now /dev/stdout is this process's stdout,
-// as the shell set it up (`>>` appends), links are followed, and the accounts of the work go to stderr.
-TEST_CASE("features -o /dev/stdout writes the table alone on stdout, and a link's file through the link", "[learn][cli]") {
+// Review (machine-readable outputs): `-o /dev/stdout` as root replaced the /dev/stdout link with a regular file, and
+// a summary line shared stdout with the table. Now /dev/stdout is this process's stdout, as the shell set it up
+// (`>>` appends), and the accounts of the work go to stderr.
+TEST_CASE("features -o /dev/stdout writes the table alone on stdout, and a link at -o is replaced", "[learn][cli]") {
     const auto dir = make_dataset();
     const std::string d = (dir / "dataset").string();
     const std::string out = (dir / "out.csv").string(), err = (dir / "err.txt").string();
@@ -528,16 +528,27 @@ TEST_CASE("features -o /dev/stdout writes the table alone on stdout, and a link'
     CHECK(file_text(out) == "before\n" + table);  // appended, as `>>` asked, and nothing but the table
     CHECK_THAT(file_text(err), Catch::Contains("clean ") && Catch::Contains("wrote /dev/stdout"));
     CHECK(fs::is_symlink("/dev/stdout"));
+    // A link at -o is replaced by the file, and what it named is left as it was (review: writing through it let -o
+    // land on another dataset's manifest, and a resumed `cp -rs` copy append to the original's).
+    std::ofstream(dir / "target.csv") << "kept\n";
     fs::create_symlink("target.csv", dir / "link.csv");
     REQUIRE(rollsense_cli("features " + d + " -o " + (dir / "link.csv").string()).status == 0);
-    CHECK(fs::is_symlink(dir / "link.csv"));
-    CHECK(file_text(dir / "target.csv") == table);
+    CHECK_FALSE(fs::is_symlink(dir / "link.csv"));
+    CHECK(file_text(dir / "link.csv") == table);
+    CHECK(file_text(dir / "target.csv") == "kept\n");
+    // A relative link to this process's stdout is stdout too (review: it was taken for a file to create).
+    fs::create_symlink("../../../../../../../../dev/fd/1", dir / "rel.csv");
+    std::ofstream(out) << "";
+    r = rollsense::testing::run_command("(" + std::string(ROLLSENSE_BIN_DIR) + "/rollsense features " + d + " -o " +
+                                        (dir / "rel.csv").string() + " > " + out + " 2> " + err + ")");
+    CHECK(r.status == 0);
+    CHECK(file_text(out) == table);
+    CHECK(fs::is_symlink(dir / "rel.csv"));
     // evaluate writes two files side by side: the second would land in /dev (as /dev/stdout.json).
     r = rollsense_cli("evaluate " + d + " --repeats 1 -o /dev/stdout");
     INFO(r.output);
     CHECK(r.status == 2);
-    CHECK(count_of(r.output, "-o /dev/stdout is not a regular file; evaluate writes 2 files side by side") == 1);
-    CHECK_FALSE(fs::exists("/dev/stdout.json"));
+    CHECK(count_of(r.output, "evaluate: /dev/stdout is not a regular file; evaluate writes 2 files side by side") == 1);
     fs::remove_all(dir);
 }
 
@@ -577,7 +588,7 @@ TEST_CASE("train and evaluate refuse an input of one class, naming it and the wa
         INFO(r.output);
         CHECK(r.status == 1);
         CHECK(count_of(r.output, (command == "train" ? "training" : "evaluation") +
-                                     std::string(" needs clean trials of at least two classes (objects); these have "
+                                     std::string(" needs trials of at least two classes (objects); those selected have "
                                                  "one, 'C1': record or select trials of two objects or more")) == 1);
         CHECK_FALSE(fs::exists(model));
     }

@@ -41,7 +41,7 @@ TEST_CASE("stratified folds: balanced per class, seeded, every row once", "[lear
     CHECK(*stratified_folds(labels, 5, 42) == *f);
     CHECK(*stratified_folds(labels, 5, 43) != *f);
     CHECK_FALSE(stratified_folds(labels, 1, 1).ok());
-    CHECK_THAT(stratified_folds(std::vector<int>{0, 1}, 5, 1).error().message, Catch::Contains("at least 5 trials; there are 2: choose at most 2 folds"));
+    CHECK_THAT(stratified_folds(std::vector<int>{0, 1}, 5, 1).error().message, Catch::Contains("at least 5 trials; there are 2 (fewer folds, or more trials)"));
 }
 
 TEST_CASE("grouped folds keep a group together", "[learn][folds]") {

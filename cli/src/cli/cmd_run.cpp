@@ -220,7 +220,9 @@ int run(const std::vector<std::string>& argv) {
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
     // The watchdog's way out (three Ctrl-C, a script stuck in one C call) ends the process inside the run.
-    o.way_on = "the trials saved stay on disk; continue with: " + resume_command(pos[0], o.out_dir, deciding);
+    o.way_on = "the trials saved stay on disk; a resume runs the same script again (after a script stuck in one "
+               "call, fix it and record into a new --out)\ncontinue with: " + resume_command(pos[0], o.out_dir, deciding) +
+               "\n";
 
     ProgressBar bar(!args.flag("--no-progress"));  // before the live view's threads (it wraps the log sink)
     std::unique_ptr<live::LiveView> view;

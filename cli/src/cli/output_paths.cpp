@@ -55,9 +55,10 @@ int check_output_files(const char* command, const std::filesystem::path& input,
         // A FIFO, a terminal or /dev/stdout takes one file in place (rollsense/atomic_file.hpp); the files written
         // beside it would land in its folder (review: /dev/stdout.json as root).
         if (outputs.size() > 1 && landing_of(file).written_in_place()) {
-            std::fprintf(stderr, "rollsense %s: -o %s is not a regular file; %s writes %zu files side by side (%s and %s); "
-                                 "name a file in a folder\n",
-                         command, outputs.front().c_str(), command, outputs.size(),
+            const std::string which = file == outputs.front() ? "" : " (beside -o " + outputs.front().string() + ")";
+            std::fprintf(stderr, "rollsense %s: %s%s is not a regular file; %s writes %zu files side by side (%s and "
+                                 "%s); name a file in a folder\n",
+                         command, file.c_str(), which.c_str(), command, outputs.size(),
                          outputs.front().filename().c_str(), outputs.back().filename().c_str());
             return kExitUsage;
         }

@@ -13,18 +13,21 @@
 
 namespace rollsense {
 
-// Where each is written (landing_of): a symbolic link is followed, the file it names replaced so, and the link
-// kept; this process's open descriptor (/dev/stdout, /dev/fd/N) and a path that is neither a regular file nor a
-// folder (a FIFO, a terminal, /dev/null) are written in place, as the shell's `>` would, for they have no folder
-// entry to replace (review: `-o /dev/stdout` as root replaced the /dev/stdout link with a file).
+// As above, `file` itself is replaced: a symbolic link there becomes the new file, the file it named is left as it was (in a
+// dataset copied with `cp -rs` the copy's files become its own). Written in place instead, as the shell's `>` would,
+// for they have no folder entry to replace: this process's open descriptor (/dev/stdout, /dev/fd/N: `>>` appends),
+// a FIFO, a terminal, /dev/null (review: `-o /dev/stdout` as root replaced the /dev/stdout link with a file). A
+// block device (a disk) is refused.
 Status write_file_atomic(const std::filesystem::path& file, std::string_view content);
 
 struct Landing {
-    std::filesystem::path file;  // the regular file (maybe new) a link leads to, or `file` itself
-    int descriptor = -1;         // this process's descriptor N of /dev/fd/N, /proc/self/fd/N (/dev/stdout: 1)
-    bool in_place = false;       // `file` is, through its links, a FIFO, a device or a socket
+    std::filesystem::path file;  // the path as given
+    int descriptor = -1;         // this process's descriptor N it leads to (/dev/stdout: 1)
+    bool in_place = false;       // it is, through its links, a FIFO, a character device or a socket
+    bool block_device = false;   // a disk: refused
     bool written_in_place() const { return descriptor >= 0 || in_place; }
 };
+// How write_file_atomic and write_files_atomic write `file`.
 Landing landing_of(const std::filesystem::path& file);
 
 // What can be told before writing `file` as above: it is not a folder, and its

@@ -284,7 +284,7 @@ Status check_final_tuning(const EvaluationOptions& options) {
 Status check_two_classes(const FeatureTable& table, const char* task) {
     if (table.class_names.size() >= 2) return {};
     return {ErrorCode::invalid_argument,
-            std::string(task) + " needs clean trials of at least two classes (objects); these have " +
+            std::string(task) + " needs trials of at least two classes (objects); those selected have " +
                 (table.class_names.empty() ? std::string("none") : "one, '" + table.class_names.front() + "'") +
                 ": record or select trials of two objects or more"};
 }

@@ -188,7 +188,7 @@ struct FinalModel {
     std::optional<BayesOptResult> search;
     std::string tuning_folds;  // with optimize: "5-fold, random stratified", "3-fold, grouped by speed"
 };
-// Ok when `table` holds clean trials of two classes or more, what `task` ("evaluation", "training") needs; else
+// Ok when `table` holds trials of two classes or more, what `task` ("evaluation", "training") needs; else
 // why not, naming the one class there is and the way out (review: train made a one-class model of one trial).
 Status check_two_classes(const FeatureTable& table, const char* task);
 // Whether fit_final can tune with `options`, known before any work: its

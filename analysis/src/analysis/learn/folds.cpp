@@ -12,7 +12,7 @@ Result<std::vector<int>> stratified_folds(std::span<const int> labels, int k, st
     if (static_cast<std::size_t>(k) > labels.size())
         return Error{ErrorCode::invalid_argument, std::to_string(k) + " folds need at least " + std::to_string(k) +
                                                       " trials; there are " + std::to_string(labels.size()) +
-                                                      ": choose at most " + std::to_string(labels.size()) + " folds"};
+                                                      " (fewer folds, or more trials)"};
     std::map<int, std::vector<std::size_t>> by_class;
     for (std::size_t i = 0; i < labels.size(); ++i) by_class[labels[i]].push_back(i);
     SplitMix rng(seed);
@@ -40,8 +40,8 @@ Result<std::vector<int>> grouped_folds(std::span<const std::string> groups, std:
     if (by_group.size() < static_cast<std::size_t>(k))
         return Error{ErrorCode::invalid_argument, std::to_string(k) + " grouped folds need at least " +
                                                       std::to_string(k) + " groups; there are " +
-                                                      std::to_string(by_group.size()) + ": choose at most " +
-                                                      std::to_string(by_group.size()) + " folds"};
+                                                      std::to_string(by_group.size()) +
+                                                      " (fewer folds, or more groups)"};
     std::vector<const std::vector<std::size_t>*> order;
     for (const auto& [name, rows] : by_group) order.push_back(&rows);
     SplitMix rng(seed);

@@ -352,8 +352,8 @@ int l_output_dir(lua_State* L) {
     return 1;
 }
 
-// rs.random() → uniform [0, 1); rs.random_normal() → N(0, 1) by Box–Muller, two draws each (std::normal_distribution
-// is implementation-defined: another standard library would draw other numbers). Seeded per trial.
+// rs.random() → uniform [0, 1); rs.random_normal() → N(0, 1) by Box–Muller, two draws each (std::normal_distribution's
+// algorithm is the standard library's choice: another would draw other numbers). Seeded per trial.
 int l_random(lua_State* L) { return lua_pushnumber(L, random::unit_interval(Session::of(L).trial_random()())), 1; }
 int l_random_normal(lua_State* L) {
     auto& rng = Session::of(L).trial_random();

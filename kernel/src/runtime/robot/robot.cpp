@@ -313,8 +313,8 @@ void Robot::safe_state(double time) noexcept {
     } catch (...) {
         log_error("kernel", "safe state: a controller threw while being disabled; going on with the devices");
     }
-    const auto report = [&](auto log, const std::string& text, const char* more = "") {  // each fault once (robot.hpp)
-        if (std::ranges::find(safe_reports_, text) == safe_reports_.end()) log("kernel", safe_reports_.emplace_back(text) + more);
+    const auto report = [&](auto log, const std::string& text) {  // each failure once, the first 64 (robot.hpp)
+        if (safe_reports_.size() < 64 && std::ranges::find(safe_reports_, text) == safe_reports_.end()) log("kernel", safe_reports_.emplace_back(text));
     };
     for (auto& a : actuators_) {
         const auto state = a.handle->state();
@@ -328,7 +328,7 @@ void Robot::safe_state(double time) noexcept {
                 if (read.ok())
                     for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].state = a.states[i];
                 else
-                    report(log_warning, "safe state: " + read.message(), " (last known positions used)");
+                    report(log_warning, "safe state: " + read.message() + " (last known positions used)");
             }
             safe_commands(*a.handle, a.commands);
             for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = a.commands[i];

@@ -139,7 +139,7 @@ private:
     std::vector<std::size_t> recorded_joint_index_;
     bool locked_ = false;
     std::string lock_reason_;
-    std::vector<std::string> safe_reports_;  // safe state runs again and again; a write fails as its read did: once
+    std::vector<std::string> safe_reports_;  // the safe state runs again and again after a fault: each failure once
     std::recursive_timed_mutex devices_mutex_;
 };
 

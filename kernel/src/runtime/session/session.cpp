@@ -218,7 +218,7 @@ void Session::last_resort(const std::string& why, ErrorCode code, double wall_st
     if (recorder_ && recorder_->has_dataset()) {
         (void)recorder_->flush();
         write_run_info(Status(code, how), wall_start);
-        if (recorder_->trials_saved() > 0 && !options_.way_on.empty()) std::fprintf(stderr, "%s\n", options_.way_on.c_str());
+        if (recorder_->trials_saved() + recorder_->trials_skipped() > 0 && !options_.way_on.empty()) std::fputs(options_.way_on.c_str(), stderr);
     }
     std::fflush(stderr);
     std::_Exit(code == ErrorCode::cancelled ? 130 : 1);  // a limit the script passed is its failure, as in the hook
