@@ -202,7 +202,7 @@ Status check_can_write(const std::filesystem::path& file) {
     std::error_code ec;
     const std::string cannot = "cannot write '" + file.string() + "': ";
     if (fs::is_directory(file, ec)) return {ErrorCode::io_error, cannot + "it is a folder; name a file"};
-    const Landing to = landing_of(file);  // where the write goes: through links, or in place
+    const Landing to = landing_of(file);  // in place (a descriptor, a FIFO, a device), or replaced in its folder
     if (to.descriptor >= 0) {
         const int flags = ::fcntl(to.descriptor, F_GETFL);
         if (flags < 0 || (flags & O_ACCMODE) == O_RDONLY)
