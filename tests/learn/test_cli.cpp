@@ -544,11 +544,20 @@ TEST_CASE("features -o /dev/stdout writes the table alone on stdout, and a link 
     CHECK(r.status == 0);
     CHECK(file_text(out) == table);
     CHECK(fs::is_symlink(dir / "rel.csv"));
+    // `-o -`: the usual name for stdout.
+    r = rollsense::testing::run_command("(" + std::string(ROLLSENSE_BIN_DIR) + "/rollsense features " + d + " -o - > " +
+                                        out + " 2> " + err + ")");
+    CHECK(r.status == 0);
+    CHECK(file_text(out) == table);
+    CHECK_FALSE(fs::exists("-"));
     // evaluate writes two files side by side: the second would land in /dev (as /dev/stdout.json).
     r = rollsense_cli("evaluate " + d + " --repeats 1 -o /dev/stdout");
     INFO(r.output);
     CHECK(r.status == 2);
     CHECK(count_of(r.output, "evaluate: /dev/stdout is not a regular file; evaluate writes 2 files side by side") == 1);
+    r = rollsense_cli("evaluate " + d + " --repeats 1 -o -");
+    CHECK(r.status == 2);
+    CHECK(count_of(r.output, "evaluate: /dev/stdout is not a regular file") == 1);
     fs::remove_all(dir);
 }
 

@@ -303,7 +303,7 @@ int run(const std::vector<std::string>& argv) {
     Args args(argv);
     const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--prefixes"}, {});
     setup_logging(args);
-    const auto out = args.option("--output", "-o");
+    const auto out = output_option(args);
     const auto files = learn::evaluation_files(out);
     if (!out.empty())
         if (int rc = check_output_files("evaluate", s.input, {files.text, files.json}); rc != kExitOk) return rc;

@@ -25,11 +25,11 @@ channel) and compute the 13 features F1..F13 in the paper's order.
 The CSV has one row per trial: trial_id, object, speed, repetition, clean (1/0),
 reason, F1..F13 (empty for rejected trials), window_ch1..3, then one
 extra_NAME column per extra manifest column (e.g. extra_mount), in name order.
-MATLAB: readtable(FILE); pandas: pd.read_csv(FILE). -o /dev/stdout writes
-the table alone on stdout (this summary goes to stderr).
+MATLAB: readtable(FILE); pandas: pd.read_csv(FILE). -o - (or /dev/stdout)
+writes the table alone on stdout (the summary goes to stderr).
 
 options (defaults reproduce the paper):
-  -o, --output FILE        the features CSV to write (required)
+  -o, --output FILE        the features CSV to write (required; - for stdout)
   --smoothing-factor F     MATLAB SmoothingFactor, in [0, 1] (0.05)
   --window W               fixed Gaussian window in samples (a whole number from 1 to 10000)
                            instead of MATLAB's heuristic
@@ -122,7 +122,7 @@ int run(const std::vector<std::string>& argv) {
     valued.insert(valued.end(), {"-o", "--output"});
     const auto pos = args.positionals(valued);
     if (pos.size() != 1) throw UsageError("expected one DATASET folder (see rollsense features --help)");
-    const std::string out = args.option("--output", "-o");
+    const std::string out = output_option(args);
     if (out.empty()) throw UsageError("-o FILE is required: where to write the features CSV");
     const auto settings = feature_settings_from_args(args);
     const auto threads = static_cast<unsigned>(args.unsigned_option("--threads", 0, 0, 4096));

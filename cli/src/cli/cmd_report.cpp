@@ -102,7 +102,7 @@ int run(const std::vector<std::string>& argv) {
     }
     report::ReportInputs in;
     in.dataset_dir = s.input;
-    in.output = args.option("--output", "-o");
+    in.output = output_option(args);
     const auto page = report::report_path(in);
     const auto evaluation = report::evaluation_files_of(page);
     if (int rc = check_output_files("report", s.input, {page, evaluation.text, evaluation.json}); rc != kExitOk)

@@ -41,7 +41,7 @@ the series rule's settings (--series-amplitude and the rest), so that
 dataset folder (a features CSV has no series) and takes no --optimize.
 
 options:
-  -o, --output MODEL  model file to write (required)
+  -o, --output MODEL  model file to write (required; - for stdout)
   --classifier NAME   classifier plugin ({default_classifier})
   --set KEY=VALUE     classifier parameter, repeatable
   --optimize          choose the parameters by Bayesian optimisation
@@ -68,7 +68,7 @@ int run(const std::vector<std::string>& argv) {
     const LearnSetup s = learn_setup_from_args(args, {"--optimize"}, {"--repeats", "--series-time-axis"});
     require_optimize(args, {"--folds", "--seed"});
     setup_logging(args);
-    const std::string out = args.option("--output", "-o");
+    const std::string out = output_option(args);
     if (out.empty()) throw UsageError("-o MODEL is required: where to save the trained model");
     if (int rc = check_output_files("train", s.input, {out}); rc != kExitOk) return rc;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));

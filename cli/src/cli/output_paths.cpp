@@ -86,4 +86,9 @@ int check_output_files(const char* command, const std::filesystem::path& input,
     return kExitOk;
 }
 
+std::string output_option(const Args& args) {
+    const std::string out = args.option("--output", "-o");
+    return out == "-" ? "/dev/stdout" : out;
+}
+
 }  // namespace rollsense::cli
