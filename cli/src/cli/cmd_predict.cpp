@@ -16,7 +16,6 @@
 #include "cli/log_setup.hpp"
 #include "cli/paths.hpp"
 #include "analysis/learn/json_writer.hpp"
-#include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 #include "analysis/series/model_rule.hpp"
 #include "analysis/series/series_table.hpp"
@@ -402,8 +401,7 @@ int run(const std::vector<std::string>& argv) {
         plugin = *named;
     }
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(extra));
-    const Status found = learn::find_classifier_plugin(registry, plugin);  // the classifiers only, if not found
-    auto factory = found ? learn::plugin_classifier_factory(registry, plugin) : Result<learn::ClassifierFactory>(found.error());
+    auto factory = learn::plugin_classifier_factory(registry, plugin);
     if (!factory) {
         Error e = factory.error();
         if (inferred) e.message += " (the plugin named by " + model.string() + "'s first line; give --classifier NAME)";

@@ -60,32 +60,6 @@ Result<std::vector<ClassifierSpec>> parse_classifier_list(const std::string& tex
     return out;
 }
 
-std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry) {
-    std::vector<std::string> names;
-    for (const auto& c : registry.scan())
-        if (c.library && c.library->manifest().kind == PluginKind::classifier) names.push_back(c.library->name());
-    std::sort(names.begin(), names.end());
-    names.erase(std::unique(names.begin(), names.end()), names.end());
-    return names;
-}
-
-Status find_classifier_plugin(runtime::PluginRegistry& registry, const std::string& plugin) {
-    auto found = registry.find(plugin, PluginKind::classifier);
-    if (found) return {};
-    // A plugin of that name of another kind, or its own file refused: the registry's words say which (review:
-    // "no classifier plugin named" hid a file another compiler built).
-    const auto& found_files = registry.scan();
-    if (std::ranges::any_of(found_files, [&](const auto& c) { return c.is_plugin(plugin); })) return found.error();
-    const auto names = available_classifiers(registry);
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    std::string where;
-    for (const auto& d : registry.search_path()) where += (where.empty() ? "" : ", ") + d.string();
-    return {ErrorCode::not_found, "no classifier plugin named '" + plugin + "'. Available classifier plugins: " +
-                                      (list.empty() ? std::string("none") : list) + " (searched " + where +
-                                      "; add a folder with --plugin-path, `rollsense plugins` lists what loads)"};
-}
-
 Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegistry& registry,
                                                             const std::vector<ClassifierSpec>& specs) {
     if (specs.empty()) return Error{ErrorCode::invalid_argument, "no classifier requested"};

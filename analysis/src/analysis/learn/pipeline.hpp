@@ -53,11 +53,6 @@ struct PreparedClassifier {
     ClassifierInput input = ClassifierInput::features;
 };
 
-// The names of the classifier plugins the registry can load, sorted.
-std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry);
-// Ok when `plugin` names a classifier plugin that loads; else the registry's refusal of its file, or "no classifier
-// plugin named 'X'" with the classifier plugins there are (only those) and where they were looked for.
-Status find_classifier_plugin(runtime::PluginRegistry& registry, const std::string& plugin);
 
 // Every spec's plugin found, its parameters accepted and its input known. An
 // unknown plugin fails with the list of available classifier plugins.

@@ -1,11 +1,40 @@
 #include "analysis/learn/plugin_factory.hpp"
 
+#include <algorithm>
+
 #include "analysis/learn/checked_classifier.hpp"
 
 namespace rollsense::learn {
 
+std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry) {
+    std::vector<std::string> names;
+    for (const auto& c : registry.scan())
+        if (c.library && c.library->manifest().kind == PluginKind::classifier) names.push_back(c.library->name());
+    std::sort(names.begin(), names.end());
+    names.erase(std::unique(names.begin(), names.end()), names.end());
+    return names;
+}
+
+Status find_classifier_plugin(runtime::PluginRegistry& registry, const std::string& plugin) {
+    auto found = registry.find(plugin, PluginKind::classifier);
+    if (found) return {};
+    // A plugin of that name of another kind, or its own file refused: the registry's words say which (review:
+    // "no classifier plugin named" hid a file another compiler built).
+    const auto& found_files = registry.scan();
+    if (std::ranges::any_of(found_files, [&](const auto& c) { return c.is_plugin(plugin); })) return found.error();
+    const auto names = available_classifiers(registry);
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    std::string where;
+    for (const auto& d : registry.search_path()) where += (where.empty() ? "" : ", ") + d.string();
+    return {ErrorCode::not_found, "no classifier plugin named '" + plugin + "'. Available classifier plugins: " +
+                                      (list.empty() ? std::string("none") : list) + " (searched " + where +
+                                      "; add a folder with --plugin-path, `rollsense plugins` lists what loads)"};
+}
+
 Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& registry, const std::string& plugin,
                                                     PluginContext context) {
+    if (auto found = find_classifier_plugin(registry, plugin); !found) return found.error();
     auto lib = registry.find(plugin, PluginKind::classifier);
     if (!lib) return lib.error();
     auto schema = runtime::PluginRegistry::schema_of(**lib);

@@ -6,14 +6,21 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "analysis/learn/cross_validation.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
 
 namespace rollsense::learn {
 
-// `registry` must outlive the factory. Fails at once if no classifier plugin
-// named `plugin` is found (the error lists where the registry looked).
+// The names of the classifier plugins the registry can load, sorted.
+std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry);
+// Ok when `plugin` names a classifier plugin that loads; else the registry's refusal of its file, or "no classifier
+// plugin named 'X'" with the classifier plugins there are (only those) and where they were looked for.
+Status find_classifier_plugin(runtime::PluginRegistry& registry, const std::string& plugin);
+
+// `registry` must outlive the factory. Fails at once, as find_classifier_plugin, if no classifier plugin named
+// `plugin` loads.
 Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& registry, const std::string& plugin,
                                                     PluginContext context = {});
 
