@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <csignal>
 #include <unistd.h>
 
 #include <atomic>
@@ -74,6 +75,12 @@ int l_panic(lua_State* L) {
 
 int l_terminate(lua_State*) { std::terminate(); }
 
+// Ctrl-C, then stuck outside any device call (no hook reaches a C function): the cancel watchdog ends the run.
+int l_stuck(lua_State*) {
+    ::raise(SIGINT);
+    for (;;) ::pause();
+}
+
 // The heap fails from now on; it serves again once the last resort has run,
 // as when the allocation that failed was one huge request.
 void heap_back(void*) noexcept { g_heap_fails = false; }
@@ -107,6 +114,7 @@ Outcome clamp_then(const char* name, lua_CFunction fault) {
     o.share_dir = ROLLSENSE_SHARE_DIR;
     o.out_dir = tmp.path() / "out";
     o.plugin_path = {ROLLSENSE_PLUGIN_DIR};
+    o.sandbox.cancel_grace_ms = 300;
 
     // Forked before the emulator's serving thread exists (fork_first.hpp says why).
     testing::ForkedFirst child([&](const std::string& device) {
@@ -179,4 +187,13 @@ TEST_CASE("the heap fails mid-clamp: the prepared torque-off first, then the run
     // The bus's torque-off packets and the test's "heap is back".
     CHECK_THAT(r.run_info, Catch::Contains("status,limit violation: out of memory (std::bad_alloc) during the "
                                            "run; 2 last-resort actions sent"));
+}
+
+TEST_CASE("a script stuck after Ctrl-C mid-clamp: the watchdog releases every servo, as a normal end does",
+          "[safety][crash][watchdog]") {
+    const auto r = clamp_then("stuck", l_stuck);
+    INFO(r.run_info);
+    CHECK(r.exit_code == 130);
+    check_every_servo_released(r);  // before: held in place, the pushing finger still squeezing
+    CHECK_THAT(r.run_info, Catch::Contains("did not stop within 300 ms"));
 }

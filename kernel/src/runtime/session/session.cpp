@@ -208,7 +208,7 @@ void Session::last_resort(const std::string& why, ErrorCode code, double wall_st
     if (robot_) {
         devices = std::unique_lock(robot_->devices_mutex(), std::defer_lock);
         if (devices.try_lock_for(kDeviceWait)) {
-            robot_->safe_state(clock_ ? clock_->now() : 0.0);
+            (void)robot_->shutdown(clock_ ? clock_->now() : 0.0);  // safe state, then every device released as at a normal end
         } else {
             how += "; the script's thread held the devices (stuck inside a plugin call), so the prepared "
                    "last-resort safe state went out instead (" + std::to_string(run_last_resort()) + " actions)";
