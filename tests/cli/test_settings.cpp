@@ -675,3 +675,18 @@ TEST_CASE("a seed past 2^63 - 1 is refused as a bad command line") {
     CHECK(count_of(seed.output, "--seed expects a whole number from 0 to 9223372036854775807") == 1);
     CHECK_FALSE(std::filesystem::exists(dir / "b"));
 }
+
+// The probe's stop was a plain error: a script's pcall caught it and ran on, declaring more and looping until the
+// slice limit, so `--help` took 5 s and failed.
+TEST_CASE("run SCRIPT --help: a pcall around the call where reading stops does not catch the stop") {
+    TempDir dir("rollsense-settings-pcall");
+    write_file(dir / "dodge.lua", "local rs = require 'rollsense'\nrs.settings{ speed = { default = 10 } }\n"
+                                  "pcall(rs.trial, {})\nrs.settings{ late = { default = 1 } }\n"
+                                  "while true do pcall(rs.wait, 1) end\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "dodge.lua") + " --help");
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(r.output.find("declared before " + (dir / "dodge.lua").string() + ":3 (rs.trial)") != std::string::npos);
+    CHECK(r.output.find("speed=10") != std::string::npos);
+    CHECK(r.output.find("late=") == std::string::npos);
+}

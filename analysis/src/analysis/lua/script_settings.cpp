@@ -172,19 +172,22 @@ std::string describe(const std::vector<Declaration>& declarations) {
 // ----------------------------------------------------------------- probe --
 namespace {
 
-const char kStop = 0;  // its address marks "the script went past its declarations"
-
 struct Probe {
     std::vector<Declaration> found;
     std::string stopped_at;  // "demo.lua:7 (rs.trial)": the call the probe stopped at
+    runtime::Sandbox* sandbox = nullptr;
 };
 
 Probe& probe_of(lua_State* L) { return *static_cast<Probe*>(lua_touserdata(L, lua_upvalueindex(1))); }
 
+// A cancel, not a plain error: a script's pcall around rs.trial would catch that and run on (into a loop of
+// pcall(rs.wait, ...) until the slice limit, or past declarations that are not the run's first ones).
 int stop_at(lua_State* L, const std::string& call) {
-    probe_of(L).stopped_at = std::string(runtime::script_line(L, 1).data()) + " (" + call + ")";
-    lua_pushlightuserdata(L, const_cast<char*>(&kStop));
-    return lua_error(L);
+    auto& probe = probe_of(L);
+    probe.stopped_at = std::string(runtime::script_line(L, 1).data()) + " (" + call + ")";
+    probe.sandbox->cancel("the settings were read up to " + probe.stopped_at);
+    probe.sandbox->arm(L);  // raised again at the next instruction, not the next hook period
+    return luaL_error(L, "%s", probe.sandbox->cancel_reason().c_str());
 }
 
 int probe_stop(lua_State* L) { return stop_at(L, std::string("rs.") + lua_tostring(L, lua_upvalueindex(2))); }
@@ -238,6 +241,7 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
     runtime::Sandbox sandbox(limits,
                              {script.parent_path().empty() ? std::filesystem::path(".") : script.parent_path(),
                               share_dir / "lua"});
+    probe.sandbox = &sandbox;
     lua_State* L = sandbox.state();
     lua_newtable(L);
     lua_pushlightuserdata(L, &probe);
@@ -254,7 +258,7 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
     sandbox.set_api_module(luaL_ref(L, LUA_REGISTRYINDEX));
     if (auto s = sandbox.load_file(script); !s.ok()) return s.error();
     sandbox.start_slice(L);
-    if (const int rc = lua_pcall(L, 0, 0, 0); rc != LUA_OK && lua_touserdata(L, -1) != &kStop) {
+    if (const int rc = lua_pcall(L, 0, 0, 0); rc != LUA_OK && probe.stopped_at.empty()) {
         const char* msg = lua_tostring(L, -1);
         std::string text = msg ? msg : "(error object is not a string)";
         if (rc == LUA_ERRMEM) text = sandbox.memory_error(" while its settings were read");  // Lua's text has no place
