@@ -287,6 +287,21 @@ TEST_CASE("evaluate and train -o never overwrite a file of the dataset being rea
     for (const char* f : {"model.rsm", "report.html", "evaluation.txt"})
         CHECK(file_text(ds / f) == std::string("kept ") + f);
     CHECK(rollsense_cli("features " + d + " -o " + d + "/features.csv").status == 0);  // its own result: replaced
+    // Review (predict): `train D -o OTHER/model.rsm` replaced another run's model with D's, and predict then judged
+    // OTHER's trials against D's training range. A result of the same kind, from another dataset: refused too.
+    const std::string other = (dir / "other").string();
+    for (const char* f : {"model.rsm", "evaluation.txt"}) std::ofstream(dir / "other" / f) << "kept " << f;
+    for (const std::string& args : {"train " + d + " -o " + other + "/model.rsm",
+                                    "evaluate " + d + " --repeats 1 -o " + other + "/evaluation.txt"}) {
+        INFO(args);
+        const auto refused = rollsense_cli(args);
+        INFO(refused.output);
+        CHECK(refused.status == 2);
+        CHECK(count_of(refused.output, "of the dataset " + other + ", with one made from " + d) == 1);
+    }
+    for (const char* f : {"model.rsm", "evaluation.txt"})
+        CHECK(file_text(dir / "other" / f) == std::string("kept ") + f);
+    CHECK(rollsense_cli("train " + d + " -o " + d + "/model.rsm").status == 0);  // its own model: replaced
     fs::remove_all(dir);
 }
 

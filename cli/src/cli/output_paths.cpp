@@ -25,12 +25,21 @@ constexpr RunResult kRunResults[] = {
     {"report.html", "the report", {"report", nullptr}},
 };
 
-// Empty when `command` may replace `file`; else why not (an existing result another command wrote).
-std::string replaces_other_result(const char* command, const std::filesystem::path& file) {
+// Empty when `command` may replace `file`; else why not: an existing result another command wrote, or one that
+// belongs to another dataset than the input's (review: `train D -o W/model.rsm` replaced W's model with D's, and
+// predict then judged W's trials against D's training range).
+std::string replaces_other_result(const char* command, const std::filesystem::path& input,
+                                  const std::filesystem::path& file) {
+    namespace fs = std::filesystem;
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) return {};
+    if (!fs::is_regular_file(file, ec)) return {};
     for (const auto& r : kRunResults) {
         if (file.filename() != r.file) continue;
+        const auto folder = fs::absolute(file, ec).parent_path();
+        const auto own = fs::is_directory(input, ec) ? input : fs::absolute(input, ec).parent_path();
+        if (holds_dataset(folder) && !fs::equivalent(folder, own, ec))
+            return "-o " + file.string() + " would replace " + r.what + " of the dataset " + folder.string() +
+                   ", with one made from " + input.string() + "; give -o another name";
         for (const char* writer : r.writers)
             if (writer && std::string_view(writer) == command) return {};
         return "-o " + file.string() + " would replace, with another kind of file, " + r.what + " (by its name: `rollsense " +
@@ -74,7 +83,7 @@ int check_output_files(const char* command, const std::filesystem::path& input,
                 std::fprintf(stderr, "rollsense %s: %s\n", command, st.message().c_str());
                 return kExitUsage;
             }
-        if (const auto why = replaces_other_result(command, file); !why.empty()) {
+        if (const auto why = replaces_other_result(command, input, file); !why.empty()) {
             std::fprintf(stderr, "rollsense %s: %s\n", command, why.c_str());
             return kExitUsage;
         }
