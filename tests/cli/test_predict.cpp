@@ -186,8 +186,15 @@ TEST_CASE("predict's errors name the model, the plugin and the way out") {
     CHECK(wrong.output.find("no_such_plugin") != std::string::npos);
 
     const auto not_trial = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run / "features.csv"));
-    CHECK(not_trial.status == 3);
-    CHECK(not_trial.output.find("trials/ folder") != std::string::npos);
+    INFO(not_trial.output);
+    CHECK(not_trial.status == 3);  // review: "not found" for a file that exists, and "copy the whole dataset folder"
+    CHECK(not_trial.output.find("features.csv is a file of the dataset " + fs::absolute(run).string() +
+                                ", not one of its trials; predict takes a trial file") != std::string::npos);
+    CHECK(not_trial.output.find("not found") == std::string::npos);
+    write_file(dir / "loose.csv", "t,p1\n");
+    const auto loose = run_rollsense("predict " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(dir / "loose.csv"));
+    CHECK(loose.status == 3);
+    CHECK(loose.output.find("trials/ folder") != std::string::npos);
 
     CHECK(run_rollsense("predict " + shell_quoted(run / "trained.rsm")).status == 2);
 

@@ -21,6 +21,7 @@
 #include "analysis/series/series_table.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
+#include "rollsense/dataset_files.hpp"
 #include "rollsense/features.hpp"
 
 namespace rollsense::cli {
@@ -254,6 +255,12 @@ Result<Input> open_input(const fs::path& path) {
     }
     if (!fs::exists(path, ec)) return Error{ErrorCode::not_found, path.string() + ": no such trial file or dataset"};
     const fs::path dir = fs::absolute(path).parent_path().parent_path();
+    // Review: `predict MODEL RUN/features.csv` (train and evaluate take one) was told the file was not found.
+    if (const fs::path folder = fs::absolute(path).parent_path(); holds_dataset(folder))
+        return Error{ErrorCode::invalid_argument,
+                     path.string() + " is a file of the dataset " + folder.string() + ", not one of its trials; "
+                     "predict takes a trial file (" + (folder / "trials").string() + "/…) or a dataset folder: give " +
+                     folder.string()};
     if (fs::absolute(path).parent_path().filename() != "trials" || !fs::exists(dir / "dataset-info.csv", ec))
         return Error{ErrorCode::not_found,
                      path.string() + ": a trial file must lie in a dataset's trials/ folder (its dataset-info.csv "
