@@ -40,6 +40,26 @@ TEST_CASE("`rollsense run` into a folder another run holds exits at once, naming
     CHECK_FALSE(std::filesystem::exists(dir / "out" / "manifest.csv"));
 }
 
+// Review: a resume into a folder another run is recording failed as a run of its own: exit 1, "failed: 0 trials
+// saved, N already on disk", advice about editing the script and a "continue with: ... --resume" line.
+TEST_CASE("`rollsense run --resume` into a folder another run is recording is refused once, exit 2", "[data][lock][cli]") {
+    TempDir dir;
+    const std::string run = "run " + std::string(ROLLSENSE_SOURCE_DIR) +
+                            "/scripts/paper_experiment.lua --set runs=1 --set analyse=false --no-progress -q --out " +
+                            (dir / "out").string();
+    REQUIRE(rollsense::testing::run_rollsense(run).status == 0);
+    auto held = DirectoryLock::acquire(dir / "out");
+    REQUIRE(held.ok());
+    auto r = rollsense::testing::run_rollsense(run + " --resume");
+    INFO(r.output);
+    CHECK(r.status == 2);
+    const std::string refusal = (dir / "out").string() + " is being written by another rollsense run";
+    CHECK(r.output.find(refusal) != std::string::npos);
+    CHECK(r.output.find(refusal) == r.output.rfind(refusal));  // once
+    CHECK_THAT(r.output, !Catch::Contains("failed:") && !Catch::Contains("continue with") &&
+                             !Catch::Contains("already on disk"));
+}
+
 TEST_CASE("out-of-range numbers on the command line are usage errors, not silent changes", "[data][cli]") {
     const std::string script = "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/paper_experiment.lua --out /nonexistent ";
     for (const char* bad : {"--memory-limit-mb -1", "--memory-limit-mb 0", "--slice-limit-ms 0", "--seed 1e30",

@@ -14,6 +14,7 @@
 #include "live/live_view.hpp"
 #include "analysis/lua/script_settings.hpp"
 #include "analysis/lua/unfinished_analysis.hpp"
+#include "rollsense/directory_lock.hpp"
 #include "rollsense/hal/gpio.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/log.hpp"
@@ -240,6 +241,11 @@ int run(const std::vector<std::string>& argv) {
 
     std::error_code ec;
     const bool out_existed = std::filesystem::exists(o.out_dir, ec);
+    // Review: a resume into a folder another run is recording failed as a run ("failed: 0 trials saved, N already
+    // on disk", "continue with: ... --resume", exit 1). A refusal of the command line, before anything runs; the
+    // writer's own lock still decides (another run may start between the two).
+    if (std::filesystem::is_directory(o.out_dir, ec))
+        if (auto busy = DirectoryLock::acquire(o.out_dir); !busy) throw UsageError(busy.error().message);
     const auto out_before = folder_state(o.out_dir);
     runtime::RunSummary summary;
     {
