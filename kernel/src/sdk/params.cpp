@@ -193,8 +193,8 @@ Result<ParamSet> validate_params(const ParamSchema& schema, const std::map<std::
                                                           with_article(to_string(spec->type)) + ", got " +
                                                           with_article(value_type_name(value)) + " (" +
                                                           format_param_value(value) + ")" +
-                                                          (spec->type == ParamType::string ? "; a --set value reads as a number where it can: in "
-                                                                                             "double quotes it is text (--set '...=\"" + format_param_value(value) + "\"')" : "")};
+                                                          (spec->type == ParamType::string && value.index() <= 2 ? "; in double quotes it is text (\"" + format_param_value(value) +
+                                                                                             "\"; --set and --classifier read a number where they can: --set 'KEY=\"" + format_param_value(value) + "\"')" : "")};
         std::optional<std::string> range_error;  // of the first number (of a number, an integer or a list) out of range
         std::visit([&](const auto& v) {
             using T = std::decay_t<decltype(v)>;
