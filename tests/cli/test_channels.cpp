@@ -38,6 +38,9 @@ TEST_CASE("two sensors and no identification_channels: the analysis lists the ch
                              Catch::Contains("6 sensor channels (extra_ch1, extra_ch2, extra_ch3, tactile_ch1, "
                                              "tactile_ch2, tactile_ch3)") &&
                              Catch::Contains("identification_channels") && Catch::Contains("0 trials saved"));
+    // Review (plugins): the way out named "the recording of profile 'two'/dataset-info.csv", which does not exist.
+    CHECK_THAT(r.output, Catch::Contains("two.lua: the recording has 6 sensor channels") &&
+                             !Catch::Contains("/dataset-info.csv"));
     CHECK_FALSE(fs::exists(dir / "run" / "trials"));
     // Recorded without the analysis, the dataset says the same to the analysis commands.
     const auto kept = record(dir.path(), two_sensor_profile(""), " --set analyse=false");
@@ -45,7 +48,8 @@ TEST_CASE("two sensors and no identification_channels: the analysis lists the ch
     CHECK_THAT(read_file(dir / "run" / "dataset-info.csv"), Catch::Contains("\nchannel_units,1 1 1 1 1 1\n"));
     const auto f = run_rollsense("features " + shell_quoted(dir / "run") + " -o " + shell_quoted(dir / "f.csv"));
     CHECK(f.status != 0);
-    CHECK_THAT(f.output, Catch::Contains("does not say which three"));
+    CHECK_THAT(f.output, Catch::Contains("does not say which three") &&
+                             Catch::Contains("identification_channels row in " + (dir / "run").string() + "/dataset-info.csv"));
 }
 
 TEST_CASE("identification_channels naming no channel stops the stock run before its first trial") {

@@ -107,7 +107,7 @@ private:
 // profile's key of that name), else the dataset's channels when it has
 // exactly three (one sensor). More channels and no name is an error listing
 // them and saying how to name three: never a silent choice. `dataset` names
-// the dataset in messages.
+// the dataset's folder in messages; empty for a recording still in memory.
 Result<std::array<std::size_t, kChannels>> identification_channels(const DatasetInfo& info,
                                                                    const std::string& dataset);
 

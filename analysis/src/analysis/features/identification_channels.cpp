@@ -22,6 +22,8 @@ std::string joined(const std::vector<std::string>& names) {
 Result<std::array<std::size_t, kChannels>> identification_channels(const DatasetInfo& info,
                                                                    const std::string& dataset) {
     const auto& all = info.channels;
+    // A recording still in memory (no folder) has no dataset-info.csv to edit yet (review: its way out named one).
+    const std::string what = dataset.empty() ? "the recording" : "dataset " + dataset;
     std::array<std::size_t, kChannels> out{};
     if (info.identification_channels.empty()) {
         if (all.size() == kChannels) {
@@ -30,19 +32,20 @@ Result<std::array<std::size_t, kChannels>> identification_channels(const Dataset
         }
         const std::string way_out =
             "name the three the identification reads: identification_channels = {\"a\", \"b\", \"c\"} in the "
-            "robot profile (recorded into dataset-info.csv), or an identification_channels row in " + dataset +
-            "/dataset-info.csv (space-separated column names)";
+            "robot profile (recorded into dataset-info.csv)" +
+            (dataset.empty() ? std::string() : ", or an identification_channels row in " + dataset +
+                                                   "/dataset-info.csv (space-separated column names)");
         if (all.size() < kChannels)
-            return Error{ErrorCode::invalid_argument, "dataset " + dataset + " has " + std::to_string(all.size()) +
+            return Error{ErrorCode::invalid_argument, what + " has " + std::to_string(all.size()) +
                                                           " sensor channels (" + joined(all) +
                                                           "); the identification needs 3"};
-        return Error{ErrorCode::invalid_argument, "dataset " + dataset + " has " + std::to_string(all.size()) +
+        return Error{ErrorCode::invalid_argument, what + " has " + std::to_string(all.size()) +
                                                       " sensor channels (" + joined(all) +
                                                       ") and does not say which three identify the object; " + way_out};
     }
     if (info.identification_channels.size() != kChannels)
         return Error{ErrorCode::invalid_argument,
-                     "dataset " + dataset + ": identification_channels names " +
+                     what + ": identification_channels names " +
                          std::to_string(info.identification_channels.size()) + " channels (" +
                          joined(info.identification_channels) + "); the identification needs exactly 3, in the "
                          "order the object crosses them"};
@@ -50,7 +53,7 @@ Result<std::array<std::size_t, kChannels>> identification_channels(const Dataset
         const auto& name = info.identification_channels[c];
         const auto it = std::find(all.begin(), all.end(), name);
         if (it == all.end())
-            return Error{ErrorCode::invalid_argument, "dataset " + dataset + ": identification_channels names '" +
+            return Error{ErrorCode::invalid_argument, what + ": identification_channels names '" +
                                                           name + "', which is not one of its sensor channels (" +
                                                           joined(all) + ")"};
         out[c] = static_cast<std::size_t>(it - all.begin());

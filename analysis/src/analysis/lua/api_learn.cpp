@@ -406,7 +406,7 @@ Result<std::array<std::size_t, features::kChannels>> recording_channels(Session&
     DatasetInfo live;
     live.channels = s.robot().channel_columns();
     live.identification_channels = s.profile().identification_channels;
-    return features::identification_channels(live, "the recording of profile '" + s.profile().name + "'");
+    return features::identification_channels(live, std::string());  // the caller names the profile
 }
 
 // rs.identification_channels() → the three channel columns the identification
