@@ -51,6 +51,13 @@ TEST_CASE("a library without the manifest symbol is reported as not a plugin", "
     CHECK_THAT(c.failure, Catch::Contains("missing symbol 'rollsense_plugin_manifest'"));
 }
 
+TEST_CASE("a plugin whose name is not a-z, 0-9 and _ is refused, naming the name", "[loader]") {
+    auto c = PluginRegistry::load_file(test_plugin("rollsense_test_bad_name"));
+    CHECK_FALSE(c.library);
+    CHECK_THAT(c.failure, Catch::Contains("its name 'dash-name' is not made of a-z, 0-9 and _") &&
+                              Catch::Contains("ROLLSENSE_PLUGIN"));
+}
+
 TEST_CASE("a plugin built for another ABI is reported as an ABI mismatch", "[loader]") {
     auto c = PluginRegistry::load_file(test_plugin("rollsense_test_bad_abi"));
     CHECK_FALSE(c.library);

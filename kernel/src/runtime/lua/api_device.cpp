@@ -63,12 +63,8 @@ int l_controller(lua_State* L) {
     Session& s = Session::of(L);
     const char* name = luaL_checkstring(L, 1);
     const bool on = lua_isnone(L, 2) || (luaL_checktype(L, 2, LUA_TBOOLEAN), lua_toboolean(L, 2) != 0);  // not 0, "off"
-    if (on) {
-        auto st = s.robot().enable_controller(name, s.now());
-        if (!st.ok()) raise_status(L, st);
-    } else {
-        s.robot().disable_controller(name, s.now());
-    }
+    if (!on) s.robot().disable_controller(name, s.now());
+    else if (auto st = s.robot().enable_controller(name, s.now()); !st.ok()) raise_status(L, st);
     return 0;
 }
 

@@ -114,8 +114,10 @@ PluginCandidate PluginRegistry::load_file(const fs::path& file) {
     const bool factory_ok = (m->kind == PluginKind::sensor && m->create_sensor) ||
                             (m->kind == PluginKind::actuator && m->create_actuator) ||
                             (m->kind == PluginKind::classifier && m->create_classifier);
-    if (!m->name || !*m->name || !factory_ok || !m->destroy || !m->schema)
+    if (!m->name || !factory_ok || !m->destroy || !m->schema)
         return fail("malformed manifest: missing name, factory for its kind, destroy or schema");
+    if (!*m->name || std::string_view(m->name).find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string_view::npos)
+        return fail("its name '" + std::string(m->name) + "' is not made of a-z, 0-9 and _ (a model file, a profile and --classifier name it): rename it in ROLLSENSE_PLUGIN(...)");
     c.library = std::make_shared<LoadedLibrary>(std::move(lib), m, file);
     return c;
 }
