@@ -239,6 +239,13 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     CHECK(twice.status == 3);
     CHECK(count_of(twice.output, "SCHEMA FAILED: plugin 'bad_schema': its schema is wrong: parameter 'gain' is declared "
                                  "twice") == 1);
+    // Review (plugins): a range no value fits, and a name --set and --classifier entries cannot spell, passed --check.
+    const auto empty_range = fault("empty_range");
+    CHECK(empty_range.status == 3);
+    CHECK(count_of(empty_range.output, "its schema is wrong: parameter 'gain': its range [min, max] is empty") == 1);
+    const auto bad_name = fault("bad_name");
+    CHECK(bad_name.status == 3);
+    CHECK(count_of(bad_name.output, "its schema is wrong: parameter 'the gain': a name is a-z, 0-9 and _") == 1);
     // A run refuses it too (review: it used the schema that --check refused), before anything moves.
     TempDir dir("rollsense-cli-bad-schema");
     write_file(dir / "rig.lua", "local p = include('mock')\np.devices.tactile = { plugin = 'bad_schema' }\nreturn p\n");

@@ -29,7 +29,8 @@ options:
   --params            show each plugin's parameters (type, default, range, doc)
   --check             exit with 3 if any candidate failed to load or its
                       parameter schema contradicts itself (a parameter
-                      declared twice, a default outside its own range))";
+                      declared twice, a default outside its own range, a
+                      range with min > max, a name other than a-z, 0-9, _))";
 
 void print_schema(const ParamSchema& schema) {
     for (const auto& p : schema) {

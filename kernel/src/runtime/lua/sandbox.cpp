@@ -196,11 +196,8 @@ int Sandbox::lua_load_text(lua_State* L) {
         lua_insert(L, -2);
         return 2;
     }
-    if (lua_gettop(L) >= 5 && !lua_isnil(L, 4)) {
-        lua_pushvalue(L, 4);
-    } else {
-        lua_rawgeti(L, LUA_REGISTRYINDEX, self.env_ref_);
-    }
+    if (lua_gettop(L) >= 5 && !lua_isnil(L, 4)) lua_pushvalue(L, 4);
+    else lua_rawgeti(L, LUA_REGISTRYINDEX, self.env_ref_);
     lua_setupvalue(L, -2, 1);
     return 1;
 }

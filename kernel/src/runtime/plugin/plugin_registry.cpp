@@ -18,6 +18,9 @@ namespace rollsense::runtime {
 namespace fs = std::filesystem;
 
 namespace {
+// Plugin and parameter names: profiles, --set and --classifier entries and model files spell them.
+constexpr std::string_view kNameCharacters = "abcdefghijklmnopqrstuvwxyz0123456789_";
+
 std::string article(PluginKind kind) {
     const std::string name(to_string(kind));
     return (kind == PluginKind::actuator ? "an " : "a ") + name;
@@ -116,7 +119,7 @@ PluginCandidate PluginRegistry::load_file(const fs::path& file) {
                             (m->kind == PluginKind::classifier && m->create_classifier);
     if (!m->name || !factory_ok || !m->destroy || !m->schema)
         return fail("malformed manifest: missing name, factory for its kind, destroy or schema");
-    if (!*m->name || std::string_view(m->name).find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string_view::npos)
+    if (!*m->name || std::string_view(m->name).find_first_not_of(kNameCharacters) != std::string_view::npos)
         return fail("its name '" + std::string(m->name) + "' is not made of a-z, 0-9 and _ (a model file, a profile and --classifier name it): rename it in ROLLSENSE_PLUGIN(...)");
     c.library = std::make_shared<LoadedLibrary>(std::move(lib), m, file);
     return c;
@@ -191,6 +194,9 @@ std::string schema_problem(const ParamSchema& schema) {
     std::map<std::string, ParamValue> defaults;
     for (const auto& p : schema) {
         if (std::ranges::count(schema, p.name, &ParamSpec::name) > 1) return "parameter '" + p.name + "' is declared twice";
+        if (p.name.empty() || p.name.find_first_not_of(kNameCharacters) != std::string::npos)
+            return "parameter '" + p.name + "': a name is a-z, 0-9 and _ (--set and --classifier entries spell it)";
+        if (p.min && p.max && *p.min > *p.max) return "parameter '" + p.name + "': its range [min, max] is empty";
         if (p.default_value) with_default.push_back(p), defaults[p.name] = *p.default_value;
     }
     const auto checked = validate_params(with_default, defaults, "a default its own declaration refuses");
