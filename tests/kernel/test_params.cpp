@@ -95,3 +95,13 @@ TEST_CASE("typed getters refuse the wrong type", "[params]") {
         CHECK_THAT(e.status().message(), Catch::Contains("'count' is an integer, read as a string: a bug of the code"));
     }
 }
+
+// Review (plugins): the sensor guide's conformance test read `*validate_params(schema, {}, "test")` with a required
+// key missing and died of "std::get: wrong index for variant"; the value of a failed Result throws its error.
+TEST_CASE("the value of a failed Result throws its error, not std::bad_variant_access", "[params]") {
+    const auto missing = validate_params(schema(), {}, "test");
+    REQUIRE_FALSE(missing.ok());
+    CHECK_THROWS_MATCHES(*missing, StatusError, Catch::Matchers::Message("invalid argument: " + missing.error().message));
+    CHECK_THROWS_AS(validate_params(schema(), {}, "test").value(), StatusError);
+    CHECK_THROWS_AS(missing->values(), StatusError);
+}
