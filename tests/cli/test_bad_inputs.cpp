@@ -255,6 +255,7 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     INFO(run.output);
     CHECK(run.status == 3);
     CHECK(count_of(run.output, "plugin 'bad_schema': its schema is wrong: parameter 'gain' is declared twice") == 1);
+    CHECK(run.output.find("devices.tactile: plugin 'bad_schema'") != std::string::npos);  // review (plugins): no device named
     // Without --check the listing goes on (exit 0); the shipped plugins' schemas have no such mistake.
     CHECK(run_rollsense("plugins --plugin-path " + shell_quoted(std::string(ROLLSENSE_TEST_BAD_SCHEMA_DIR) + "twice")).status == 0);
     const auto shipped = run_rollsense("plugins --check");

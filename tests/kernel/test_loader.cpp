@@ -74,6 +74,16 @@ TEST_CASE("a plugin that throws a non-exception or lacks a symbol or uses debug 
     REQUIRE_FALSE(thrown.ok());
     CHECK(thrown.error().code == ErrorCode::plugin_error);
     CHECK(thrown.error().message == "plugin 'test_ctor_thrower': constructor threw a non-std::exception");
+    // Review (plugins): through a profile, the refusal names the device and the profile's line, as every hook's does.
+    kt::TempDir dir;
+    std::string profile = kt::kTestProfile;
+    profile.replace(profile.find("plugin = \"example_bump\", params = { joint = \"finger\" }"),
+                    std::string("plugin = \"example_bump\", params = { joint = \"finger\" }").size(), "plugin = \"test_ctor_thrower\"");
+    const auto run = kt::run_script(dir, "print('never')\n", profile);
+    REQUIRE_FALSE(run.summary.status.ok());
+    CHECK_THAT(run.summary.status.message(),
+               Catch::Contains("test.lua:") && Catch::Contains("devices.tactile") &&
+                   Catch::Contains("plugin 'test_ctor_thrower': constructor threw a non-std::exception"));
 
     auto undefined = PluginRegistry::load_file(test_plugin("rollsense_test_undefined"));
     CHECK_FALSE(undefined.library);

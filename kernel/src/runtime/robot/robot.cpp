@@ -80,7 +80,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
             return Error{ErrorCode::not_found, where + ": " + any.error().message};
         }
         auto schema = PluginRegistry::schema_of(*lib);
-        if (!schema) return schema.error();
+        if (!schema) return schema.status().with_context(where);  // review: a schema() that threw named no device
         auto params = validate_params(*schema, dev.params, "devices." + dev.name + ".params");
         if (!params) return Error{params.error().code, params_site(profile, dev, params.error().message) + ": " + params.error().message};
         PluginContext ctx;
@@ -91,7 +91,7 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
 
         // Created and configured; a refusal names where the profile writes what the plugin refused (once).
         const auto configure = [&](auto& h) {
-            auto s = h ? (*h)->configure(*params, ctx) : h.status();
+            auto s = h ? (*h)->configure(*params, ctx) : h.status().with_context(where);  // a constructor that threw
             const std::string site = s.ok() ? "" : params_site(profile, dev, s.message());
             return s.ok() || !h || s.message().find(site) != std::string::npos ? s : Status{s.code(), site + ": " + s.message()};
         };
