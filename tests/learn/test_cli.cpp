@@ -455,6 +455,43 @@ TEST_CASE("learning commands refuse options they would ignore (2)", "[learn][cli
     fs::remove_all(dir);
 }
 
+// Review: --folds more than the trials used and a --group-by column the trials
+// lack exited 1 (a failed evaluation), found once the data is read; they are the
+// command line's errors (2), naming the option, what the data has and the way out.
+TEST_CASE("evaluate, report and train: --folds beyond the trials and an unknown --group-by column are bad command lines (2)", "[learn][cli][cv_scheme]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string(), csv = (dir / "f.csv").string(),
+                      model = (dir / "m.rsm").string(), page = (dir / "r.html").string();
+    REQUIRE(rollsense_cli("features " + d + " -o " + csv).status == 0);
+    // 33 of the 36 trials are clean: 34 folds are one too many.
+    const std::string folds = "--folds 34: 34 folds need at least 34 trials, and 33 of the 36 read are used: "
+                              "give --folds 33 or fewer";
+    const std::string group_by = "--group-by session: trial 'C1-r0' has no manifest column 'session'; group by "
+                                 "one of its columns (rs.analyse: group_by): trial_id, object, speed, repetition";
+    const struct {
+        std::string args, says;
+    } cases[] = {
+        {"evaluate " + d + " --repeats 1 --folds 34", folds},
+        {"evaluate " + csv + " --repeats 1 --folds 34", folds},
+        {"report " + d + " -o " + page + " --repeats 1 --folds 34", folds},
+        {"train " + d + " -o " + model + " --optimize --evaluations 2 --folds 34", folds},
+        {"evaluate " + d + " --repeats 1 --cv grouped --group-by session", group_by},
+        {"evaluate " + csv + " --repeats 1 --cv grouped --group-by session", group_by},
+        {"report " + d + " -o " + page + " --repeats 1 --cv grouped --group-by session", group_by},
+        {"train " + d + " -o " + model + " --optimize --evaluations 2 --cv grouped --group-by session", group_by},
+    };
+    for (const auto& c : cases) {
+        INFO(c.args);
+        const auto r = rollsense_cli(c.args);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(count_of(r.output, c.says) == 1);
+    }
+    CHECK_FALSE(fs::exists(model));
+    CHECK_FALSE(fs::exists(page));
+    fs::remove_all(dir);
+}
+
 TEST_CASE("evaluate and train --optimize with --cv: the tuning folds follow the scheme", "[learn][cli][cv_scheme][tuning]") {
     const auto dir = make_dataset();
     const std::string d = (dir / "dataset").string();

@@ -169,6 +169,7 @@ int run_learning_pipeline(const char* command, const Args& args, const LearnSetu
         std::fprintf(stderr, "rollsense %s: %s\n", command, result.error().describe().c_str());
         if (failed == learn::PipelineStage::classifiers) return classifier_setup_exit(result.error().code);
         if (failed == learn::PipelineStage::request) return kExitUsage;  // e.g. a features CSV for a series classifier
+        if (failed == learn::PipelineStage::options) return kExitUsage;  // --folds or --group-by the trials cannot take
         return exit_code_for(result.error().code,
                              failed == learn::PipelineStage::evaluation ? kExitFailure : kExitConfig);
     }

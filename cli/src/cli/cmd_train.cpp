@@ -82,6 +82,11 @@ int run(const std::vector<std::string>& argv) {
         // The space the classifier declares for this data, so the progress
         // lines name exactly the searched parameters.
         const FeatureTable table = features::to_feature_table(rows);
+        // --folds or --group-by that the trials cannot take: the command line's error, before any tuning.
+        if (auto st = learn::check_fold_options(rows, table.rows, o); !st) {
+            std::fprintf(stderr, "rollsense train: %s\n", st.error().describe().c_str());
+            return kExitUsage;
+        }
         auto space = learn::tuning_space(factory, o.params, table.rows, table.cols(), o.space, s.classifier);
         if (!space) {
             std::fprintf(stderr, "rollsense train: %s\n", space.error().describe().c_str());

@@ -90,8 +90,9 @@ Result<std::vector<std::string>> scheme_groups(const CvScheme& scheme, const std
             auto v = manifest_value(rows[r], scheme.group_by);
             if (!v)
                 return Error{ErrorCode::invalid_argument,
-                             "--group-by: trial '" + rows[r].trial_id + "' has no manifest column '" +
-                                 scheme.group_by + "'; its columns: " + known_columns(rows[r])};
+                             "--group-by " + scheme.group_by + ": trial '" + rows[r].trial_id +
+                                 "' has no manifest column '" + scheme.group_by +
+                                 "'; group by one of its columns (rs.analyse: group_by): " + known_columns(rows[r])};
             group_of_row[r] = *v;
         }
     } else {

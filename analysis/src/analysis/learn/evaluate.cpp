@@ -281,6 +281,22 @@ Status check_final_tuning(const EvaluationOptions& options) {
                 "); give one (--cv grouped or --cv blocked; rs.analyse: cv = \"grouped\"), see docs/identification.md"};
 }
 
+Status check_fold_options(const std::vector<features::FeatureRow>& rows, std::size_t used,
+                          const EvaluationOptions& options) {
+    if (used < 2) return {};
+    if (options.folds > 0 && static_cast<std::size_t>(options.folds) > used) {
+        const std::string k = std::to_string(options.folds);
+        return {ErrorCode::invalid_argument,
+                "--folds " + k + ": " + k + " folds need at least " + k + " trials, and " + std::to_string(used) +
+                    " of the " + std::to_string(rows.size()) + " read are used: give --folds " +
+                    std::to_string(used) + " or fewer (rs.analyse: folds), or record more trials"};
+    }
+    for (const auto& scheme : options.schemes)
+        if (scheme.kind == CvScheme::Kind::grouped)
+            if (auto groups = scheme_groups(scheme, rows, {}); !groups) return groups.error();
+    return {};
+}
+
 Status check_two_classes(const FeatureTable& table, const char* task) {
     if (table.class_names.size() >= 2) return {};
     return {ErrorCode::invalid_argument,

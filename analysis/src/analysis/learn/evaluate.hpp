@@ -194,6 +194,14 @@ Status check_two_classes(const FeatureTable& table, const char* task);
 // Whether fit_final can tune with `options`, known before any work: its
 // tuning folds follow at most one scheme.
 Status check_final_tuning(const EvaluationOptions& options);
+// The fold options that the trials read cannot take, known once they are read
+// and selected (`used` of `rows`) and before any training: more folds than
+// used trials, or a grouped scheme's column the trials lack. Each names the
+// option, what the trials have and the way out. The commands take these as
+// their command line's error (exit 2); rs.analyse raises them as before.
+// With fewer than 2 used trials it passes: the evaluation names what is missing.
+Status check_fold_options(const std::vector<features::FeatureRow>& rows, std::size_t used,
+                          const EvaluationOptions& options);
 Result<FinalModel> fit_final(const std::vector<features::FeatureRow>& rows, const ClassifierFactory& factory,
                              const EvaluationOptions& options);
 

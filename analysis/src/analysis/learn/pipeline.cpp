@@ -264,19 +264,37 @@ std::size_t table_of(const InputTables& in, ClassifierInput kind) {
 }
 }  // namespace
 
-Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& rows,
-                                     const std::filesystem::path& dataset_dir,
-                                     const std::vector<PreparedClassifier>& classifiers,
-                                     const EvaluationOptions& options, const InputOptions& inputs) {
+namespace {
+// evaluate_prepared, telling fold options the selected trials cannot take
+// (`failed` = options) from the evaluation's own failures.
+Result<Evaluation> evaluate_prepared_staged(const std::vector<features::FeatureRow>& rows,
+                                            const std::filesystem::path& dataset_dir,
+                                            const std::vector<PreparedClassifier>& classifiers,
+                                            const EvaluationOptions& options, const InputOptions& inputs,
+                                            PipelineStage& failed) {
+    failed = PipelineStage::evaluation;
     if (classifiers.empty()) return Error{ErrorCode::invalid_argument, "no classifier to evaluate"};
     std::vector<ClassifierInput> kinds;
     for (const auto& c : classifiers) kinds.push_back(c.input);
     auto input = make_input_tables(rows, dataset_dir, kinds, inputs);
     if (!input) return input.error();
+    if (auto st = check_fold_options(rows, input->row_of.size(), options); !st) {
+        failed = PipelineStage::options;
+        return st.error();
+    }
     std::vector<ClassifierRequest> requests;
     for (const auto& c : classifiers)
         requests.push_back({c.spec.name, c.factory, c.spec.params, table_of(*input, c.input)});
     return evaluate_tables(rows, *input, requests, options);
+}
+}  // namespace
+
+Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& rows,
+                                     const std::filesystem::path& dataset_dir,
+                                     const std::vector<PreparedClassifier>& classifiers,
+                                     const EvaluationOptions& options, const InputOptions& inputs) {
+    PipelineStage failed;
+    return evaluate_prepared_staged(rows, dataset_dir, classifiers, options, inputs, failed);
 }
 
 Status check_final_fit(const PreparedClassifier& classifier, const EvaluationOptions& options) {
@@ -345,8 +363,9 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
         if (auto st = on_rows(out.rows); !st) return fail(PipelineStage::rows, st.error());
     // A features CSV passes as itself: what needs the trials was refused above, naming it.
     const auto& dataset_dir = request.input;
-    auto ev = evaluate_prepared(out.rows, dataset_dir, out.classifiers, request.options, request.inputs);
-    if (!ev) return fail(PipelineStage::evaluation, ev.error());
+    PipelineStage stage;
+    auto ev = evaluate_prepared_staged(out.rows, dataset_dir, out.classifiers, request.options, request.inputs, stage);
+    if (!ev) return fail(stage, ev.error());
     out.evaluation = std::move(ev).value();
     if (request.prefixes) {
         PrefixOptions po = *request.prefixes;

@@ -140,8 +140,9 @@ struct PipelineResult {
 // Where the pipeline stopped, so that commands can tell a wrong input or
 // plugin (configuration) from an evaluation that failed. `request`: the
 // request's parts do not go together (check_input_holds_trials), found
-// before any work.
-enum class PipelineStage { classifiers, request, rows, evaluation };
+// before any work. `options`: the fold options do not fit the trials read
+// (check_fold_options), found before any training.
+enum class PipelineStage { classifiers, request, rows, options, evaluation };
 
 // The whole pipeline. `on_rows` runs once the rows are read (print the
 // rejection summary, write features.csv); its error stops the pipeline.
