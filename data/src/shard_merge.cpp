@@ -428,6 +428,19 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
     const MergeSummary summary{shards.size(), placed->size(), shards.front().value("command_line")};
     remove_dead_stagings(out, staging_prefix);
     fs::remove_all(staged, ec);  // a killed merge's, whose process id this one reuses
+    // The staging folder on its own first: a folder this user cannot write in
+    // (permissions, a read-only file system) is named with the way out, not
+    // reported as OUT/trials that cannot be created.
+    if (fs::create_directories(staged, ec); ec) {
+        auto where = staged.parent_path();
+        std::error_code gone;
+        while (!where.empty() && !fs::exists(where, gone)) where = where.parent_path();
+        const std::string folder = where.empty() ? std::string(".") : where.string();
+        fs::remove_all(created, gone);
+        return Error{ErrorCode::io_error, "cannot merge into " + out.string() + ": " + folder +
+                                              " cannot be written (" + ec.message() + "); choose another OUT, or make " +
+                                              folder + " writable for this user"};
+    }
     Status st = write_merged(staged, shards, *placed, manifests);
     if (st && finish) st = finish(staged, summary);
     // An empty OUT that the merge replaces keeps its permissions (its owner only

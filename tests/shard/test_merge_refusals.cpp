@@ -292,6 +292,47 @@ TEST_CASE("a merge that fails on a damaged trial leaves nothing behind, and the 
 
 // Independent re-review N2: a merge stopped by Ctrl-C or kill -9 left its staging
 // folder for good (only a later merge with the same process id cleared it).
+// Review: a merge into a folder it cannot write in said "OUT/trials: cannot
+// create: Permission denied", a folder that is not the one refusing, and no way out.
+TEST_CASE("a merge into a folder it cannot write in names that folder, the reason and the way out", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    const auto locked = dir / "locked";
+    fs::create_directories(locked / "empty");
+    // Permission bits do not stop root: there the immutable flag does, where the
+    // file system and the capabilities allow it (chattr +i).
+    const bool root = ::geteuid() == 0;
+    if (root && rt::run_command("chattr +i " + locked.string()).status != 0) {
+        WARN("skipped: running as root, where a read-only mode does not stop writes, and chattr +i failed here");
+        return;
+    }
+    if (!root) fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+    struct Unlock {  // so that TempDir can remove it, whatever happens below
+        fs::path folder;
+        bool root;
+        ~Unlock() {
+            if (root) rt::run_command("chattr -i " + folder.string());
+            else fs::permissions(folder, fs::perms::owner_all);
+        }
+    } unlock{locked, root};
+    const std::string reason = root ? "Operation not permitted" : "Permission denied";
+    // A new OUT, an empty one, and one whose parents are still to be made: the folder that refuses is named.
+    for (const auto& out : {locked / "merged", locked / "empty", locked / "a" / "b"}) {
+        INFO(out);
+        const auto r = merge(out, {s0, s1, s2});
+        INFO(r.output);
+        CHECK(r.status == 5);
+        CHECK(occurrences(r.output, "rollsense merge:") == 1);
+        CHECK(r.output.find("cannot merge into " + out.string() + ": " + locked.string() + " cannot be written (" +
+                            reason + "); choose another OUT, or make " + locked.string() +
+                            " writable for this user") != std::string::npos);
+    }
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(locked)) left.push_back(e.path().filename().string());
+    CHECK(left == std::vector<std::string>{"empty"});
+    CHECK(fs::is_empty(locked / "empty"));
+}
+
 TEST_CASE("a merge clears the staging folders of killed merges into the same folder", "[merge]") {
     rt::TempDir dir;
     const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);

@@ -27,7 +27,8 @@ stock script's analysis writes it. OUT also gets shards.csv (one row per
 shard: its folder, trials, date, wall time, command line) and run-info.csv
 (this merge). OUT must be new or empty; the merge is written into a hidden
 sibling, .OUT.tmp-PID, renamed to OUT once complete (an empty OUT keeps its
-permissions). An OUT that is a symbolic link is merged into the folder the
+permissions), so OUT's folder must be writable: else the merge stops naming
+it and the reason (exit 5). An OUT that is a symbolic link is merged into the folder the
 link names (which may be new), and the link stays.
 
 Refused, with nothing written (and so is a merge that fails), unless the SHARD folders are exactly the shards

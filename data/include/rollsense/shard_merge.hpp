@@ -17,7 +17,8 @@
 // Everything is written into a hidden sibling folder (.OUT.tmp-PID) that is
 // renamed to OUT at the end, so a refusal or a failure (a damaged trial, a full
 // disk, an error of `finish`) leaves OUT as it was, and a retry is not refused.
-// Errors name the files under OUT, not under the sibling.
+// Errors name the files under OUT, not under the sibling; a sibling that cannot
+// be created (OUT's folder not writable) names that folder, the reason and the way out.
 #pragma once
 
 #include <filesystem>
