@@ -85,6 +85,32 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
         CHECK(j["classifiers"][0]["cv_schemes"][1]["id"].str() == "grouped:repetition");
         CHECK(j["classifiers"][0]["cv_schemes"][1]["pooled"]["total"].num() == 66);
     }
+    // Review: the schemes were printed in the program's order (blocked first); they
+    // follow --cv, in the text and in evaluation.json alike.
+    r = rollsense_cli("evaluate " + features.string() +
+                      " --repeats 2 --folds 3 --set learners=5 --cv grouped,blocked --block 2 --group-by repetition"
+                      " -o " + (dir / "asked.txt").string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    {
+        const auto read = [](const fs::path& p) {
+            std::ifstream in(p);
+            return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        };
+        for (const std::string& text : {r.output, read(dir / "asked.txt")}) {
+            const auto grouped = text.find("grouped by repetition, 2 x 3-fold CV");
+            const auto blocked = text.find("blocked: 2 consecutive trials within a mount, 2 x 3-fold CV");
+            REQUIRE(grouped != std::string::npos);
+            REQUIRE(blocked != std::string::npos);
+            CHECK(grouped < blocked);
+        }
+        const auto j = rollsense::testing::JsonReader::parse(read(dir / "asked.json"));
+        REQUIRE(j["cv_schemes"].arr().size() == 2);
+        CHECK(j["cv_schemes"][0]["id"].str() == "grouped:repetition");
+        CHECK(j["cv_schemes"][1]["id"].str() == "blocked:2");
+        CHECK(j["classifiers"][0]["cv_schemes"][0]["id"].str() == "grouped:repetition");
+        CHECK(j["classifiers"][0]["cv_schemes"][1]["id"].str() == "blocked:2");
+    }
     // A grouping that is the class is refused with the way out; an option without its scheme too.
     r = rollsense_cli("evaluate " + features.string() + " --folds 3 --cv grouped --group-by object");
     CHECK(r.status != 0);

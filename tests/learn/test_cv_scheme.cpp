@@ -115,6 +115,12 @@ TEST_CASE("cv schemes: --cv, --group-by and --block parsed, mistakes named", "[l
     REQUIRE(both->size() == 2);
     CHECK((*both)[0].id() == "blocked:10");
     CHECK((*both)[1].id() == "grouped:speed");
+    // Review: they came in the program's order (blocked first) whatever was asked; a scheme named twice runs once.
+    auto asked = parse_cv_schemes("grouped,random,blocked,grouped", "speed", "10");
+    REQUIRE(asked.ok());
+    REQUIRE(asked->size() == 2);
+    CHECK((*asked)[0].id() == "grouped:speed");
+    CHECK((*asked)[1].id() == "blocked:10");
     CHECK_THAT(parse_cv_schemes("shuffled", "", "").error().message, Catch::Contains("unknown scheme 'shuffled'"));
     CHECK_THAT(parse_cv_schemes("grouped", "", "").error().message, Catch::Contains("needs --group-by"));
     CHECK_THAT(parse_cv_schemes("random", "speed", "").error().message, Catch::Contains("add grouped to --cv"));

@@ -254,7 +254,8 @@ options:
   --cv LIST           also cross-validate with whole groups held out, beside
                       random k-fold (always run): grouped (needs --group-by),
                       blocked (needs --block), comma-separated; figures in the
-                      report and evaluation.json (docs/identification.md).
+                      report and evaluation.json, in the order given
+                      (docs/identification.md).
                       With --optimize each is also tuned on folds of its own
                       kind, built from each outer training fold's trials
   --group-by COLUMN   grouped CV: a manifest column (trial_id, object, speed,

@@ -1,5 +1,6 @@
 #include "analysis/learn/cv_scheme.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -16,23 +17,27 @@ std::string CvScheme::id() const {
 
 Result<std::vector<CvScheme>> parse_cv_schemes(const std::string& list, const std::string& group_by,
                                                const std::string& block) {
-    std::vector<CvScheme> out;
-    bool want_grouped = false, want_blocked = false;
+    // The schemes in the order asked for (each once): every output lists them so.
+    std::vector<CvScheme::Kind> asked;
     std::size_t start = 0;
     while (start <= list.size() && !list.empty()) {
         const auto comma = list.find(',', start);
         const std::string word = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        std::optional<CvScheme::Kind> kind;
         if (word == "grouped") {
-            want_grouped = true;
+            kind = CvScheme::Kind::grouped;
         } else if (word == "blocked") {
-            want_blocked = true;
+            kind = CvScheme::Kind::blocked;
         } else if (word != "random") {
             return Error{ErrorCode::invalid_argument,
                          "--cv: unknown scheme '" + word + "'; use random, grouped, blocked (comma-separated)"};
         }
+        if (kind && std::find(asked.begin(), asked.end(), *kind) == asked.end()) asked.push_back(*kind);
         if (comma == std::string::npos) break;
         start = comma + 1;
     }
+    const auto wants = [&asked](CvScheme::Kind k) { return std::find(asked.begin(), asked.end(), k) != asked.end(); };
+    const bool want_grouped = wants(CvScheme::Kind::grouped), want_blocked = wants(CvScheme::Kind::blocked);
     if (want_grouped != !group_by.empty())
         return Error{ErrorCode::invalid_argument,
                      want_grouped
@@ -42,22 +47,21 @@ Result<std::vector<CvScheme>> parse_cv_schemes(const std::string& list, const st
         return Error{ErrorCode::invalid_argument,
                      want_blocked ? "--cv blocked needs --block N (rs.analyse: block), the trials per block"
                                   : "--block (block) applies to --cv blocked; add blocked to --cv"};
-    if (want_blocked) {
+    std::vector<CvScheme> out;
+    for (const auto kind : asked) {
         CvScheme s;
-        s.kind = CvScheme::Kind::blocked;
-        try {
-            std::size_t used = 0;
-            s.block = std::stoi(block, &used);
-            if (used != block.size() || s.block < 1) throw std::invalid_argument(block);
-        } catch (const std::exception&) {
-            return Error{ErrorCode::invalid_argument, "--block expects an integer >= 1, got '" + block + "'"};
+        s.kind = kind;
+        if (kind == CvScheme::Kind::grouped) {
+            s.group_by = group_by;
+        } else {
+            try {
+                std::size_t used = 0;
+                s.block = std::stoi(block, &used);
+                if (used != block.size() || s.block < 1) throw std::invalid_argument(block);
+            } catch (const std::exception&) {
+                return Error{ErrorCode::invalid_argument, "--block expects an integer >= 1, got '" + block + "'"};
+            }
         }
-        out.push_back(s);
-    }
-    if (want_grouped) {
-        CvScheme s;
-        s.kind = CvScheme::Kind::grouped;
-        s.group_by = group_by;
         out.push_back(s);
     }
     return out;

@@ -27,7 +27,8 @@ struct CvScheme {
 };
 
 // --cv LIST (random, grouped, blocked; comma-separated) with --group-by and
-// --block: the schemes to run beside random k-fold (random itself always runs).
+// --block: the schemes to run beside random k-fold (random itself always runs),
+// in the order the list names them (each once), which every output keeps.
 // A scheme without its option, an option without its scheme, or an unknown
 // word is an error naming the way out.
 Result<std::vector<CvScheme>> parse_cv_schemes(const std::string& list, const std::string& group_by,
