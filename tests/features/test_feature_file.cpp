@@ -37,7 +37,11 @@ TEST_CASE("features CSV round-trips and keeps rejected trials with empty feature
 
     const auto dir = temp_dir("csv");
     const auto file = dir / "features.csv";
-    REQUIRE(write_features_csv(file, {a, b}).ok());
+    FeatureRow c = b;  // a trial that could not be read: no windows either
+    c.trial_id = "P1-v20-r003";
+    c.reason = "unreadable (trials/P1-v20-r003.csv:2: not a number)";
+    c.windows = {};
+    REQUIRE(write_features_csv(file, {a, b, c}).ok());
     std::ifstream in(file);
     std::string header;
     std::getline(in, header);
@@ -46,9 +50,13 @@ TEST_CASE("features CSV round-trips and keeps rejected trials with empty feature
           "window_ch1,window_ch2,window_ch3");
     auto rows = read_features_csv(file);
     REQUIRE(rows.ok());
-    REQUIRE(rows->size() == 2);
+    REQUIRE(rows->size() == 3);
     CHECK((*rows)[0].values == a.values);  // exact: shortest round-trip formatting
     CHECK((*rows)[0].windows == a.windows);
+    CHECK((*rows)[1].windows == b.windows);  // a rejected trial that was read keeps its windows
+    CHECK((*rows)[2].windows == c.windows);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK_THAT(text, Catch::EndsWith(",,,,,,,,,,,,,,,,\n"));  // c: F1..F13 and window_ch1..3 empty
     CHECK((*rows)[1].reason == b.reason);
     CHECK_FALSE((*rows)[1].clean);
     CHECK(std::isnan((*rows)[1].values[5]));

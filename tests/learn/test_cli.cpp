@@ -378,6 +378,45 @@ TEST_CASE("an unreadable trial file is named once on the terminal, with file and
         CHECK_THAT(r.output, Catch::Contains("trial 'P1-r4' left out") && Catch::Contains("'1.2.3'") &&
                                  Catch::Contains("unreadable 1"));
     }
+    // Review: the unreadable trial's window_ch1..3 read 0, as if smoothed with no window; they are empty
+    // like its features. A rejected trial that was read keeps its windows (diagnostics).
+    {
+        const auto fields = [](const std::string& line) {  // one CSV row, quotes undone
+            std::vector<std::string> out(1);
+            bool quoted = false;
+            for (std::size_t i = 0; i < line.size(); ++i) {
+                const char c = line[i];
+                if (c == '"' && quoted && i + 1 < line.size() && line[i + 1] == '"') out.back() += line[++i];
+                else if (c == '"') quoted = !quoted;
+                else if (c == ',' && !quoted) out.emplace_back();
+                else out.back() += c;
+            }
+            return out;
+        };
+        const std::string table = file_text(dir / "f.csv");
+        const auto row_of = [&](const std::string& trial) {
+            const auto start = table.find("\n" + trial + ",");
+            REQUIRE(start != std::string::npos);
+            return fields(table.substr(start + 1, table.find('\n', start + 1) - start - 1));
+        };
+        const auto header = fields(table.substr(0, table.find('\n')));
+        const auto column = [&](const std::string& name) {
+            const auto it = std::find(header.begin(), header.end(), name);
+            REQUIRE(it != header.end());
+            return static_cast<std::size_t>(it - header.begin());
+        };
+        const auto unread = row_of("P1-r4"), rejected = row_of("P1-r11");
+        REQUIRE(unread.size() == header.size());
+        REQUIRE(rejected.size() == header.size());
+        CHECK(unread[column("clean")] == "0");
+        CHECK(rejected[column("clean")] == "0");
+        for (const char* name : {"F1", "F13", "window_ch1", "window_ch2", "window_ch3"}) {
+            INFO(name);
+            CHECK(unread[column(name)].empty());
+        }
+        CHECK(rejected[column("F1")].empty());
+        for (const char* name : {"window_ch1", "window_ch2", "window_ch3"}) CHECK_FALSE(rejected[column(name)].empty());
+    }
     // Review (data): an empty object became a class of its own. A dataset may hold unlabelled trials (for predict):
     // features reads them, training and evaluation refuse them.
     {

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -132,7 +133,9 @@ struct FeatureRow {
     bool clean = false;
     std::string reason;
     std::array<double, kFeatureCount> values{};
-    std::array<int, kChannels> windows{};  // smoothing windows used (diagnostics)
+    // Smoothing windows used (diagnostics); none for a trial that could not be
+    // read, so its window_ch columns are empty like its features, not 0.
+    std::array<std::optional<int>, kChannels> windows{};
     std::map<std::string, std::string> extra;  // the trial's `extra` metadata (manifest.csv)
 };
 
@@ -154,7 +157,8 @@ Result<std::vector<FeatureRow>> extract_dataset(const DatasetReader& dataset, co
 // Features CSV, loadable by MATLAB's readtable / Classification Learner and by
 // pandas.read_csv without options:
 //   trial_id,object,speed,repetition,clean,reason,F1,…,F13,window_ch1,window_ch2,window_ch3[,extra_<key>...]
-// `clean` is 1 or 0; a rejected trial's features are empty fields (NaN on load).
+// `clean` is 1 or 0; a rejected trial's features are empty fields (NaN on load),
+// and so are the windows of a trial that could not be read.
 // When any trial carries `extra` metadata, one column per key follows,
 // `extra_<key>`, keys sorted, empty where a trial lacks the key.
 std::string format_features_csv(const std::vector<FeatureRow>& rows);

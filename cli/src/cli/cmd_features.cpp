@@ -23,7 +23,8 @@ of it), decide clean or rejected (max > 0.01 and a complete peak on every
 channel) and compute the 13 features F1..F13 in the paper's order.
 
 The CSV has one row per trial: trial_id, object, speed, repetition, clean (1/0),
-reason, F1..F13 (empty for rejected trials), window_ch1..3, then one
+reason, F1..F13 (empty for rejected trials), window_ch1..3 (the smoothing
+windows; empty for a trial that could not be read), then one
 extra_NAME column per extra manifest column (e.g. extra_mount), in name order.
 MATLAB: readtable(FILE); pandas: pd.read_csv(FILE). -o - (or /dev/stdout)
 writes the table alone on stdout (the summary goes to stderr).

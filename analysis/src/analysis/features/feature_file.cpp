@@ -128,7 +128,7 @@ std::string format_features_csv(const std::vector<FeatureRow>& rows) {
         // Rejected trials keep their row but get empty features, which both
         // readtable and read_csv load as NaN: never silently usable.
         for (double v : r.values) f.push_back(r.clean && std::isfinite(v) ? csv::format_number(v) : "");
-        for (int w : r.windows) f.push_back(std::to_string(w));
+        for (const auto& w : r.windows) f.push_back(w ? std::to_string(*w) : "");
         for (const auto& k : keys) {
             const auto it = r.extra.find(k);
             f.push_back(it == r.extra.end() ? std::string() : it->second);
