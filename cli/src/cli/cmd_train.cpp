@@ -98,8 +98,9 @@ int run(const std::vector<std::string>& argv) {
         };
     }
     auto model = learn::fit_final_prepared(rows, s.input, classifier, o, inputs);
-    if (!model) {
-        std::fprintf(stderr, "rollsense train: %s\n", model.error().describe().c_str());
+    if (!model) {  // named as evaluate names it (review: "refusing to train" said by a plugin named nothing)
+        std::fprintf(stderr, "rollsense train: classifier '%s': %s\n", s.classifier.c_str(),
+                     model.error().describe().c_str());
         return exit_code_for(model.error().code);
     }
     if (auto st = model->classifier->save(out); !st) {
