@@ -716,6 +716,8 @@ TEST_CASE("train and evaluate refuse an input of one class, naming it and the wa
         CHECK(count_of(r.output, (command == "train" ? "training" : "evaluation") +
                                      std::string(" needs trials of at least two classes (objects); those selected have "
                                                  "one, 'C1': record or select trials of two objects or more")) == 1);
+        if (command == "train")  // review (plugins): evaluate named the classifier, train did not
+            CHECK_THAT(r.output, Catch::Contains("rollsense train: classifier 'bagged_trees': "));
         CHECK_FALSE(fs::exists(model));
     }
     fs::remove_all(dir);
@@ -731,5 +733,35 @@ TEST_CASE("predict names the classifier plugins only for an unknown --classifier
     CHECK(r.status == 3);
     CHECK(count_of(r.output, "no classifier plugin named 'no_such_thing'. Available classifier plugins: ") == 1);
     CHECK_THAT(r.output, !Catch::Contains("mock_actuator"));
+    fs::remove_all(dir);
+}
+
+// Review (predict/train): options that cannot apply were accepted and ignored. A features table's features are
+// computed already (--smoothing-factor changed nothing); a feature classifier reads no series (--series-amplitude
+// changed nothing); and --trials all with a feature classifier failed only after the extraction, exit 1.
+TEST_CASE("train and evaluate refuse options that cannot apply, before any work (2)", "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string d = (dir / "dataset").string(), table = (dir / "features.csv").string();
+    REQUIRE(rollsense_cli("features " + d + " -o " + table).status == 0);
+    for (const std::string& args : {"train " + table + " -o " + (dir / "a.rsm").string() + " --smoothing-factor 0.2",
+                                    "evaluate " + table + " --repeats 1 --interpolate"}) {
+        INFO(args);
+        const auto r = rollsense_cli(args);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains("is a features table, computed already: give the dataset folder it came from"));
+    }
+    const auto amplitude = rollsense_cli("train " + d + " -o " + (dir / "b.rsm").string() + " --series-amplitude z_per_channel");
+    INFO(amplitude.output);
+    CHECK(amplitude.status == 2);
+    CHECK_THAT(amplitude.output, Catch::Contains("the series rule's amplitude z_per_channel applies to series classifiers"));
+    CHECK_THAT(amplitude.output, !Catch::Contains("clean "));  // before the extraction
+    const auto all = rollsense_cli("train " + d + " -o " + (dir / "c.rsm").string() + " --trials all");
+    INFO(all.output);
+    CHECK(all.status == 2);
+    CHECK_THAT(all.output, Catch::Contains("trials=all takes every trial the series rule accepts") && !Catch::Contains("clean "));
+    const auto evaluated = rollsense_cli("evaluate " + d + " --repeats 1 --series-amplitude z_per_channel");
+    CHECK(evaluated.status == 2);
+    for (const char* f : {"a.rsm", "b.rsm", "c.rsm"}) CHECK_FALSE(fs::exists(dir / f));
     fs::remove_all(dir);
 }

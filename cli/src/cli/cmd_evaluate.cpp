@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "cli/command.hpp"
@@ -88,6 +89,17 @@ LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string
     if (pos.size() != 1) throw UsageError("expected one INPUT: a dataset folder or a features CSV");
     LearnSetup s;
     s.input = pos[0];
+    // Review: `train features.csv --smoothing-factor 0.2` used the table's features as they were, without a word.
+    if (std::error_code ec; std::filesystem::is_regular_file(s.input, ec)) {
+        std::vector<std::string> given;
+        for (const auto& o : feature_option_names())
+            if (o != "--threads" && !args.option(o).empty()) given.push_back(o);
+        for (const auto& f : feature_flag_names())
+            if (args.flag(f)) given.push_back(f);
+        if (!given.empty())
+            throw UsageError(given.front() + " sets how features are computed from a dataset's trials; " + pos[0] +
+                             " is a features table, computed already: give the dataset folder it came from");
+    }
     auto& o = s.options;
     o.folds = integer_option(args, "--folds", o.folds, 2);
     o.repeats = integer_option(args, "--repeats", o.repeats, 1);
@@ -199,7 +211,7 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
     }
     classifier = prepared->front();
     for (const Status& st : {learn::check_input_holds_trials(s.input, *prepared, false),
-                             learn::check_final_fit(classifier, s.options)})
+                             learn::check_input_options(*prepared, inputs), learn::check_final_fit(classifier, s.options)})
         if (!st) {
             std::fprintf(stderr, "rollsense %s: %s\n", command, st.error().describe().c_str());
             return kExitUsage;

@@ -164,6 +164,33 @@ Status check_input_holds_trials(const std::filesystem::path& input, const std::v
     return {};
 }
 
+Status check_input_options(const std::vector<ClassifierInput>& kinds, const InputOptions& options) {
+    const bool need_features = std::ranges::count(kinds, ClassifierInput::features) > 0;
+    const bool need_series = std::ranges::count(kinds, ClassifierInput::series) > 0;
+    const series::SeriesSettings preset;
+    // Review: --series-amplitude with a feature classifier was ignored without a word.
+    if (!need_series && (options.series.time_axis != preset.time_axis || options.series.amplitude != preset.amplitude))
+        return {ErrorCode::invalid_argument,
+                "the series rule's " +
+                    std::string(options.series.time_axis != preset.time_axis
+                                    ? "time axis " + std::string(series::to_string(options.series.time_axis))
+                                    : "amplitude " + std::string(series::to_string(options.series.amplitude))) +
+                    " applies to series classifiers (minirocket), but every classifier listed takes the 13 "
+                    "features: list a series classifier, or drop it"};
+    if (options.trials == TrialSelection::series_accepted && need_features)
+        return {ErrorCode::invalid_argument,
+                "trials=all takes every trial the series rule accepts, but a feature classifier has no "
+                "features for the trials the paper's peak rule refuses: evaluate it with trials=clean, or "
+                "list only series classifiers"};
+    return {};
+}
+
+Status check_input_options(const std::vector<PreparedClassifier>& classifiers, const InputOptions& options) {
+    std::vector<ClassifierInput> kinds;
+    for (const auto& c : classifiers) kinds.push_back(c.input);
+    return check_input_options(kinds, options);
+}
+
 Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& rows,
                                       const std::filesystem::path& dataset_dir,
                                       const std::vector<ClassifierInput>& kinds, const InputOptions& options) {
@@ -171,16 +198,7 @@ Result<InputTables> make_input_tables(const std::vector<features::FeatureRow>& r
         std::find(kinds.begin(), kinds.end(), ClassifierInput::features) != kinds.end();
     const bool need_series = std::find(kinds.begin(), kinds.end(), ClassifierInput::series) != kinds.end();
     if (!need_features && !need_series) return Error{ErrorCode::invalid_argument, "no classifier input kind given"};
-    if (!need_series && options.series.time_axis != series::TimeAxis::contact)
-        return Error{ErrorCode::invalid_argument,
-                     "series time axis " + std::string(series::to_string(options.series.time_axis)) +
-                         " applies to series classifiers (minirocket), but every classifier listed takes the 13 "
-                         "features: list a series classifier, or drop the time axis"};
-    if (options.trials == TrialSelection::series_accepted && need_features)
-        return Error{ErrorCode::invalid_argument,
-                     "trials=all takes every trial the series rule accepts, but a feature classifier has no "
-                     "features for the trials the paper's peak rule refuses: evaluate it with trials=clean, or "
-                     "list only series classifiers"};
+    if (auto st = check_input_options(kinds, options); !st) return st.error();
     std::optional<SeriesVerdicts> sv;
     if (need_series) {
         if (auto st = input_holds_trials(dataset_dir, "a series classifier (input() = series) needs"); !st) return st.error();
@@ -355,6 +373,7 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     out.classifiers = std::move(prepared).value();
     if (auto st = check_input_holds_trials(request.input, out.classifiers, request.prefixes.has_value()); !st)
         return fail(PipelineStage::request, st.error());
+    if (auto st = check_input_options(out.classifiers, request.inputs); !st) return fail(PipelineStage::request, st.error());
     for (auto& c : out.classifiers) c.factory = stoppable(std::move(c.factory), request.options.stop);
     auto rows = load_feature_rows(request.input, request.features, 0, request.options.stop, request.recorded);
     if (!rows) return fail(PipelineStage::rows, rows.error());

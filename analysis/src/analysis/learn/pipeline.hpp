@@ -93,6 +93,12 @@ Result<std::vector<std::string>> series_channels(const DatasetInfo& info, const 
 Status check_input_holds_trials(const std::filesystem::path& input, const std::vector<PreparedClassifier>& classifiers,
                                 bool prefixes);
 
+// The input step's options against the kinds of classifiers listed, before any work: the series rule's time axis and
+// amplitude apply to series classifiers only, and trials=all to a list of series classifiers only
+// (invalid_argument, naming the option and the way out).
+Status check_input_options(const std::vector<ClassifierInput>& kinds, const InputOptions& options);
+Status check_input_options(const std::vector<PreparedClassifier>& classifiers, const InputOptions& options);
+
 // The input step for the classifiers' kinds: one table per kind present
 // (features first), the same trials in the same order. `dataset_dir` is the
 // input the rows came from (a features CSV, or empty, has no series to
