@@ -315,18 +315,22 @@ TEST_CASE("evaluate and train -o never overwrite a file of the dataset being rea
     CHECK(rollsense_cli("features " + d + " -o " + d + "/features.csv").status == 0);  // its own result: replaced
     // Review (predict): `train D -o OTHER/model.rsm` replaced another run's model with D's, and predict then judged
     // OTHER's trials against D's training range. A result of the same kind, from another dataset: refused too.
+    // Whether the file is there yet or not (diff review: only an existing one was refused).
     const std::string other = (dir / "other").string();
-    for (const char* f : {"model.rsm", "evaluation.txt"}) std::ofstream(dir / "other" / f) << "kept " << f;
+    std::ofstream(dir / "other" / "model.rsm") << "kept model.rsm";
     for (const std::string& args : {"train " + d + " -o " + other + "/model.rsm",
                                     "evaluate " + d + " --repeats 1 -o " + other + "/evaluation.txt"}) {
         INFO(args);
         const auto refused = rollsense_cli(args);
         INFO(refused.output);
         CHECK(refused.status == 2);
-        CHECK(count_of(refused.output, "of the dataset " + other + ", with one made from " + d) == 1);
+        CHECK(count_of(refused.output, " made from " + d + " would land in the dataset " + other + " and pass for its own") == 1);
     }
-    for (const char* f : {"model.rsm", "evaluation.txt"})
-        CHECK(file_text(dir / "other" / f) == std::string("kept ") + f);
+    CHECK(file_text(dir / "other" / "model.rsm") == "kept model.rsm");
+    CHECK_FALSE(fs::exists(dir / "other" / "evaluation.txt"));
+    // A features table reached through a link into the dataset is that dataset's (diff review: it was refused).
+    fs::create_symlink(ds / "features.csv", dir / "link.csv");
+    CHECK(rollsense_cli("train " + (dir / "link.csv").string() + " -o " + d + "/model.rsm").status == 0);
     CHECK(rollsense_cli("train " + d + " -o " + d + "/model.rsm").status == 0);  // its own model: replaced
     fs::remove_all(dir);
 }
@@ -716,8 +720,6 @@ TEST_CASE("train and evaluate refuse an input of one class, naming it and the wa
         CHECK(count_of(r.output, (command == "train" ? "training" : "evaluation") +
                                      std::string(" needs trials of at least two classes (objects); those selected have "
                                                  "one, 'C1': record or select trials of two objects or more")) == 1);
-        if (command == "train")  // review (plugins): evaluate named the classifier, train did not
-            CHECK_THAT(r.output, Catch::Contains("rollsense train: classifier 'bagged_trees': "));
         CHECK_FALSE(fs::exists(model));
     }
     fs::remove_all(dir);
@@ -754,12 +756,12 @@ TEST_CASE("train and evaluate refuse options that cannot apply, before any work 
     const auto amplitude = rollsense_cli("train " + d + " -o " + (dir / "b.rsm").string() + " --series-amplitude z_per_channel");
     INFO(amplitude.output);
     CHECK(amplitude.status == 2);
-    CHECK_THAT(amplitude.output, Catch::Contains("the series rule's amplitude z_per_channel applies to series classifiers"));
+    CHECK_THAT(amplitude.output, Catch::Contains("the series rule's amplitude z_per_channel (--series-amplitude, series_amplitude) applies to series classifiers"));
     CHECK_THAT(amplitude.output, !Catch::Contains("clean "));  // before the extraction
     const auto all = rollsense_cli("train " + d + " -o " + (dir / "c.rsm").string() + " --trials all");
     INFO(all.output);
     CHECK(all.status == 2);
-    CHECK_THAT(all.output, Catch::Contains("trials=all takes every trial the series rule accepts") && !Catch::Contains("clean "));
+    CHECK_THAT(all.output, Catch::Contains("trials=all (--trials all) takes every trial the series rule accepts") && !Catch::Contains("clean "));
     const auto evaluated = rollsense_cli("evaluate " + d + " --repeats 1 --series-amplitude z_per_channel");
     CHECK(evaluated.status == 2);
     for (const char* f : {"a.rsm", "b.rsm", "c.rsm"}) CHECK_FALSE(fs::exists(dir / f));

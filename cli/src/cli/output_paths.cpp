@@ -25,21 +25,24 @@ constexpr RunResult kRunResults[] = {
     {"report.html", "the report", {"report", nullptr}},
 };
 
-// Empty when `command` may replace `file`; else why not: an existing result another command wrote, or one that
-// belongs to another dataset than the input's (review: `train D -o W/model.rsm` replaced W's model with D's, and
-// predict then judged W's trials against D's training range).
+// Empty when `command` may write `file`; else why not: a result that would land in another dataset's folder than the
+// input's, where it would pass for that dataset's own (review: `train D -o W/model.rsm`; predict then judged W's
+// trials against D's training range), or an existing result another command wrote.
 std::string replaces_other_result(const char* command, const std::filesystem::path& input,
                                   const std::filesystem::path& file) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) return {};
     for (const auto& r : kRunResults) {
         if (file.filename() != r.file) continue;
-        const auto folder = fs::absolute(file, ec).parent_path();
-        const auto own = fs::is_directory(input, ec) ? input : fs::absolute(input, ec).parent_path();
-        if (holds_dataset(folder) && !fs::equivalent(folder, own, ec))
-            return "-o " + file.string() + " would replace " + r.what + " of the dataset " + folder.string() +
-                   ", with one made from " + input.string() + "; give -o another name";
+        // Whether the file exists yet or not (review); folders through links, as predict reads them. A missing input
+        // is said by the command itself.
+        const auto folder = fs::weakly_canonical(fs::absolute(file, ec).parent_path(), ec);
+        const auto own = fs::is_directory(input, ec) ? fs::weakly_canonical(input, ec)
+                                                     : fs::weakly_canonical(input, ec).parent_path();
+        if (fs::exists(input, ec) && holds_dataset(folder) && folder != own)
+            return "-o " + file.string() + ": " + r.what + " made from " + input.string() + " would land in the dataset " +
+                   folder.string() + " and pass for its own; give -o another name";
+        if (!fs::is_regular_file(file, ec)) return {};
         for (const char* writer : r.writers)
             if (writer && std::string_view(writer) == command) return {};
         return "-o " + file.string() + " would replace, with another kind of file, " + r.what + " (by its name: `rollsense " +
