@@ -225,6 +225,14 @@ int run(const std::vector<std::string>& argv) {
                "call, fix it and record into a new --out)\ncontinue with: " + resume_command(pos[0], o.out_dir, deciding) +
                "\n";
 
+    // Review: a resume into a folder another run is recording failed as a run ("failed: 0 trials saved, N already
+    // on disk", "continue with: ... --resume", exit 1). Another run's lock is the command line's refusal, before
+    // anything runs (the live view included); other lock failures (permissions, NFS) are left to the dataset
+    // writer, which says them as I/O errors. The writer's own lock still decides: another run may start between.
+    if (std::error_code ec; std::filesystem::is_directory(o.out_dir, ec))
+        if (auto busy = DirectoryLock::acquire(o.out_dir); !busy && busy.error().code == ErrorCode::state_error)
+            throw UsageError(busy.error().message);
+
     ProgressBar bar(!args.flag("--no-progress"));  // before the live view's threads (it wraps the log sink)
     std::unique_ptr<live::LiveView> view;
     if (auto live_options = live_options_of(argv, args)) {
@@ -241,11 +249,6 @@ int run(const std::vector<std::string>& argv) {
 
     std::error_code ec;
     const bool out_existed = std::filesystem::exists(o.out_dir, ec);
-    // Review: a resume into a folder another run is recording failed as a run ("failed: 0 trials saved, N already
-    // on disk", "continue with: ... --resume", exit 1). A refusal of the command line, before anything runs; the
-    // writer's own lock still decides (another run may start between the two).
-    if (std::filesystem::is_directory(o.out_dir, ec))
-        if (auto busy = DirectoryLock::acquire(o.out_dir); !busy) throw UsageError(busy.error().message);
     const auto out_before = folder_state(o.out_dir);
     runtime::RunSummary summary;
     {
