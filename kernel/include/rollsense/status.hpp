@@ -5,6 +5,7 @@
 // readable code plus a human message; Result<T> carries a value or an Error.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -87,11 +88,10 @@ public:
     bool ok() const noexcept { return state_.index() == 0; }
     explicit operator bool() const noexcept { return ok(); }
 
-    // On an error: the error itself, thrown (review: a plugin's test of `*validate_params(...)` died of "std::get:
-    // wrong index for variant", naming no key).
-    T& value() & { return ok() ? std::get<0>(state_) : throw StatusError(Status{error()}); }
-    const T& value() const& { return ok() ? std::get<0>(state_) : throw StatusError(Status{error()}); }
-    T&& value() && { return ok() ? std::get<0>(std::move(state_)) : throw StatusError(Status{error()}); }
+    // A failed Result's value is the caller's bug: a logic_error saying the error (was std::get's "wrong index").
+    T& value() & { return ok() ? std::get<0>(state_) : throw unchecked(); }
+    const T& value() const& { return ok() ? std::get<0>(state_) : throw unchecked(); }
+    T&& value() && { return ok() ? std::get<0>(std::move(state_)) : throw unchecked(); }
     T* operator->() { return &value(); }
     const T* operator->() const { return &value(); }
     T& operator*() & { return value(); }
@@ -101,6 +101,7 @@ public:
     Status status() const { return ok() ? Status{} : Status{error()}; }
 
 private:
+    std::logic_error unchecked() const { return std::logic_error("the value of a failed Result, " + error().describe()); }
     std::variant<T, Error> state_;
 };
 
@@ -109,6 +110,6 @@ inline void throw_if_error(const Status& s) {
     if (!s.ok()) throw StatusError(s);
 }
 template <class T>
-T value_or_throw(Result<T> r) { return std::move(r).value(); }  // value() throws the error
+T value_or_throw(Result<T> r) { return r ? std::move(r).value() : throw StatusError(r.status()); }
 
 }  // namespace rollsense
