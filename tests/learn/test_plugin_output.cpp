@@ -63,6 +63,15 @@ TEST_CASE("a classifier plugin's wrong scores or label stop evaluate, train's us
         CHECK(r.status == 3);
         CHECK_THAT(r.output, Catch::Contains("rollsense predict: plugin error: classifier plugin 'test_odd_scores' " + std::string(c.says)));
     }
+    // Review (plugins): a training the plugin refused (an error status, not a throw) was said without its name.
+    for (const char* command : {"train", "evaluate"}) {
+        INFO(command);
+        const auto refused = rollsense_cli(std::string(command) + " " + d + kPlugin + " --set mode=14 -o " +
+                                           (dir / "refused.out").string());
+        INFO(refused.output);
+        CHECK(refused.status != 0);
+        CHECK_THAT(refused.output, Catch::Contains("classifier plugin 'test_odd_scores': refusing to train"));
+    }
     // The honest mode passes every check: one finite score per class in evaluation.json.
     auto r = rollsense_cli("evaluate " + d + " --folds 3 --repeats 1" + kPlugin + " -o " + (dir / "ok.txt").string());
     INFO(r.output);

@@ -58,9 +58,11 @@ options:
                       classifiers only), as 'rollsense evaluate --help' says
   --series-amplitude MODE
                       series rule amplitude: global_scale or z_per_channel
-                      (default: docs/series-preparation.md)
+                      (default: docs/series-preparation.md; series
+                      classifiers only)
   --plugin-path DIR   search classifier plugins here first (repeatable)
-  plus the feature options of 'rollsense features' when INPUT is a dataset)";
+  plus the feature options of 'rollsense features' when INPUT is a dataset
+  (refused with a features CSV, whose features are computed already))";
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);
@@ -98,9 +100,8 @@ int run(const std::vector<std::string>& argv) {
         };
     }
     auto model = learn::fit_final_prepared(rows, s.input, classifier, o, inputs);
-    if (!model) {  // named as evaluate names it (review: "refusing to train" said by a plugin named nothing)
-        std::fprintf(stderr, "rollsense train: classifier '%s': %s\n", s.classifier.c_str(),
-                     model.error().describe().c_str());
+    if (!model) {
+        std::fprintf(stderr, "rollsense train: %s\n", model.error().describe().c_str());
         return exit_code_for(model.error().code);
     }
     if (auto st = model->classifier->save(out); !st) {

@@ -19,8 +19,8 @@ ParamSchema odd_scores_schema() {
                       "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99; 4 a wrong class "
                       "name; 5 a score of 7; 6 a negative score; 7 the highest score not the label's; 8 throws in "
                       "predict; 9 throws in train; 10 throws in load; 11 throws in input; 12 throws in search_space; 13 "
-                      "throws in class_names",
-                      0, 13)};
+                      "throws in class_names; 14 train refuses (an error status)",
+                      0, 14)};
 }
 
 class OddScores final : public Classifier {
@@ -39,6 +39,7 @@ public:
     }
     Status train(const FeatureTable& data) override {
         if (mode_ == 9) throw std::runtime_error("boom in train");
+        if (mode_ == 14) return {ErrorCode::invalid_argument, "refusing to train"};
         classes_ = data.class_names;
         means_.assign(classes_.size(), 0.0);
         std::vector<double> counts(classes_.size(), 0.0);

@@ -67,7 +67,8 @@ public:
         return thrown("search_space", [&] { return inner_->search_space(rows, cols); });
     }
     Status train(const FeatureTable& data) override {
-        return counted(guarded("training", [&] { return inner_->train(data); }));
+        // Its refusal named, as a throw is (review: train printed "refusing to train" alone).
+        return counted(guarded("training", [&] { return Status(inner_->train(data)).with_context(who_); }));
     }
     // A model file is read only here: its errors name the plugin that read it.
     Status load(const std::filesystem::path& file) override {
