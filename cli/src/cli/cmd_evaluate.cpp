@@ -286,7 +286,8 @@ options:
                       only). Left-out trials and why: evaluation.json
   --series-amplitude MODE
                       series rule amplitude: global_scale or z_per_channel
-                      (default: docs/series-preparation.md)
+                      (default: docs/series-preparation.md; series
+                      classifiers only)
   --series-time-axis contact|roll_relative
                       series rule time axis: contact (default, the paper's
                       timing rule) or roll_relative, OUTSIDE THE PAPER'S
@@ -311,7 +312,8 @@ options:
                       other: FILE.txt and FILE.json for -o FILE.json, else
                       FILE and FILE's stem + .json (schema: docs/evaluation-json.md)
   --plugin-path DIR   search classifier plugins here first (repeatable)
-  plus the feature options of 'rollsense features' when INPUT is a dataset)";
+  plus the feature options of 'rollsense features' when INPUT is a dataset
+  (refused with a features CSV, whose features are computed already))";
 
 int run(const std::vector<std::string>& argv) {
     Args args(argv);

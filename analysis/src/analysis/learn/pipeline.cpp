@@ -173,13 +173,15 @@ Status check_input_options(const std::vector<ClassifierInput>& kinds, const Inpu
         return {ErrorCode::invalid_argument,
                 "the series rule's " +
                     std::string(options.series.time_axis != preset.time_axis
-                                    ? "time axis " + std::string(series::to_string(options.series.time_axis))
-                                    : "amplitude " + std::string(series::to_string(options.series.amplitude))) +
+                                    ? "time axis " + std::string(series::to_string(options.series.time_axis)) +
+                                          " (--series-time-axis, series_time_axis)"
+                                    : "amplitude " + std::string(series::to_string(options.series.amplitude)) +
+                                          " (--series-amplitude, series_amplitude)") +
                     " applies to series classifiers (minirocket), but every classifier listed takes the 13 "
                     "features: list a series classifier, or drop it"};
     if (options.trials == TrialSelection::series_accepted && need_features)
         return {ErrorCode::invalid_argument,
-                "trials=all takes every trial the series rule accepts, but a feature classifier has no "
+                "trials=all (--trials all) takes every trial the series rule accepts, but a feature classifier has no "
                 "features for the trials the paper's peak rule refuses: evaluate it with trials=clean, or "
                 "list only series classifiers"};
     return {};
