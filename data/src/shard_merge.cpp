@@ -437,9 +437,12 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
         while (!where.empty() && !fs::exists(where, gone)) where = where.parent_path();
         const std::string folder = where.empty() ? std::string(".") : where.string();
         fs::remove_all(created, gone);
+        // "Make it writable" only where permissions are the cause (diff review: said of a full disk and of /proc).
+        const bool permissions = ec == std::errc::permission_denied || ec == std::errc::operation_not_permitted ||
+                                 ec == std::errc::read_only_file_system;
         return Error{ErrorCode::io_error, "cannot merge into " + out.string() + ": " + folder +
-                                              " cannot be written (" + ec.message() + "); choose another OUT, or make " +
-                                              folder + " writable for this user"};
+                                              " cannot be written (" + ec.message() + "); choose another OUT" +
+                                              (permissions ? ", or make " + folder + " writable for this user" : "")};
     }
     Status st = write_merged(staged, shards, *placed, manifests);
     if (st && finish) st = finish(staged, summary);

@@ -290,13 +290,17 @@ TEST_CASE("a merge that fails on a damaged trial leaves nothing behind, and the 
     for (const auto& e : fs::directory_iterator(dir.path())) CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
 }
 
-// Independent re-review N2: a merge stopped by Ctrl-C or kill -9 left its staging
-// folder for good (only a later merge with the same process id cleared it).
 // Review: a merge into a folder it cannot write in said "OUT/trials: cannot
 // create: Permission denied", a folder that is not the one refusing, and no way out.
 TEST_CASE("a merge into a folder it cannot write in names that folder, the reason and the way out", "[merge]") {
     rt::TempDir dir;
     const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    // A cause other than permissions gets no "make it writable" (diff review: said of /proc and of a full disk).
+    const auto proc = merge(fs::path("/proc/rollsense-merged"), {s0, s1, s2});
+    INFO(proc.output);
+    CHECK(proc.status == 5);
+    CHECK(proc.output.find("cannot merge into /proc/rollsense-merged: /proc cannot be written (") != std::string::npos);
+    CHECK(proc.output.find("writable") == std::string::npos);
     const auto locked = dir / "locked";
     fs::create_directories(locked / "empty");
     // Permission bits do not stop root: there the immutable flag does, where the
@@ -333,6 +337,8 @@ TEST_CASE("a merge into a folder it cannot write in names that folder, the reaso
     CHECK(fs::is_empty(locked / "empty"));
 }
 
+// Independent re-review N2: a merge stopped by Ctrl-C or kill -9 left its staging
+// folder for good (only a later merge with the same process id cleared it).
 TEST_CASE("a merge clears the staging folders of killed merges into the same folder", "[merge]") {
     rt::TempDir dir;
     const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
