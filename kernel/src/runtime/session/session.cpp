@@ -199,7 +199,7 @@ RunSummary Session::run() {
 // binding makes are short and bounded by the devices' own timeouts. Unless it is inside a plugin call, holding the
 // devices' lock, maybe mid-packet: a healthy call ends within the devices' timeouts, so the lock is awaited up to
 // kDeviceWait; one stuck in C code never lets go, and the prepared last resort (whole packets, no lock) goes out
-// instead. Held until the exit; no other wait: no deadlock.
+// instead. Held until the exit; the shutdown (safe state, then release) waits only on the devices' timeouts.
 void Session::last_resort(const std::string& why, ErrorCode code, double wall_start) {
     constexpr auto kDeviceWait = std::chrono::seconds(1);
     log_error("kernel", why);
