@@ -7,7 +7,8 @@
 --   rollsense run scripts/compare_methods.lua --seed 11 --out runs/compare
 --       records the stock experiment (as paper_experiment.lua) into runs/compare, then compares
 --   rollsense run scripts/compare_methods.lua --out runs/compare-of-11 --set dataset=runs/paper11
---       compares on a dataset recorded earlier (outputs go to --out)
+--       compares on a dataset recorded earlier (outputs go to --out, named after it:
+--       evaluation-paper11.*, report-paper11.html, model-paper11.rsm)
 --
 -- Outputs in --out: evaluation.txt/.json and report.html (both classifiers on the
 -- paper's clean trials that the series rule also accepts, with the prefix curves),

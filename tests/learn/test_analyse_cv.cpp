@@ -68,3 +68,44 @@ assert(not ok and tostring(err):find("roll_relative", 1, true), tostring(err))
     CHECK_THAT(rows, Catch::Contains("H2-v20-r004,trials/H2-v20-r004.csv,H2,20,4,") &&
                          Catch::Contains(",H2-1,7,\n"));  // mount, index_in_mount, an empty extra
 }
+
+// Review: rs.analyse{dataset = OTHER} wrote OTHER's evaluation.txt, report.html and model.rsm beside this run's own
+// trials, where they passed for this run's; and two tagged analyses both saved model.rsm.
+TEST_CASE("rs.analyse tags another dataset's results with its folder's name, and a tagged model with the tag",
+          "[learn][lua]") {
+    rollsense::testing::TempDir dir("rollsense-analyse-other");
+    const auto script = dir.path() / "record.lua";
+    std::ofstream(script) << R"(
+local rs = require "rollsense"
+local etroll = require "etroll"
+rs.settings{ other = { default = "", kind = "string", help = "a dataset recorded earlier" } }
+rs.on_cleanup(etroll.park)
+for _, object in ipairs{ "C1", "H2" } do
+  for r = 1, 4 do etroll.run_trial{ object = object, speed = 20, repetition = r } end
+end
+local other = rs.setting("other")
+if other ~= "" then
+  local o = rs.analyse{ dataset = other, folds = 2, repeats = 1, params = { learners = 3 } }
+  assert(o.evaluation:find("evaluation%-first%.json$") and o.model:find("model%-first%.rsm$"), o.model)
+  assert(o.features == nil, "no features.csv for another dataset")
+  local own = rs.analyse{ dataset = rs.output_dir() .. "/.", folds = 2, repeats = 1, params = { learners = 3 } }
+  assert(own.model:find("/model%.rsm$") and own.features, own.model)
+  local tagged = rs.analyse{ folds = 2, repeats = 1, params = { learners = 3 }, tag = "small" }
+  assert(tagged.model:find("/model%-small%.rsm$"), tagged.model)
+end
+)";
+    const auto first = dir.path() / "first";
+    auto run = rollsense::testing::run_rollsense("run " + script.string() + " --profile sim --seed 4 --out " +
+                                                 first.string());
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    const auto second = dir.path() / "second";
+    run = rollsense::testing::run_rollsense("run " + script.string() + " --profile sim --seed 5 --out " +
+                                            second.string() + " --set other=" + first.string() + "/");
+    INFO(run.output);
+    REQUIRE(run.status == 0);
+    for (const char* file : {"evaluation-first.txt", "evaluation-first.json", "report-first.html", "model-first.rsm",
+                             "evaluation.txt", "model.rsm", "features.csv", "model-small.rsm", "report-small.html"})
+        CHECK(std::filesystem::exists(second / file));
+    CHECK_THAT(run.output, Catch::Contains("predict with --training " + first.string()));
+}

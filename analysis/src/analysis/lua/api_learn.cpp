@@ -45,6 +45,21 @@ ParamSet params_from(lua_State* L, int table) {
     return out;
 }
 
+// Whether two spellings name one folder (through links, as the dataset is read).
+bool same_folder(const std::filesystem::path& a, const std::filesystem::path& b) {
+    std::error_code ec;
+    return std::filesystem::weakly_canonical(std::filesystem::absolute(a), ec) ==
+           std::filesystem::weakly_canonical(std::filesystem::absolute(b), ec);
+}
+
+// The last name of a folder however spelt ("runs/paper11/", "../paper11"): the tag of its analysis.
+std::string folder_name(const std::filesystem::path& folder) {
+    std::error_code ec;
+    auto full = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), ec);
+    if (full.filename().empty()) full = full.parent_path();
+    return full.filename().string();
+}
+
 // The dataset of the rs.analyse under way (unfinished_analysis()): set when it starts, cleared when it returns.
 std::optional<std::filesystem::path>& analysis_under_way() {
     static std::optional<std::filesystem::path> dataset;
@@ -110,21 +125,25 @@ int l_analyse(lua_State* L) {
                                           "cv", "group_by", "block"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
     // dataset = DIR analyses a dataset recorded earlier (outputs still go to --out);
-    // tag = "NAME" names the outputs evaluation-NAME.txt/.json and report-NAME.html,
-    // so that one script can write several analyses side by side.
-    const std::string dataset = opt_field_string(L, opts, "dataset", "");
+    // tag = "NAME" names the outputs evaluation-NAME.txt/.json, report-NAME.html and
+    // model-NAME.rsm, so that one script can write several analyses side by side.
+    std::string dataset = opt_field_string(L, opts, "dataset", "");
+    if (!dataset.empty() && same_folder(dataset, s.output_dir())) dataset.clear();  // this run's own, however spelt
     const std::filesystem::path dataset_dir = dataset.empty() ? s.output_dir() : std::filesystem::path(dataset);
     if (const auto& shard = s.options().shard; shard && dataset.empty())
         return luaL_error(L, "rs.analyse: this run is shard %s and holds only its part of the trials; analyse the "
                              "merged dataset instead (rollsense merge, docs/cluster.md): skip the analysis when "
                              "rs.shard() returns n > 1", shard->text().c_str());
     analysis_under_way() = dataset_dir;  // from here on, a failure is the analysis's, not the recording's
-    const std::string tag = opt_field_string(L, opts, "tag", "");
+    // Another dataset's results are tagged with its folder's name unless tag= names them: untagged, they would pass
+    // for this run's own dataset's (review: OTHER's evaluation.txt and model.rsm beside this run's trials).
+    const std::string tag = opt_field_string(L, opts, "tag", dataset.empty() ? "" : folder_name(dataset));
     if (tag.find('/') != std::string::npos || (!tag.empty() && tag[0] == '.'))
-        return luaL_error(L, "rs.analyse: tag '%s' must be a plain name (no '/', no leading '.')", tag.c_str());
+        return luaL_error(L, "rs.analyse: tag '%s' (given, or the folder name of dataset=) must be a plain name (no '/', "
+                             "no leading '.'); give tag=\"NAME\"", tag.c_str());
     const std::string suffix = tag.empty() ? "" : "-" + tag;
     // The model's name is checked before anything is written.
-    const std::string model_name = opt_field_string(L, opts, "model", "model.rsm");
+    const std::string model_name = opt_field_string(L, opts, "model", "model" + suffix + ".rsm");
     check(L, Session::check_output_name(model_name, "rs.analyse: model"));
     for (const char* own : {"evaluation.txt", "evaluation.json", "report.html"})
         if (model_name == own)
@@ -231,7 +250,8 @@ int l_analyse(lua_State* L) {
         check(L, final_model.status());
         model_path = s.output_dir() / model_name;
         check(L, final_model->classifier->save(model_path));
-        log_info("analysis", "model saved to " + model_path.string());
+        log_info("analysis", "model saved to " + model_path.string() +
+                                 (dataset.empty() ? "" : " (trained on " + dataset + ": predict with --training " + dataset + ")"));
     } else {
         log_warning("analysis", "no model saved: '" + first.spec.name + "' was evaluated with series_time_axis = " +
                                  std::string(series::to_string(request.inputs.series.time_axis)) + ", " +
