@@ -246,3 +246,40 @@ TEST_CASE("a resume refused for a damaged manifest row names the way on, and del
     CHECK(resumed.status == 0);
     CHECK(read_file(out / "manifest.csv").size() == manifest.size());  // the deleted row's trial, recorded again
 }
+
+// Review: a device whose shutdown failed after the script's end (its plugin threw in on_deactivate), or a cleanup
+// that failed, was followed by "continue with: ... --resume", which would record nothing. The fault is still reported
+// (exit 4: check the device), once.
+TEST_CASE("a run that fails after its script's end says its trials are on disk, and offers no resume") {
+    TempDir dir("rollsense-cli-after-end");
+    write_file(dir / "two.lua", "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
+                                "rs.on_cleanup(etroll.park)\n"
+                                "for r = 1, 2 do etroll.run_trial{ object = 'C1', speed = 20, repetition = r } end\n");
+    write_file(dir / "with-thrower.lua",
+               "return { clock = 'virtual', sample_rate_hz = 31.1, control_rate_hz = 100,\n"
+               "  devices = { hand = include('mock-hand'), tactile = { plugin = 'sim', params = include('etroll-hand') },\n"
+               "              extra = { plugin = 'test_thrower', params = { throw_in = 'deactivate' } } },\n"
+               "  joints = include('etroll-joints'), record_joints = { 'sensing_finger' } }\n");
+    const auto shutdown = run_command("ROLLSENSE_PLUGIN_PATH=" + shell_quoted(ROLLSENSE_TEST_PLUGIN_DIR) + " " +
+                                      ROLLSENSE_BIN_DIR + "/rollsense run " + shell_quoted(dir / "two.lua") +
+                                      " --no-progress --profile " + shell_quoted(dir / "with-thrower.lua") + " --out " +
+                                      shell_quoted(dir / "a"));
+    INFO(shutdown.output);
+    CHECK(shutdown.status == 4);
+    CHECK(count_of(shutdown.output, "boom in deactivate") == 1);
+    CHECK(manifest_rows(dir / "a") == 2);
+
+    write_file(dir / "cleanup.lua", "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
+                                    "rs.on_cleanup(function() error('cleanup broke') end)\n"
+                                    "for r = 1, 2 do etroll.run_trial{ object = 'C1', speed = 20, repetition = r } end\n");
+    const auto cleanup = run_rollsense("run " + shell_quoted(dir / "cleanup.lua") + " --no-progress --out " +
+                                       shell_quoted(dir / "b"));
+    INFO(cleanup.output);
+    CHECK(cleanup.status == 1);
+    CHECK(count_of(cleanup.output, "cleanup broke") == 1);
+    for (const auto* run : {&shutdown, &cleanup}) {
+        CHECK(run->output.find("continue with:") == std::string::npos);
+        CHECK(run->output.find("the script ran to its end and its trials are on disk; what failed came after it "
+                               "(above): a resume would record nothing") != std::string::npos);
+    }
+}

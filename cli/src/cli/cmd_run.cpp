@@ -280,7 +280,12 @@ int run(const std::vector<std::string>& argv) {
     // However it stopped, the saved trials stay: the way on. After an analysis that failed of itself, a resume would
     // only run it again on the same trials; one stopped (Ctrl-C, --time-limit) or cut short by the disk can go on.
     const auto analysed = runtime::lua_api::unfinished_analysis();
-    if (analysed && !summary.cancelled && summary.status.code() != ErrorCode::io_error)
+    // Review: a device that failed to shut down after the script's end (a plugin's on_deactivate threw) was
+    // followed by "continue with: ... --resume", which would record nothing.
+    if (summary.script_ended && summary.status.code() != ErrorCode::io_error)
+        std::fprintf(stderr, "the script ran to its end and its trials are on disk; what failed came after it "
+                             "(above): a resume would record nothing\n");
+    else if (analysed && !summary.cancelled && summary.status.code() != ErrorCode::io_error)
         std::fprintf(stderr, "the analysis failed, not the recording: the %zu trials of %s are on disk (--resume "
                              "would run the same analysis on them again)\nanalyse them with: %s (options such as "
                              "--folds, --classifier: their --help)\n",

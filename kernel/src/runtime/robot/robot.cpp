@@ -69,16 +69,13 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
         const std::string where = profile.at("devices." + dev.name);
         std::shared_ptr<const LoadedLibrary> lib;
         for (auto kind : {PluginKind::sensor, PluginKind::actuator, PluginKind::classifier}) {
-            auto found = registry.find(dev.plugin, kind);
-            if (found) {
+            if (auto found = registry.find(dev.plugin, kind)) {
                 lib = *found;
                 break;
             }
         }
-        if (!lib) {
-            auto any = registry.find(dev.plugin, PluginKind::sensor);  // for the full "searched" message
-            return Error{ErrorCode::not_found, where + ": " + any.error().message};
-        }
+        if (!lib)  // a sensor's search, for the full "searched" message
+            return Error{ErrorCode::not_found, where + ": " + registry.find(dev.plugin, PluginKind::sensor).error().message};
         auto schema = PluginRegistry::schema_of(*lib);
         if (!schema) return schema.status().with_context(where);  // review: a schema() that threw named no device
         auto params = validate_params(*schema, dev.params, "devices." + dev.name + ".params");

@@ -164,6 +164,7 @@ RunSummary Session::run() {
             CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
                                     [this, wall_start](const std::string& why, ErrorCode code) { last_resort(why, code, wall_start); });
             s = run_main_chunk();
+            summary.script_ended = s.ok();
             if (Status cleanup = run_cleanup(); s.ok()) s = cleanup;
         } catch (const std::bad_alloc&) {  // in the kernel's own work: the last resort needs no heap,
             const int sent = run_last_resort();  // then shutdown (below) tries the ordinary safe state

@@ -60,6 +60,7 @@ struct RunSummary {
     double run_time_s = 0;           // on the run clock (robot time)
     double wall_time_s = 0;
     bool cancelled = false;
+    bool script_ended = false;  // its main chunk ran to its end: every trial it meant to record is saved
     std::optional<LoopTimingSummary> control_timing;  // monotonic clock only
 };
 
