@@ -167,9 +167,13 @@ rs.write_output("result.txt", table.concat(out, "\n"))
     CHECK(lines[11] == "false 0.000");  // nothing moved
 }
 
-TEST_CASE("a failing script gets its cleanup, and the kernel stops every joint first", "[safety]") {
-    kt::TempDir dir;
-    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+// Review (Lua scripts): after a normal end the joints were not stopped: a finger spinning when the script ended
+// travelled 75 degrees during the cleanup, and a push stayed in current mode, though the docs promise both stopped.
+TEST_CASE("a script's cleanup runs with every joint stopped, whether it failed or ended normally", "[safety]") {
+    for (const bool fails : {true, false}) {
+        INFO((fails ? "an error" : "a normal end"));
+        kt::TempDir dir;
+        auto r = kt::run_script(dir, std::string(R"(local rs = require 'rollsense'
 local f, p = rs.joint("finger"), rs.joint("pusher")
 rs.on_cleanup(function()
   local at = f:position()
@@ -180,18 +184,18 @@ end)
 p:push(100)
 f:move(45, { velocity = 10, wait = false })
 rs.wait(1000)
-error("something went wrong mid-roll")
-)");
-    REQUIRE_FALSE(r.summary.status.ok());
-    CHECK_THAT(r.summary.status.message(), Catch::Contains("something went wrong mid-roll"));
-    auto out = kt::read_file(r.out / "cleanup.txt");
-    double at = 0, later = 0;
-    char moving[8] = {}, torque[8] = {};
-    REQUIRE(std::sscanf(out.c_str(), "%lf %lf %7s %7s", &at, &later, moving, torque) == 4);
-    CHECK(at == Approx(10.0).margin(0.5));      // stopped where it was (about 1 s at 10 deg/s)
-    CHECK(later == Approx(at).margin(1e-6));    // and stays there
-    CHECK(std::string(moving) == "false");
-    CHECK(std::string(torque) == "false");      // the pusher's profile safe state is torque off
+)") + (fails ? "error('something went wrong mid-roll')\n" : ""));
+        CHECK(r.summary.status.ok() != fails);
+        if (fails) CHECK_THAT(r.summary.status.message(), Catch::Contains("something went wrong mid-roll"));
+        auto out = kt::read_file(r.out / "cleanup.txt");
+        double at = 0, later = 0;
+        char moving[8] = {}, torque[8] = {};
+        REQUIRE(std::sscanf(out.c_str(), "%lf %lf %7s %7s", &at, &later, moving, torque) == 4);
+        CHECK(at == Approx(10.0).margin(0.5));      // stopped where it was (about 1 s at 10 deg/s)
+        CHECK(later == Approx(at).margin(1e-6));    // and stays there
+        CHECK(std::string(moving) == "false");
+        CHECK(std::string(torque) == "false");      // the pusher's profile safe state is torque off
+    }
 }
 
 TEST_CASE("the time budget cancels a script, pcall cannot hold on, and cleanup runs", "[safety]") {

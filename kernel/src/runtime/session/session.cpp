@@ -268,10 +268,8 @@ Status Session::spawn(lua_State* L, int function_index, std::string name) {
 // The run's status is not logged here: the caller prints it (once) with its exit code.
 Status Session::run_cleanup() {
     if (!sandbox_) return {};
-    if (!scheduler_->failure().ok()) {
-        log_debug("kernel", "the script failed: hand to its safe state, then the cleanup functions");
-        robot_->safe_state(now());
-    }
+    // However the script ended (review: after a normal end, a finger spinning then moved on through the cleanup).
+    robot_->safe_state(now());
     recorder_->abort_recording();
     if (cleanup_refs_.empty()) return {};
     const Status main_failure = scheduler_->take_failure();
