@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "kernel_fixture.hpp"
+#include "log_capture.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 
@@ -162,6 +163,30 @@ end
     rollsense::runtime::Session s(o);
     REQUIRE(s.run().status.ok());
     CHECK(kt::read_file(o.out_dir / "trials/X-v20-r001.csv") != kt::read_file(ra.out / "trials/X-v20-r001.csv"));
+}
+
+// Review (Lua scripts): a trial recorded and left unsaved for the next rs.trial, or for the script's end, was dropped
+// without a word (`done: 1 trials saved`). Now each says so once; a saved trial, or one dropped with rs.end_trial(),
+// does not.
+TEST_CASE("a recorded trial left unsaved is warned of, once, when the next trial or the script's end drops it",
+          "[dataset]") {
+    const rollsense::testing::LogCapture log;
+    kt::TempDir dir;
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+local function record(r) rs.trial{ object = "X", speed = 20, repetition = r }; rs.record_start(); rs.wait(100) end
+record(1); rs.record_stop()
+record(2); rs.record_stop(); rs.save_trial()
+record(3); rs.record_stop(); rs.end_trial()
+record(4)  -- still recording when the script ends
+)");
+    INFO(log.all());
+    REQUIRE(r.summary.status.ok());
+    CHECK(r.summary.trials_saved == 1);
+    CHECK(log.count("trial 'X-v20-r001': its ") == 1);
+    CHECK(log.count("samples were not saved, discarded by the next rs.trial") == 1);
+    CHECK(log.count("trial 'X-v20-r004': its ") == 1);
+    CHECK(log.count("discarded at the script's end") == 1);
+    for (const char* kept : {"'X-v20-r002'", "'X-v20-r003'"}) CHECK(log.count(kept) == 0);
 }
 
 // Determinism review: before the first trial rs.random drew from the default

@@ -94,7 +94,6 @@ public:
     // would pass the cap.
     Status charge(std::size_t bytes, const std::string& what) const;
 
-    std::size_t memory_used() const { return heap_.used; }
     std::string memory_cap() const;  // "its memory cap (256 MB, 255 MB in use)"
     // "s.lua:4: not enough memory: the script reached its memory cap (…)<when>; raise it with --memory-limit-mb MB"
     std::string memory_error(const std::string& when = "") const;

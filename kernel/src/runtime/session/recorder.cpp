@@ -1,6 +1,7 @@
 #include "runtime/session/recorder.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "rollsense/log.hpp"
 #include "rollsense/random.hpp"
@@ -19,10 +20,7 @@ std::uint64_t Recorder::trial_seed(std::uint64_t run_seed, const std::string& tr
     // FNV-1a of the id, with the offset basis this project has always used (1469598103934665603, not FNV's
     // 14695981039346656037): every recorded dataset's trial seeds depend on it, so it stays.
     std::uint64_t h = 1469598103934665603ULL;
-    for (unsigned char c : trial_id) {
-        h ^= c;
-        h *= 1099511628211ULL;
-    }
+    for (unsigned char c : trial_id) h = (h ^ c) * 1099511628211ULL;
     return random::splitmix64(run_seed ^ h);
 }
 
@@ -38,6 +36,7 @@ Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInf
 
 Status Recorder::begin_trial(TrialInfo info) {
     if (recording_) return {ErrorCode::state_error, "a trial cannot begin while recording (call rs.record_stop() first)"};
+    warn_unsaved("by the next rs.trial");
     // The id names the trial's file: checked here so rs.trial fails at once,
     // not a batch of trials later when the file cannot be created.
     if (auto s = check_trial_info(info); !s.ok()) return s;
@@ -62,7 +61,7 @@ Status Recorder::start(double now) {
     data_ = TrialData{};
     data_.channels.resize(robot_.channel_columns().size());
     data_.joints.resize(robot_.recorded_joints().size());
-    recording_ = true;
+    recording_ = unsaved_ = true;
     sample_epoch_ = now;
     sample_m_ = 0;
     next_sample_ = now;
@@ -92,7 +91,15 @@ Status Recorder::sample_tick(double now) {
     return {};
 }
 
+// Review (Lua scripts): a trial left unsaved for the next rs.trial or for the script's end was dropped without a word.
+void Recorder::warn_unsaved(const char* when) {
+    if (std::exchange(unsaved_, false) && trial_open_)
+        log_warning("kernel", "trial '" + trial_.id + "': its " + std::to_string(data_.samples()) + " samples were not "
+                    "saved, discarded " + when + " (rs.save_trial() keeps a trial, rs.end_trial() drops it quietly)");
+}
+
 void Recorder::abort_recording() {
+    warn_unsaved("at the script's end");
     if (!recording_) return;
     recording_ = false;
     if (auto s = robot_.stop_recording(); !s.ok()) log_error("kernel", "stopping the recording: " + s.message());
@@ -110,13 +117,14 @@ Status Recorder::save_trial() {
     rec.info = trial_;
     auto s = dataset_->add_trial(rec, data_);
     if (s.ok()) ++trials_accepted_;
+    unsaved_ = unsaved_ && !s.ok();
     return s;
 }
 
 Status Recorder::end_trial() {
     if (recording_)
         if (auto s = stop(); !s.ok()) log_error("kernel", "ending the trial: " + s.message());  // nobody else sees it
-    trial_open_ = false;
+    trial_open_ = unsaved_ = false;
     return robot_.end_trial();
 }
 
@@ -126,8 +134,7 @@ Status Recorder::flush() {
 }
 
 std::size_t Recorder::trials_saved() const {
-    // Accepted minus lost: once flush() has returned, exactly the trials this
-    // run made durable; before, the ones still on their way count as well.
+    // Accepted minus lost: after flush(), exactly the trials this run made durable; before, those on their way too.
     const std::size_t lost = dataset_ ? dataset_->lost_trials() : 0;
     return trials_accepted_ > lost ? trials_accepted_ - lost : 0;
 }

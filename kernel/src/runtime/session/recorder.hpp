@@ -38,7 +38,6 @@ public:
 
     Status begin_trial(TrialInfo info);
     const TrialInfo& trial() const { return trial_; }
-    bool trial_open() const { return trial_open_; }
     // Why recording cannot start now (no trial, already recording); ok if it can.
     Status can_start() const;
     Status start(double now);
@@ -61,7 +60,7 @@ public:
     Status sample_tick(double now);
     std::function<void()> on_sample;  // after each sample taken (Session: its options' observer)
     std::size_t max_recording_bytes = SIZE_MAX;  // held until saved: the script's memory cap bounds it too (Session)
-    // The run failed or ended while recording: stop the sensors, keep nothing.
+    // The script's end: stop the sensors, keep nothing (a trial recorded and not saved is warned of).
     void abort_recording();
 
     // Trials this run saved, less those a failed write lost: once flush() has returned, exactly the trials this run
@@ -75,6 +74,8 @@ public:
     static std::uint64_t trial_seed(std::uint64_t run_seed, const std::string& trial_id);
 
 private:
+    void warn_unsaved(const char* when);
+
     Robot& robot_;
     const Clock& clock_;
     double sample_period_;
@@ -87,6 +88,7 @@ private:
     TrialData data_;
     std::mt19937_64 trial_rng_, run_rng_;
     bool recording_ = false;
+    bool unsaved_ = false;  // samples recorded in the open trial, neither saved nor dropped by end_trial()
     double sample_epoch_ = 0;
     std::uint64_t sample_m_ = 0;
     double next_sample_ = 0;

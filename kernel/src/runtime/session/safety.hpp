@@ -32,7 +32,6 @@ public:
     void update_trigger(double now);
     // When the pulse ends (infinity: no pulse); the scheduler wakes for it.
     double next_event() const { return trigger_off_ >= 0 ? trigger_off_ : kNever; }
-    bool has_trigger() const { return trigger_ != nullptr; }
 
     // Set from a signal handler (or any thread); consumed by the scheduler.
     std::atomic<bool>& interrupt_flag() { return interrupt_; }

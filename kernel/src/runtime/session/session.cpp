@@ -144,8 +144,7 @@ Status Session::open_dataset() {
     info.seed = options_.seed;
     info.software_version = ROLLSENSE_VERSION;
     info.run_config = options_.run_config;
-    std::size_t every = options_.commit_every;
-    if (every == 0) every = profile_.virtual_clock ? 64 : 1;
+    const std::size_t every = options_.commit_every != 0 ? options_.commit_every : profile_.virtual_clock ? 64 : 1;
     auto s = recorder_->open_dataset(options_.out_dir, info, options_.resume, every);
     // A shard killed before its end must still read as that shard to --resume and merge.
     if (s.ok() && options_.shard) write_run_info(Status(ErrorCode::cancelled, "has not ended (running, or killed)"), wall_start_);

@@ -99,7 +99,6 @@ public:
     // lines (trigger pulse).
     Status begin_trial(TrialInfo info) { return recorder_->begin_trial(std::move(info)); }
     const TrialInfo& trial() const { return recorder_->trial(); }
-    bool trial_open() const { return recorder_->trial_open(); }
     Status record_start();
     Status record_stop() { return recorder_->stop(); }
     bool recording() const { return recorder_->recording(); }
