@@ -378,23 +378,37 @@ Error as_written_to(Error e, const fs::path& staged, const fs::path& out) {
     return e;
 }
 
-}  // namespace
-
-Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<fs::path>& dirs,
-                                  const MergeFinish& finish) {
+// OUT with its links followed, once it is checked; and each shard folder given once.
+Result<fs::path> checked_arguments(const fs::path& out_given, const std::vector<fs::path>& dirs) {
     if (dirs.empty()) return refused("no shard folders given");
     // "OUT/" names OUT: its sibling is named after the last part that is not empty.
-    const auto resolved = followed(out_given.has_filename() ? out_given : out_given.parent_path());
+    auto resolved = followed(out_given.has_filename() ? out_given : out_given.parent_path());
     if (!resolved) return resolved.error();
-    const fs::path& out = *resolved;
-    if (auto s = check_out_folder(out); !s) return s.error();
+    if (auto s = check_out_folder(*resolved); !s) return s.error();
     std::map<fs::path, fs::path> given;  // each folder once (it is locked while read)
     for (const auto& dir : dirs) {
         std::error_code ec;
         const auto canonical = fs::weakly_canonical(dir, ec);
         if (auto [it, added] = given.emplace(ec ? dir : canonical, dir); !added)
-            return refused(dir.string() + " is given twice (also as " + it->second.string() + ")");
+            return refused(dir.string() + " is given twice (also as " + it->second.string() +
+                           "): give each shard's folder once");
     }
+    return resolved;
+}
+
+}  // namespace
+
+Status check_merge_arguments(const fs::path& out, const std::vector<fs::path>& shards) {
+    auto checked = checked_arguments(out, shards);
+    if (!checked) return checked.error();
+    return {};
+}
+
+Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<fs::path>& dirs,
+                                  const MergeFinish& finish) {
+    const auto resolved = checked_arguments(out_given, dirs);
+    if (!resolved) return resolved.error();
+    const fs::path& out = *resolved;
     std::vector<ShardDataset> opened;
     for (const auto& dir : dirs) {
         auto s = open_shard(dir);

@@ -25,8 +25,9 @@ the run's order), dataset-info.csv (and run-config.csv when the shards have
 one) byte for byte, and features.csv with the paper's feature settings, as the
 stock script's analysis writes it. OUT also gets shards.csv (one row per
 shard: its folder, trials, date, wall time, command line) and run-info.csv
-(this merge). OUT must be new or empty; the merge is written into a hidden
-sibling, .OUT.tmp-PID, renamed to OUT once complete (an empty OUT keeps its
+(this merge). OUT must be new or empty, and each SHARD folder given once
+(else a usage error, exit 2, with nothing written); the merge is written
+into a hidden sibling, .OUT.tmp-PID, renamed to OUT once complete (an empty OUT keeps its
 permissions), so OUT's folder must be writable: else the merge stops naming
 it and the reason (exit 5). An OUT that is a symbolic link is merged into the folder the
 link names (which may be new), and the link stays.
@@ -35,7 +36,7 @@ Refused, with nothing written (and so is a merge that fails), unless the SHARD f
 0/N ... N-1/N of one run: each finished (status ok), recorded with the same
 profile, seed, script and settings and the same plan of trials
 (shard-plan.csv), holding between them every trial of the run once. The error
-names the shard folder and the difference.
+names the shard folder and the difference (exit 3).
 
 Then analyse OUT as the unsharded run does: the shards' command line without
 --shard, with --out OUT --resume (every trial is found on disk, so the script
@@ -80,6 +81,13 @@ int run(const std::vector<std::string>& argv) {
     const auto threads = static_cast<unsigned>(args.unsigned_option("--threads", 0, 0, 4096));
     const std::filesystem::path out = pos[0];
     const std::vector<std::filesystem::path> shards(pos.begin() + 1, pos.end());
+
+    // The command line's own mistakes (OUT not empty or a file, a shard given twice) exit 2 as `run --out` into a
+    // folder that is not empty does; what is wrong in the shards themselves is the merge's to say (3).
+    if (auto st = check_merge_arguments(out, shards); !st) {
+        if (st.code() == ErrorCode::invalid_argument) throw UsageError(st.message());
+        return fail(st.error(), kExitConfig);
+    }
 
     std::string command_line = "rollsense merge";
     for (const auto& a : argv) command_line += " " + a;

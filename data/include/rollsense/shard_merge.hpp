@@ -40,6 +40,13 @@ struct MergeSummary {
 // sibling): the caller's own files go there.
 using MergeFinish = std::function<Status(const std::filesystem::path& merged, const MergeSummary& summary)>;
 
+// What the command line alone decides, checked before any shard is read: `out`
+// (its links followed) new or an empty folder, not a file, and each shard
+// folder given once however it is spelt (./A, A/, a link to A). Its refusals
+// are invalid_argument, which `rollsense merge` reports as a usage error (exit
+// 2, as `run --out` into a folder that is not empty); merge_shards checks the same.
+Status check_merge_arguments(const std::filesystem::path& out, const std::vector<std::filesystem::path>& shards);
+
 // `out` must not exist or be an empty folder (which keeps its permissions); a
 // symbolic link is followed (its folder takes the merge, the link stays). The
 // shards are locked while they are read (a shard still being recorded is refused).
