@@ -56,7 +56,9 @@ options:
   --set KEY=VALUE       a setting (repeatable; of one key given twice, the later
                         holds): a key starting with a profile
                         entry overrides it (plugin parameters:
-                        devices.NAME.params.KEY, e.g. devices.tactile.params.kernel_fwhm=5);
+                        devices.NAME.params.KEY, e.g. devices.tactile.params.kernel_fwhm=5;
+                        a list in braces, quoted for the shell:
+                        'devices.tactile.params.cell_angles={-30,0,30}');
                         any other key is a script setting: plain for the
                         script (runs=2), MODULE.KEY for a Lua module
                         (etroll.clamp_current=150); checked before the first
