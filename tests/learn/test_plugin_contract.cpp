@@ -115,3 +115,20 @@ TEST_CASE("a classifier plugin that throws where it has no error return is a plu
     CHECK_THAT(r.output, !Catch::Contains("unexpected error"));
     fs::remove_all(dir);
 }
+
+// Review: a plugin whose class_names() was empty once trained was reported as
+// "predicted label 0 outside its 0 classes", as if its predictions were wrong.
+TEST_CASE("a classifier plugin with no class names once trained is said to return none, naming it",
+          "[learn][cli][plugin]") {
+    const auto dir = rollsense::testing::make_dataset();
+    const std::string says = "returned no class names after training (class_names() is empty)";
+    check_evaluate_refuses(dir, "15", says);
+    const auto model = dir / "mode15.model";
+    const auto r = rollsense_cli("train " + (dir / "dataset").string() + kPlugin + " --set mode=15 -o " + model.string());
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK_THAT(r.output, Catch::Contains(kNamed + says));
+    CHECK_THAT(r.output, !Catch::Contains("outside its"));
+    CHECK_FALSE(fs::exists(model));
+    fs::remove_all(dir);
+}

@@ -19,8 +19,8 @@ ParamSchema odd_scores_schema() {
                       "0 honest; 1 NaN scores; 2 two scores whatever the class count; 3 label 99; 4 a wrong class "
                       "name; 5 a score of 7; 6 a negative score; 7 the highest score not the label's; 8 throws in "
                       "predict; 9 throws in train; 10 throws in load; 11 throws in input; 12 throws in search_space; 13 "
-                      "throws in class_names; 14 train refuses (an error status)",
-                      0, 14)};
+                      "throws in class_names; 14 train refuses (an error status); 15 no class names once trained",
+                      0, 15)};
 }
 
 class OddScores final : public Classifier {
@@ -75,6 +75,7 @@ public:
     }
     std::vector<std::string> class_names() const override {
         if (mode_ == 13) throw std::runtime_error("boom in class_names");
+        if (mode_ == 15) return {};
         return classes_;
     }
     Status save(const std::filesystem::path& file) const override {

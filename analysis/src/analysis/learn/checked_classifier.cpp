@@ -68,12 +68,12 @@ public:
     }
     Status train(const FeatureTable& data) override {
         // Its refusal named, as a throw is (review: train printed "refusing to train" alone).
-        return counted(guarded("training", [&] { return Status(inner_->train(data)).with_context(who_); }));
+        return counted("training", guarded("training", [&] { return Status(inner_->train(data)).with_context(who_); }));
     }
     // A model file is read only here: its errors name the plugin that read it.
     Status load(const std::filesystem::path& file) override {
-        return counted(guarded("loading " + file.string(),
-                               [&] { return Status(inner_->load(file)).with_context(who_); }));
+        const std::string loading = "loading " + file.string();
+        return counted(loading, guarded(loading, [&] { return Status(inner_->load(file)).with_context(who_); }));
     }
     Result<Prediction> predict(std::span<const double> features) const override {
         auto p = guarded("prediction", [&] { return inner_->predict(features); });
@@ -121,10 +121,16 @@ private:
 
     // The classes predictions are checked against, once the model exists
     // (train runs on the folds' threads: what class_names throws is returned).
-    Status counted(Status s) {
+    Status counted(const std::string& after, Status s) {
         if (!s) return s;
         auto names = guarded("class_names", [&] { return Result<std::vector<std::string>>(inner_->class_names()); });
         if (!names) return names.status();
+        // Said as it is: with no classes every prediction was refused as "label 0 outside its 0 classes" (review).
+        if (names->empty())
+            return Error{ErrorCode::plugin_error,
+                         who_ + " returned no class names after " + after +
+                             " (class_names() is empty); a trained classifier names the classes it predicts, in "
+                             "label order: fix the plugin or ask its author"};
         classes_ = std::move(*names);
         return {};
     }

@@ -21,7 +21,7 @@ namespace rollsense::learn {
 Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who);
 
 // `inner` behind check_prediction on every predict (classes: its class_names()
-// once trained or loaded); an exception from train, load, predict, save or
+// once trained or loaded, where none is a plugin error); an exception from train, load, predict, save or
 // invoke is returned as a plugin error naming `who` with the exception's text,
 // and load's errors name `who`; one from input, search_space or class_names,
 // which have no error return, is thrown on as that error (a StatusError).
