@@ -56,15 +56,32 @@ Status check_prediction(const Prediction& p, const std::vector<std::string>& cla
     return {};
 }
 
+Status check_search_space(const SearchSpace& space, const ParamSchema& schema, const std::string& who) {
+    for (const auto& d : space) {
+        if (std::ranges::any_of(schema, [&](const ParamSpec& p) { return p.name == d.name; })) continue;
+        std::string declared;
+        for (const auto& p : schema) declared += (declared.empty() ? "" : ", ") + p.name;
+        return {ErrorCode::plugin_error,
+                who + " names the parameter '" + d.name + "' in its search_space(), which its schema() does not " +
+                    "declare (it declares: " + (declared.empty() ? std::string("none") : declared) +
+                    "), so tuning could not set it; the plugin must declare '" + d.name +
+                    "' in schema() or drop it from search_space() (ask its author)"};
+    }
+    return {};
+}
+
 namespace {
 
 class CheckedClassifier final : public Classifier {
 public:
-    CheckedClassifier(ClassifierPtr inner, std::string who) : inner_(std::move(inner)), who_(std::move(who)) {}
+    CheckedClassifier(ClassifierPtr inner, std::string who, ParamSchema schema)
+        : inner_(std::move(inner)), who_(std::move(who)), schema_(std::move(schema)) {}
 
     ClassifierInput input() const override { return thrown("input", [&] { return inner_->input(); }); }
     SearchSpace search_space(std::size_t rows, std::size_t cols) const override {
-        return thrown("search_space", [&] { return inner_->search_space(rows, cols); });
+        auto space = thrown("search_space", [&] { return inner_->search_space(rows, cols); });
+        if (auto s = check_search_space(space, schema_, who_); !s) throw StatusError(s);
+        return space;
     }
     Status train(const FeatureTable& data) override {
         // Its refusal named, as a throw is (review: train printed "refusing to train" alone).
@@ -137,13 +154,14 @@ private:
 
     ClassifierPtr inner_;
     std::string who_;
+    ParamSchema schema_;
     std::vector<std::string> classes_;
 };
 
 }  // namespace
 
-ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who) {
-    return std::make_shared<CheckedClassifier>(std::move(inner), std::move(who));
+ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who, ParamSchema schema) {
+    return std::make_shared<CheckedClassifier>(std::move(inner), std::move(who), std::move(schema));
 }
 
 }  // namespace rollsense::learn

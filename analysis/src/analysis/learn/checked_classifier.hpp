@@ -20,11 +20,18 @@ namespace rollsense::learn {
 // names the classifier in the error.
 Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who);
 
+// Every dimension of `space` names a parameter of `schema`: tuning sets them as
+// parameters, so a name the schema does not declare would be refused only after
+// the preset's cross-validation, when tuning first configures a classifier
+// (review); a plugin error naming `who`, the parameter and the way out.
+Status check_search_space(const SearchSpace& space, const ParamSchema& schema, const std::string& who);
+
 // `inner` behind check_prediction on every predict (classes: its class_names()
-// once trained or loaded, where none is a plugin error); an exception from train, load, predict, save or
-// invoke is returned as a plugin error naming `who` with the exception's text,
+// once trained or loaded, where none is a plugin error) and check_search_space
+// against `schema`, its parameters, on every search_space; an exception from
+// train, load, predict, save or invoke is returned as a plugin error naming `who` with the exception's text,
 // and load's errors name `who`; one from input, search_space or class_names,
 // which have no error return, is thrown on as that error (a StatusError).
-ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who);
+ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who, ParamSchema schema);
 
 }  // namespace rollsense::learn

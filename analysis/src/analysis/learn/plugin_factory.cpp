@@ -49,8 +49,23 @@ Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& reg
         if (auto s = owner->configure(*params, context); !s) return s;
         if (auto s = owner->activate(); !s) return s;
         // Written outside this repository: what it predicts is checked before use.
-        return checked_classifier(ClassifierPtr(owner, &owner->plugin()), "classifier plugin '" + plugin + "'");
+        return checked_classifier(ClassifierPtr(owner, &owner->plugin()), "classifier plugin '" + plugin + "'", schema);
     });
+}
+
+Status check_classifier_declarations(runtime::PluginRegistry& registry, const std::string& plugin) {
+    auto factory = plugin_classifier_factory(registry, plugin);
+    if (!factory) return factory.error();
+    auto probe = (*factory)(ParamSet{});
+    if (!probe) return {};
+    // The stock run's shape (1164 trials of 13 features): a space's ranges may depend on the shape, the names it
+    // gives should not (and a space that does is still checked whenever tuning asks for it).
+    try {
+        (*probe)->search_space(1164, 13);
+    } catch (const StatusError& e) {
+        return e.status();
+    }
+    return {};
 }
 
 }  // namespace rollsense::learn

@@ -19,6 +19,11 @@ std::vector<std::string> available_classifiers(runtime::PluginRegistry& registry
 // plugin named 'X'" with the classifier plugins there are (only those) and where they were looked for.
 Status find_classifier_plugin(runtime::PluginRegistry& registry, const std::string& plugin);
 
+// For `rollsense plugins --check`: what `plugin`, configured with its defaults, declares beyond its schema is
+// consistent with it: its search space names only parameters of its schema (check_search_space). Its errors name the
+// plugin; one whose defaults do not configure it (a required parameter) is not checked here: using it says why.
+Status check_classifier_declarations(runtime::PluginRegistry& registry, const std::string& plugin);
+
 // `registry` must outlive the factory. Fails at once, as find_classifier_plugin, if no classifier plugin named
 // `plugin` loads.
 Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& registry, const std::string& plugin,
