@@ -98,7 +98,8 @@ TEST_CASE("a joint without kernel limits, or limits wider than the device, is re
                Catch::Contains("joint 'pusher' of device 'hand' has no limits") && Catch::Contains("pushr"));
     auto wide = robot_from(dir, replace(kt::kTestProfile, "finger = { min = -50", "finger = { min = -120"));
     REQUIRE_FALSE(wide.ok());
-    CHECK_THAT(wide.error().message, Catch::Contains("are not within what the device allows"));
+    CHECK_THAT(wide.error().message, Catch::Contains("joints.finger.min: the limits [-120, 50] are not within what the "
+                                                     "device allows"));
 }
 
 // Independent review item 2: a NaN or negative max_velocity / max_current (or a
@@ -121,9 +122,9 @@ TEST_CASE("a joint limit that is NaN or negative is refused, naming the key", "[
                          Case{"min = -50, max = 50, max_velocity = 1/0, max_current = 300",
                               "p.lua:16: joints.finger.max_velocity is inf"},
                          Case{"min = 0/0, max = 50, max_velocity = 60, max_current = 300",
-                              "p.lua:16: joints.finger limits [nan, 50] are not within what the device allows"},
+                              "p.lua:16: joints.finger.min: the limits [nan, 50] are not within what the device allows"},
                          Case{"min = -50, max = 0/0, max_velocity = 60, max_current = 300",
-                              "limits [-50, nan] are not within"}}) {
+                              "joints.finger.max: the limits [-50, nan] are not within"}}) {
         INFO(c.limits);
         auto r = robot_from(dir, replace(kt::kTestProfile, finger, std::string("finger = { ") + c.limits + " }"));
         REQUIRE_FALSE(r.ok());
@@ -280,7 +281,7 @@ TEST_CASE("a content error names the file and line where the key is written", "[
         kt::write_file(dir / "profiles/joints.lua", replace(joints, "min = -60,", "min = -160,"));
         auto r = robot_from(dir, text);
         REQUIRE_FALSE(r.ok());
-        CHECK_THAT(r.error().message, Catch::StartsWith(joints_lua + ":4: joints.pusher limits [-160, 60] are not within"));
+        CHECK_THAT(r.error().message, Catch::StartsWith(joints_lua + ":4: joints.pusher.min: the limits [-160, 60] are not within"));
     }
     SECTION("a device's params refused by the kernel's check of the schema or by the plugin itself") {
         const std::string text = replace(kt::kTestProfile, "params = { joint = \"finger\" } },",

@@ -155,11 +155,11 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                 if (!(v >= 0 && v <= DBL_MAX))
                     return Error{ErrorCode::invalid_argument, profile.at("joints." + info.name + "." + key) + " is " +
                                                                   fmt(v) + ", expected a number >= 0"};
-            if (!(lim->min >= info.min_position && lim->max <= info.max_position))
-                return Error{ErrorCode::invalid_argument,
-                             profile.at("joints." + info.name) + " limits [" + fmt(lim->min) + ", " + fmt(lim->max) +
-                                 "] are not within what the device allows [" + fmt(info.min_position) + ", " +
-                                 fmt(info.max_position) + "] " + info.unit};
+            if (!(lim->min >= info.min_position && lim->max <= info.max_position))  // the key outside named: a --set's
+                return Error{ErrorCode::invalid_argument,                           // error is then said as that --set's
+                             profile.at("joints." + info.name + (lim->min >= info.min_position ? ".max" : ".min")) +
+                                 ": the limits [" + fmt(lim->min) + ", " + fmt(lim->max) + "] are not within what the "
+                                 "device allows [" + fmt(info.min_position) + ", " + fmt(info.max_position) + "] " + info.unit};
             Joint j;
             j.name = info.name;
             j.actuator = slot.handle.get();
