@@ -29,10 +29,18 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         // A profile file is compared by its content: "./hand.lua" and "/lab/hand.lua" are one profile.
         if (same(k) || (k == "profile" && same("profile_fnv1a"))) continue;
         const auto& [was, is] = values;
+        // A module or included profile is listed by name: one the recording did not list was read by an edited
+        // script or profile (said above), or the dataset predates these rows.
+        const bool read_file = k.starts_with("module.") || k.starts_with("include.");
+        if (read_file && !was) continue;
         // A hash is no reason a user reads (review): say what it means.
         // Only where the file is the same one (second review: another --profile was said to be edited).
-        const std::string file = k == "script_fnv1a" ? "script" : k == "profile_fnv1a" ? "profile" : "";
-        const std::string edited = !file.empty() && same(file)
+        std::string file = k == "script_fnv1a" ? "script" : k == "profile_fnv1a" ? "profile" : "";
+        if (read_file) {  // "module.lib.helper_fnv1a": the module lib.helper
+            const auto dot = k.find('.');
+            file = (k.starts_with("module.") ? "module " : "included profile ") + k.substr(dot + 1, k.size() - dot - 7);
+        }
+        const std::string edited = !file.empty() && (read_file ? is != nullptr : same(file))
                                        ? " (the " + file + " was edited since it recorded: restore it, or record anew "
                                                            "into another --out)"
                                        : "";

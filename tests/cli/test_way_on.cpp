@@ -283,3 +283,28 @@ TEST_CASE("a run that fails after its script's end says its trials are on disk, 
                                "(above): a resume would record nothing") != std::string::npos);
     }
 }
+
+// Lua review: a resume after the script's helper module was edited mixed trials of both versions in one dataset
+// (run-config.csv held the script's digest only). The modules it requires are listed with theirs now.
+TEST_CASE("a resume refuses a script whose required module was edited since the dataset was recorded") {
+    TempDir dir("rollsense-cli-module-edit");
+    write_file(dir / "lib" / "helper.lua", "return { speed = 20 }\n");
+    write_file(dir / "two.lua", "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
+                                "local helper = require('lib.helper')\nrs.on_cleanup(etroll.park)\n"
+                                "for r = 1, 2 do\n  local id = rs.trial_id{ object = 'C1', speed = helper.speed, repetition = r }\n"
+                                "  if not rs.has_trial(id) then\n"
+                                "    etroll.run_trial{ object = 'C1', speed = helper.speed, repetition = r }\n  end\nend\n");
+    const std::string run = "run " + shell_quoted(dir / "two.lua") + " --no-progress --out " + shell_quoted(dir / "out");
+    const auto first = run_rollsense(run);
+    INFO(first.output);
+    REQUIRE(first.status == 0);
+    CHECK(read_file(dir / "out" / "run-config.csv").find("\nmodule.lib.helper_fnv1a,") != std::string::npos);
+    CHECK(read_file(dir / "out" / "run-config.csv").find("\nmodule.etroll_fnv1a,") != std::string::npos);
+    CHECK(run_rollsense(run + " --resume").status == 0);  // unchanged: resumes (nothing left to record)
+    write_file(dir / "lib" / "helper.lua", "return { speed = 10 }\n");
+    const auto edited = run_rollsense(run + " --resume");
+    INFO(edited.output);
+    CHECK(edited.status == 2);
+    CHECK(count_of(edited.output, "the module lib.helper was edited since it recorded") == 1);
+    CHECK(manifest_rows(dir / "out") == 2);
+}

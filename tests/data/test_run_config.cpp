@@ -66,6 +66,19 @@ TEST_CASE("run-config.csv round-trips, and its differences name each key with bo
     CHECK(run_config_differences(here, edited) ==
           std::vector<std::string>{"profile_fnv1a: recorded '1f', this run '2e' (the profile was edited since it "
                                    "recorded: restore it, or record anew into another --out)"});
+    // Lua review: an edited module the script requires (or profile the profile includes) was resumed without a word.
+    const RunConfig with{{"script", "a.lua"}, {"module.lib.helper_fnv1a", "1f"}, {"include.etroll-joints_fnv1a", "3a"}};
+    CHECK(run_config_differences(with, RunConfig{{"script", "a.lua"}, {"module.lib.helper_fnv1a", "2e"},
+                                                 {"include.etroll-joints_fnv1a", "4b"}}) ==
+          std::vector<std::string>{"include.etroll-joints_fnv1a: recorded '3a', this run '4b' (the included profile "
+                                   "etroll-joints was edited since it recorded: restore it, or record anew into another "
+                                   "--out)",
+                                   "module.lib.helper_fnv1a: recorded '1f', this run '2e' (the module lib.helper was "
+                                   "edited since it recorded: restore it, or record anew into another --out)"});
+    // A dataset recorded before these rows existed resumes; one whose module is no longer found does not.
+    CHECK(run_config_differences(RunConfig{{"script", "a.lua"}}, with).empty());
+    CHECK(run_config_differences(with, RunConfig{{"script", "a.lua"}, {"include.etroll-joints_fnv1a", "3a"}}) ==
+          std::vector<std::string>{"module.lib.helper_fnv1a: recorded '1f', this run (not given)"});
     auto none = read_run_config(dir / "nowhere");
     REQUIRE(none.ok());
     CHECK(none->empty());

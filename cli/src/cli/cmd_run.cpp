@@ -207,7 +207,8 @@ int run(const std::vector<std::string>& argv) {
             log_info("rollsense", "replaying " + recorded->dataset.string() + ": the run uses the recording's seed " +
                                       std::to_string(o.seed) + " (so its trials line up; give --seed N for another)");
         }
-    o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.seed, sets);
+    o.run_config = run_config_of(o.script, o.profile, runtime::resolve_profile_path(o.profile, o.share_dir), o.share_dir,
+                                 o.seed, sets);
     // A --resume whose options differ from the recording's is the command line's error (2), before anything opens;
     // a run-config.csv that cannot be read is the dataset's (3, or 5 for a read the system refuses).
     if (o.resume && std::filesystem::exists(o.out_dir / kRunConfigFile))

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <optional>
+#include <regex>
 #include <sstream>
 
 #include "rollsense/atomic_file.hpp"
@@ -10,28 +13,66 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/dataset_files.hpp"
+#include "runtime/profile/profile.hpp"
 
 namespace rollsense::cli {
 namespace fs = std::filesystem;
 
 namespace {
-std::string file_digest(const fs::path& file) {
+std::string file_text(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
-    if (!in) return "(unreadable)";
     std::ostringstream bytes;
     bytes << in.rdbuf();
-    return fnv1a_hex(bytes.str());
+    return bytes.str();
+}
+
+std::string file_digest(const fs::path& file) {
+    std::error_code ec;
+    return fs::is_regular_file(file, ec) ? fnv1a_hex(file_text(file)) : "(unreadable)";
+}
+
+// The files a script or a profile reads besides itself, found by their literal calls (`require "lib.helper"`,
+// `include("etroll-joints")`), each once, depth first: a `KIND.NAME_fnv1a` row each, so that a resume refuses an
+// edited module or included profile as it refuses an edited script (Lua review: a resume mixed the trials of two
+// versions of a helper module). A name computed at run time is not seen; one not found is the run's own error.
+void add_read_files(RunConfig& config, const fs::path& file, const std::string& call_name, const std::string& kind,
+                    const std::function<std::optional<fs::path>(const std::string&)>& resolve) {
+    static const std::regex call(R"((require|include)\s*\(?\s*["']([A-Za-z0-9_./-]+)["'])");
+    const std::string text = file_text(file);
+    for (std::sregex_iterator it(text.begin(), text.end(), call), end; it != end; ++it) {
+        if ((*it)[1] != call_name) continue;
+        const std::string name = (*it)[2], key = kind + "." + name + "_fnv1a";
+        const auto found = resolve(name);
+        if (!found || std::ranges::any_of(config, [&](const auto& row) { return row.first == key; })) continue;
+        config.emplace_back(key, file_digest(*found));
+        add_read_files(config, *found, call_name, kind, resolve);
+    }
 }
 }  // namespace
 
 RunConfig run_config_of(const fs::path& script, const std::string& profile, const fs::path& profile_file,
-                        std::uint64_t seed, const SetOptions& sets) {
+                        const fs::path& share_dir, std::uint64_t seed, const SetOptions& sets) {
     RunConfig config{{"rollsense_version", ROLLSENSE_VERSION_STRING},
                      {"script", script.filename().string()},
-                     {"script_fnv1a", file_digest(script)},
-                     {"profile", profile},
-                     {"profile_fnv1a", file_digest(profile_file)},
-                     {"seed", std::to_string(seed)}};
+                     {"script_fnv1a", file_digest(script)}};
+    // Where the sandbox looks for a module (beside the script, then share/lua), and the profile loader for an include.
+    const fs::path script_dir = script.parent_path().empty() ? fs::path(".") : script.parent_path();
+    add_read_files(config, script, "require", "module", [&](const std::string& name) -> std::optional<fs::path> {
+        std::string rel = name;
+        std::ranges::replace(rel, '.', '/');
+        std::error_code ec;
+        for (const auto& dir : {script_dir, share_dir / "lua"})
+            if (fs::is_regular_file(dir / (rel + ".lua"), ec)) return dir / (rel + ".lua");
+        return std::nullopt;
+    });
+    config.emplace_back("profile", profile);
+    config.emplace_back("profile_fnv1a", file_digest(profile_file));
+    add_read_files(config, profile_file, "include", "include", [&](const std::string& name) -> std::optional<fs::path> {
+        std::error_code ec;
+        const auto path = runtime::resolve_profile_path(name, share_dir);
+        return fs::is_regular_file(path, ec) ? std::optional(path) : std::nullopt;
+    });
+    config.emplace_back("seed", std::to_string(seed));
     std::map<std::string, std::string> last;
     for (const auto& [key, value] : sets) last[key] = value;
     for (const auto& [key, value] : last) config.emplace_back("set." + key, value);

@@ -23,10 +23,12 @@ namespace rollsense::cli {
 using SetOptions = std::vector<std::pair<std::string, std::string>>;
 
 // Script (file name and FNV-1a of its bytes), profile (as named and FNV-1a of
-// its file), seed, every --set and the software version. Not --out, --resume
-// or options that change how, not what, is recorded (limits, progress, logging).
+// its file), the modules the script requires and the profiles the profile
+// includes (FNV-1a each), seed, every --set and the software version. Not --out,
+// --resume or options that change how, not what, is recorded (limits, progress, logging).
 RunConfig run_config_of(const std::filesystem::path& script, const std::string& profile,
-                        const std::filesystem::path& profile_file, std::uint64_t seed, const SetOptions& sets);
+                        const std::filesystem::path& profile_file, const std::filesystem::path& share_dir,
+                        std::uint64_t seed, const SetOptions& sets);
 
 // `text` as one shell word: unchanged when it is plain, else in single quotes.
 std::string shell_quote(const std::string& text);
