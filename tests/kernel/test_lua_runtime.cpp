@@ -79,6 +79,16 @@ rs.joint("finger"):move(40, { velocity = 1, timeout_ms = 500 })
     CHECK(r.summary.status.code() == ErrorCode::timeout);
     CHECK_THAT(r.summary.status.message(), Catch::Contains("timed out waiting for joint 'finger' to reach 40"));
     CHECK_THAT(r.summary.status.message(), Catch::Contains("script.lua:2:"));
+    // rs.wait_joints raises too (unlike rs.wait_until); its timeout reads as given (Lua review: "0.100000 s").
+    kt::TempDir other;
+    auto w = kt::run_script(other, R"(local rs = require 'rollsense'
+local f = rs.joint("finger")
+f:move(40, { velocity = 1, wait = false })
+rs.wait_joints({ f }, { timeout_ms = 100 })
+)");
+    CHECK(w.summary.status.code() == ErrorCode::timeout);
+    CHECK_THAT(w.summary.status.message(), Catch::Contains("timed out waiting for joints finger to arrive (timeout 0.1 s)") &&
+                                               Catch::Contains("script.lua:4:"));
 }
 
 TEST_CASE("wait_until returns true when the condition holds and false on timeout", "[lua]") {

@@ -35,7 +35,7 @@ bool wait_arrival(lua_State* L, std::vector<const Joint*> joints, double timeout
     w.joints = std::move(joints);
     w.tolerance = tolerance;
     w.until = s.now() + s.quantize(timeout_s);
-    w.what = what + " (timeout " + std::to_string(timeout_s) + " s)";
+    w.what = what + " (timeout " + format_number(timeout_s) + " s)";
     t.request(std::move(w));
     return true;
 }
