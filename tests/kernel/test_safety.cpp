@@ -114,8 +114,24 @@ rs.write_output("result.txt", string.format("%s|%s|%s|%s|%s|%.3f", tostring(ok),
     CHECK_THAT(out, Catch::Contains("joint 'finger': goal 70 deg is outside the joint limits [-50, 50]"));
     CHECK_THAT(out, Catch::Contains("nothing was moved"));
     CHECK_THAT(out, Catch::Contains("velocity 500 deg/s is outside [0, 60], the velocity limits of profile"));
-    CHECK_THAT(out, Catch::Contains("current 900 mA exceeds the limit 300 mA"));
+    CHECK_THAT(out, Catch::Contains("current 900 mA exceeds the limit 300 mA of profile"));
     CHECK_THAT(out, Catch::EndsWith("|false|0.000"));
+}
+
+// Lua review: a profile's max_current above the device's own maximum is capped at it, and a push past the cap was
+// said to exceed "the limit 500 mA of profile ...", a figure the profile does not hold.
+TEST_CASE("a current past the device's own maximum names the device's limit, not the profile's", "[limits]") {
+    kt::TempDir dir;
+    std::string profile = kt::kTestProfile;
+    const std::string finger = "finger = { min = -50, max = 50, max_velocity = 60, max_current = 300 }";
+    REQUIRE(profile.find(finger) != std::string::npos);
+    profile.replace(profile.find(finger), finger.size(), "finger = { min = -50, max = 50, max_velocity = 60, max_current = 5000 }");
+    auto r = kt::run_script(dir, R"(local rs = require 'rollsense'
+rs.joint("finger"):push(900)
+)", profile);
+    CHECK(r.summary.status.code() == ErrorCode::limit_violation);
+    CHECK_THAT(r.summary.status.message(), Catch::Contains("current 900 mA exceeds the limit 500 mA of the device; "
+                                                           "nothing was moved"));
 }
 
 // Independent review item 1: a negative profile velocity passed the limit (its

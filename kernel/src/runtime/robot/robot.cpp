@@ -386,9 +386,9 @@ Status Robot::command_joint(Joint& j, const JointCommand& c) {
                     who + ": no current limit is configured (joints." + j.name + ".max_current in " + profile_label_ +
                         "), so current commands are refused"};
         if (std::abs(c.current) > j.limit.max_current || !std::isfinite(c.current))
-            return {ErrorCode::limit_violation, who + ": current " + fmt(c.current) + " mA exceeds the limit " +
-                                                    fmt(j.limit.max_current) + " mA of " + profile_label_ +
-                                                    "; nothing was moved"};
+            return {ErrorCode::limit_violation,  // the device's own maximum caps the profile's (Lua review: named the profile)
+                    who + ": current " + fmt(c.current) + " mA exceeds the limit " + fmt(j.limit.max_current) + " mA of " +
+                        (j.limit.max_current == j.info.max_current ? "the device" : profile_label_) + "; nothing was moved"};
     }
     j.command = c;
     if (c.profile_velocity == 0 && j.limit.max_velocity > 0) j.command.profile_velocity = j.limit.max_velocity;
