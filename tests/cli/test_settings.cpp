@@ -252,6 +252,39 @@ TEST_CASE("in a script that declares its settings, reading an undeclared one is 
     CHECK(unfit.output.find("--set") == std::string::npos);
 }
 
+// User review item 1: a default of kind "objects" (or "object") was not checked against the catalogue, as a --set
+// of them is: the run recorded C1, then failed mid-run at X9 and offered a --resume that the fix (an edit of the
+// script) makes impossible.
+TEST_CASE("a declared default of catalogue objects that the catalogue does not hold is refused at rs.settings") {
+    TempDir dir("rollsense-settings");
+    struct Default {
+        const char* key;
+        const char* declaration;
+        const char* says;
+    };
+    for (const Default c : {Default{"objects", "{ default = 'C1,X9', kind = 'objects' }", "'X9' is not an object of "},
+                            Default{"object", "{ default = 'Z9', kind = 'object' }", "'Z9' is not an object of "}}) {
+        write_file(dir / "s.lua", std::string("local rs = require 'rollsense'\nrs.settings{ ") + c.key + " = " +
+                                      c.declaration + " }\nrs.log('started')\n");
+        // Also with a --set that overrides it: a default the script cannot use is the script's mistake.
+        for (const std::string& set : {std::string(), " --set " + std::string(c.key) + "=C1"}) {
+            INFO(c.key << set);
+            const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock" + set + " --out " +
+                                         shell_quoted(dir / "out"));
+            INFO(r.output);
+            CHECK(r.status == 1);  // the script's error, not the command line's
+            CHECK(count_of(r.output, c.says) == 1);
+            CHECK(r.output.find("s.lua:2: rs.settings: " + std::string(c.key) + ": the default ") != std::string::npos);
+            CHECK(r.output.find("(objects: C1, C2, C3, S1, S2, P1, P2, H1, H2)") != std::string::npos);
+            CHECK(r.output.find("edit the default in the script") != std::string::npos);
+            CHECK(r.output.find("started") == std::string::npos);
+            CHECK(r.output.find("--resume") == std::string::npos);
+            CHECK_FALSE(fs::exists(dir / "out"));
+            fs::remove_all(dir / "out");
+        }
+    }
+}
+
 TEST_CASE("a script that declares nothing keeps working, with the end-of-run warning for an unused --set") {
     TempDir dir("rollsense-settings");
     write_file(dir / "plain.lua", "local rs = require 'rollsense'\nrs.log('runs is', rs.setting('runs', 1))\n");

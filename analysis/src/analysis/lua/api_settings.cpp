@@ -1,11 +1,12 @@
 // rs.settings{...} / rs.settings("module", {...}): a script or module declares
 // its settings, so that every --set is checked before the first trial: the
-// values against their declarations (types, ranges, catalogue objects), and,
-// in the script's own call, every --set key against what is declared
-// (docs/scripting.md, "Settings"). The kernel's rs.setting then refuses an
-// undeclared key of a declaring namespace. Registered into the kernel's Lua
-// module as an extension, beside rs.analyse: the object catalogue is not the
-// kernel's business.
+// values against their declarations (types, ranges, catalogue objects, and a
+// default of objects against the catalogue too), and, in the script's own
+// call, every --set key against what is declared (docs/scripting.md,
+// "Settings"). The kernel's rs.setting then refuses an undeclared key of a
+// declaring namespace. Registered into the kernel's Lua module as an
+// extension, beside rs.analyse: the object catalogue is not the kernel's
+// business.
 #include <optional>
 
 #include "analysis/lua/script_settings.hpp"
@@ -65,6 +66,13 @@ int l_settings(lua_State* L) {
         }
     for (const auto& d : declarations) {
         if (st.declared().count(d.key)) refuse(L, "rs.settings: " + d.key + " is declared twice");
+        // A default of catalogue objects is checked as a --set of them is (check_value), whether or not a --set
+        // overrides it: the script's mistake, refused before any trial (user review: it failed mid-run at the
+        // unknown object, and offered a --resume that the fix, an edit of the script, makes impossible).
+        if (d.fallback && catalogue && d.list != script_settings::ListKind::none)
+            if (auto ok = script_settings::check_value(d, *d.fallback, &*catalogue, true); !ok)
+                refuse(L, "rs.settings: " + d.key + ": the default does not fit the declaration: " +
+                              ok.error().message + "; edit the default in the script");
         const auto given = st.values().find(d.key);
         if (given == st.values().end()) {
             if (!d.fallback)
