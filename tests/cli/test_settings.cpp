@@ -285,6 +285,37 @@ TEST_CASE("a declared default of catalogue objects that the catalogue does not h
     }
 }
 
+// User review item 2: --set 'objects= C1' passed the check (its items are split at commas and spaces) but the script
+// read ' C1', and the trial id made of it was refused mid-run. The script reads the items as checked: one comma
+// between them, no space, for each kind of list.
+TEST_CASE("a list setting's value is read by the script as it was checked: items joined by commas, no spaces") {
+    TempDir dir("rollsense-settings");
+    write_file(dir / "s.lua", "local rs = require 'rollsense'\n"
+                              "rs.settings{ objects = { default = 'C1', kind = 'objects' },\n"
+                              "             object = { default = ' C2 ', kind = 'object' },\n"
+                              "             speeds = { default = '10', kind = 'numbers', min = 1 } }\n"
+                              "rs.log('[' .. rs.setting('objects') .. '][' .. rs.setting('object') .. '][' ..\n"
+                              "       rs.setting('speeds') .. ']')\n"
+                              "rs.log('id', rs.trial_id{ object = rs.setting('object'), speed = 10, repetition = 1 })\n");
+    struct Sets {
+        const char* sets;
+        const char* reads;
+        const char* id;
+    };
+    for (const Sets c : {Sets{"", "[C1][C2][10]", "id C2-v10-r001"},
+                         Sets{"--set 'objects= C1' --set 'object=P2 ' --set 'speeds= 10'", "[C1][P2][10]", "id P2-v10-r001"},
+                         Sets{"--set 'objects=C1, P2 ,H1' --set 'speeds=10, 15'", "[C1,P2,H1][C2][10,15]", "id C2-v10-r001"}}) {
+        INFO(c.sets);
+        const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock " + c.sets + " --out " +
+                                     shell_quoted(dir / "out"));
+        INFO(r.output);
+        CHECK(r.status == 0);
+        CHECK(r.output.find(c.reads) != std::string::npos);
+        CHECK(r.output.find(c.id) != std::string::npos);
+        fs::remove_all(dir / "out");
+    }
+}
+
 TEST_CASE("a script that declares nothing keeps working, with the end-of-run warning for an unused --set") {
     TempDir dir("rollsense-settings");
     write_file(dir / "plain.lua", "local rs = require 'rollsense'\nrs.log('runs is', rs.setting('runs', 1))\n");

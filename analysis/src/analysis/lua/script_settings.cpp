@@ -105,10 +105,13 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
                            d.key.c_str());
         lua_pop(L, 2);
         d.spec.doc = runtime::lua_api::opt_field_string(L, entry, "help", "");
-        if (d.fallback)
-            if (auto ok = check_value(d, *d.fallback, nullptr, true); !ok)
+        if (d.fallback) {
+            auto ok = check_value(d, *d.fallback, nullptr, true);
+            if (!ok)
                 luaL_error(L, "rs.settings: %s: the default does not fit the declaration: %s", d.key.c_str(),
                            ok.status().message().c_str());
+            if (d.list != ListKind::none) d.fallback = *ok;  // a list's items as checked: "C1,C2" for " C1, C2"
+        }
         out.push_back(std::move(d));
     }
     std::sort(out.begin(), out.end(), [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
@@ -142,7 +145,12 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
                 return Error{ErrorCode::invalid_argument, where + ": '" + item + "' is not a number" +
                                                               range_text(d.spec) + about};
         }
-        return value;
+        // The script reads the items that were checked, one comma between them and no space, as a list in
+        // braces drops the spaces around its items (user review: --set 'objects= C1' passed, and the trial id
+        // made of ' C1' was refused mid-run).
+        std::string checked;
+        for (const auto& item : items) checked += (checked.empty() ? "" : ",") + item;
+        return ParamValue{checked};
     }
     ParamSpec spec = d.spec;
     spec.default_value.reset();

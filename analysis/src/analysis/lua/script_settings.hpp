@@ -11,7 +11,9 @@
 // A declaration is a ParamSpec (the SDK's parameter schema entry, so the
 // types, ranges and their messages are the plugins' own) plus two kinds of
 // text checked item by item: "object" (one id of the object catalogue),
-// "objects" (comma-separated ids, as the scripts split them) and "numbers".
+// "objects" (comma-separated ids, as the scripts split them) and "numbers";
+// the script reads such a value as checked: its items, one comma between
+// them, no spaces.
 #pragma once
 
 #include <lua.hpp>
@@ -45,7 +47,7 @@ inline constexpr const char* kKinds = "number, integer, boolean, string, object,
 std::vector<Declaration> read_declarations(lua_State* L, int index, const std::string& ns);
 
 // A --set value checked against its declaration: the value to hand the
-// script, or an error naming the setting, the value and what is accepted
+// script (a list's checked items joined by commas), or an error naming the setting, the value and what is accepted
 // (for "objects": the catalogue's ids). `catalogue` may be null when no
 // declaration needs it.
 Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue,
