@@ -316,6 +316,19 @@ TEST_CASE("a list setting's value is read by the script as it was checked: items
     }
 }
 
+// User review item 3: cv = {"grouped", "blocked"} was refused as "option 'cv' must be a string", naming neither
+// rs.analyse nor the comma-separated form.
+TEST_CASE("rs.analyse with cv given as a table says cv is a string of comma-separated schemes") {
+    TempDir dir("rollsense-settings");
+    write_file(dir / "s.lua", "local rs = require 'rollsense'\nrs.analyse{ cv = { 'grouped', 'blocked' } }\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "s.lua") + " --profile mock --out " + shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(count_of(r.output, "s.lua:2: rs.analyse: cv must be a string of comma-separated schemes (e.g. cv = "
+                             "\"grouped,blocked\"), got a table") == 1);
+    CHECK(r.output.find("option 'cv' must be a string") == std::string::npos);
+}
+
 TEST_CASE("a script that declares nothing keeps working, with the end-of-run warning for an unused --set") {
     TempDir dir("rollsense-settings");
     write_file(dir / "plain.lua", "local rs = require 'rollsense'\nrs.log('runs is', rs.setting('runs', 1))\n");

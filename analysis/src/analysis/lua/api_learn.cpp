@@ -123,6 +123,15 @@ int l_analyse(lua_State* L) {
                                           "nested", "evaluations", "classifier", "classifiers", "trials",
                                           "prefixes", "prefix_repeats", "series_amplitude", "series_time_axis",
                                           "cv", "group_by", "block"});
+    // cv is one text, its schemes separated by commas: a table of them met the generic "option 'cv' must be a
+    // string" (user review), which names neither rs.analyse nor the form it takes.
+    if (lua_istable(L, opts)) {
+        lua_getfield(L, opts, "cv");
+        if (!lua_isnil(L, -1) && !lua_isstring(L, -1))
+            return luaL_error(L, "rs.analyse: cv must be a string of comma-separated schemes (e.g. cv = "
+                                 "\"grouped,blocked\"), got a %s", luaL_typename(L, -1));
+        lua_pop(L, 1);
+    }
     if (s.output_dir().empty()) return luaL_error(L, "rs.analyse needs a dataset: run with --out DIR");
     // dataset = DIR analyses a dataset recorded earlier (outputs still go to --out);
     // tag = "NAME" names the outputs evaluation-NAME.txt/.json, report-NAME.html and
