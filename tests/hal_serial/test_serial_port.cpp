@@ -139,3 +139,22 @@ TEST_CASE("a rate of zero is refused") {
     REQUIRE_FALSE(port.ok());
     CHECK(port.error().code == ErrorCode::invalid_argument);
 }
+
+// Hardware review: TIOCEXCL does not stop root, so a second run as root drove the servos beside the first, and both
+// failed with bus errors that named no other program. The port is locked (flock) too, and the holder named.
+TEST_CASE("a port another holder has open is refused, naming the holder, and free again once it is closed") {
+    auto pty = PtyPair::open();
+    REQUIRE(pty.ok());
+    auto first = SerialPort::open(pty->slave_path(), 57600);
+    REQUIRE(first.ok());
+    auto second = SerialPort::open(pty->slave_path(), 57600);
+    REQUIRE_FALSE(second.ok());
+    INFO(second.error().message);
+    CHECK_THAT(second.error().message, Catch::Contains(pty->slave_path() + ": cannot open serial port: ") &&
+                                           Catch::Contains("another program has"));
+    if (::geteuid() == 0)  // as root only the lock refuses it (otherwise TIOCEXCL does, first): the holder is named
+        CHECK_THAT(second.error().message, Catch::Contains("(process " + std::to_string(::getpid()) + " (") &&
+                                               Catch::Contains("stop it first"));
+    first->close();
+    CHECK(SerialPort::open(pty->slave_path(), 57600).ok());
+}

@@ -2,12 +2,19 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/file.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <termios.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <utility>
 
 #include "rollsense/hal/baud_rate.hpp"
@@ -30,6 +37,28 @@ int poll_ms(std::chrono::microseconds left) {
 // failure (exit 4), not as a file it could not read or write (exit 5).
 constexpr ErrorCode kLost = ErrorCode::hardware_fault;
 
+// "process 123 (rollsense run ...)" holding a flock on the file open at `fd`, from /proc/locks; empty if not found.
+std::string lock_holder(int fd) {
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) return {};
+    char id[64];
+    std::snprintf(id, sizeof id, " %02x:%02x:%llu ", major(st.st_dev), minor(st.st_dev),
+                  static_cast<unsigned long long>(st.st_ino));
+    std::ifstream locks("/proc/locks");
+    for (std::string line; std::getline(locks, line);) {
+        const auto at = line.find(id);
+        if (line.find("FLOCK") == std::string::npos || at == std::string::npos) continue;
+        const std::string pid = line.substr(line.rfind(' ', at - 1) + 1, at - line.rfind(' ', at - 1) - 1);
+        std::ifstream cmdline("/proc/" + pid + "/cmdline");
+        std::string command((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
+        std::replace(command.begin(), command.end(), '\0', ' ');
+        while (!command.empty() && command.back() == ' ') command.pop_back();
+        if (command.size() > 120) command = command.substr(0, 117) + "...";
+        return "process " + pid + (command.empty() ? "" : " (" + command + ")");
+    }
+    return {};
+}
+
 }  // namespace
 
 Result<SerialPort> SerialPort::open(const std::string& device, std::uint32_t baud) {
@@ -42,6 +71,15 @@ Result<SerialPort> SerialPort::open(const std::string& device, std::uint32_t bau
         if (err == EBUSY) hint = "; another program has the port open";
         return Error{err == ENOENT ? ErrorCode::not_found : ErrorCode::io_error,
                      device + ": cannot open serial port: " + std::strerror(err) + hint};
+    }
+    // Exclusive for root too, whom TIOCEXCL (below) does not stop (hardware review: a second run as root drove the
+    // servos beside the first, and both failed with bus errors that named no other program). Released at exit.
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        const std::string holder = errno == EWOULDBLOCK ? lock_holder(fd) : std::string();
+        ::close(fd);
+        return Error{ErrorCode::io_error, device + ": cannot open serial port: another program has it open" +
+                                              (holder.empty() ? std::string() : " (" + holder + ")") +
+                                              "; stop it first: two programs on one bus corrupt each other's packets"};
     }
     return adopt(fd, device, baud);
 }
