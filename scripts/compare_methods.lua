@@ -13,7 +13,8 @@
 -- Outputs in --out: evaluation.txt/.json and report.html (both classifiers on the
 -- paper's clean trials that the series rule also accepts, with the prefix curves),
 -- evaluation-all-trials.txt/.json and report-all-trials.html (MiniRocket on every
--- trial the series rule accepts), model.rsm (bagged trees) and model-minirocket.rsm.
+-- trial the series rule accepts), model.rsm (bagged trees) and model-minirocket.rsm;
+-- with dataset=, the first three are named after that dataset's folder (above).
 --
 -- Settings (--set key=value; `rollsense run scripts/compare_methods.lua --help`
 -- lists them): declared below, checked before the first trial.

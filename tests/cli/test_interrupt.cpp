@@ -134,3 +134,23 @@ TEST_CASE("the watchdog's way out names the resume command when trials were save
     CHECK(again.status == 1);
     CHECK(again.output.find(way_on) != std::string::npos);
 }
+
+// Diff review: stuck in its cleanup, after the script's end, the watchdog's way out still offered a resume, which
+// would record nothing (the script's own end already says so, since this stop).
+TEST_CASE("the watchdog's way out offers no resume when the script had ended and its cleanup stuck") {
+    TempDir dir("rollsense-cli-watchdog-cleanup");
+    {
+        std::ofstream(dir / "stuck.lua") << "local rs = require 'rollsense'\n"
+                                            "rs.on_cleanup(function() table.move({}, 1, 1 << 62, 1, {}) end)\n"
+                                            "rs.trial{ object = 'C1', speed = 20, repetition = 1 }\n"
+                                            "rs.record_start() rs.wait(100) rs.record_stop() rs.save_trial()\n"
+                                            "rs.end_trial()\n";
+    }
+    const auto r = run_rollsense("run " + shell_quoted(dir / "stuck.lua") + " --slice-limit-ms 200 --no-progress --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(r.output.find("the watchdog made the hand safe") != std::string::npos);
+    CHECK(r.output.find("continue with:") == std::string::npos);
+    CHECK(fs::exists(dir / "out" / "trials" / "C1-v20-r001.csv"));
+}

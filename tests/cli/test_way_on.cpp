@@ -289,8 +289,12 @@ TEST_CASE("a run that fails after its script's end says its trials are on disk, 
 TEST_CASE("a resume refuses a script whose required module was edited since the dataset was recorded") {
     TempDir dir("rollsense-cli-module-edit");
     write_file(dir / "lib" / "helper.lua", "return { speed = 20 }\n");
+    write_file(dir / "lib" / "old.lua", "return {}\n");
+    write_file(dir / "lib" / "guarded.lua", "return {}\n");
     write_file(dir / "two.lua", "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
                                 "local helper = require('lib.helper')\nrs.on_cleanup(etroll.park)\n"
+                                "-- was: local old = require 'lib.old'\n--[==[ require 'lib.old' ]==]\n"
+                                "local ok = pcall(require, 'lib.guarded')\n"
                                 "for r = 1, 2 do\n  local id = rs.trial_id{ object = 'C1', speed = helper.speed, repetition = r }\n"
                                 "  if not rs.has_trial(id) then\n"
                                 "    etroll.run_trial{ object = 'C1', speed = helper.speed, repetition = r }\n  end\nend\n");
@@ -300,6 +304,10 @@ TEST_CASE("a resume refuses a script whose required module was edited since the 
     REQUIRE(first.status == 0);
     CHECK(read_file(dir / "out" / "run-config.csv").find("\nmodule.lib.helper_fnv1a,") != std::string::npos);
     CHECK(read_file(dir / "out" / "run-config.csv").find("\nmodule.etroll_fnv1a,") != std::string::npos);
+    CHECK(read_file(dir / "out" / "run-config.csv").find("\nmodule.lib.guarded_fnv1a,") != std::string::npos);
+    // A module named only in a comment is not read: editing it changes nothing (diff review).
+    CHECK(read_file(dir / "out" / "run-config.csv").find("lib.old") == std::string::npos);
+    write_file(dir / "lib" / "old.lua", "return { edited = true }\n");
     CHECK(run_rollsense(run + " --resume").status == 0);  // unchanged: resumes (nothing left to record)
     write_file(dir / "lib" / "helper.lua", "return { speed = 10 }\n");
     const auto edited = run_rollsense(run + " --resume");

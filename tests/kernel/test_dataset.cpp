@@ -189,6 +189,28 @@ record(4)  -- still recording when the script ends
     for (const char* kept : {"'X-v20-r002'", "'X-v20-r003'"}) CHECK(log.count(kept) == 0);
 }
 
+// Diff review: the warning also came after a failure (or Ctrl-C) in the middle of a recording, with advice that does
+// not apply there, and an rs.trial refused for its id (caught) said it dropped a trial it left open.
+TEST_CASE("no unsaved-trial warning after a failure mid-recording, nor for an rs.trial refused", "[dataset]") {
+    const rollsense::testing::LogCapture log;
+    kt::TempDir failed;
+    auto r = kt::run_script(failed, R"(local rs = require 'rollsense'
+rs.trial{ object = "X", speed = 20, repetition = 1 }; rs.record_start(); rs.wait(100)
+error("boom mid-recording")
+)");
+    CHECK_FALSE(r.summary.status.ok());
+    kt::TempDir refused;
+    r = kt::run_script(refused, R"(local rs = require 'rollsense'
+rs.trial{ object = "X", speed = 20, repetition = 1 }; rs.record_start(); rs.wait(100); rs.record_stop()
+assert(not pcall(rs.trial, { id = "bad id" }))
+rs.save_trial()
+)");
+    INFO(log.all());
+    CHECK(r.summary.status.ok());
+    CHECK(r.summary.trials_saved == 1);
+    CHECK(log.count("were not saved") == 0);
+}
+
 // Determinism review: before the first trial rs.random drew from the default
 // seed (0.7868... for every --seed), and between trials it went on from the
 // trial before, so which trials a process recorded changed its draws.

@@ -118,6 +118,22 @@ rs.write_output("result.txt", string.format("%s|%s|%s|%s|%s|%.3f", tostring(ok),
     CHECK_THAT(out, Catch::EndsWith("|false|0.000"));
 }
 
+// Diff review: the stop before the cleanup of a script that ended normally re-energised a joint the script had
+// released (torque off), for the whole cleanup. After a failure the profile's safe action applies, as before.
+TEST_CASE("after a normal end a joint the script released stays released through the cleanup", "[safety]") {
+    for (const bool fails : {false, true}) {
+        INFO((fails ? "an error" : "a normal end"));
+        kt::TempDir dir;
+        auto r = kt::run_script(dir, std::string(R"(local rs = require 'rollsense'
+local f = rs.joint("finger")
+rs.on_cleanup(function() rs.wait(100); rs.write_output("cleanup.txt", tostring(f:state().torque)) end)
+f:torque(false)
+rs.wait(100)
+)") + (fails ? "error('boom')\n" : ""));
+        CHECK(kt::read_file(r.out / "cleanup.txt") == (fails ? "true" : "false"));
+    }
+}
+
 // Lua review: a profile's max_current above the device's own maximum is capped at it, and a push past the cap was
 // said to exceed "the limit 500 mA of profile ...", a figure the profile does not hold.
 TEST_CASE("a current past the device's own maximum names the device's limit, not the profile's", "[limits]") {

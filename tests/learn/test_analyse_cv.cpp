@@ -86,7 +86,7 @@ end
 local other = rs.setting("other")
 if other ~= "" then
   local o = rs.analyse{ dataset = other, folds = 2, repeats = 1, params = { learners = 3 } }
-  assert(o.evaluation:find("evaluation%-first%.json$") and o.model:find("model%-first%.rsm$"), o.model)
+  assert(o.evaluation:find("evaluation%-first_run%.json$") and o.model:find("model%-first_run%.rsm$"), o.model)
   assert(o.features == nil, "no features.csv for another dataset")
   local own = rs.analyse{ dataset = rs.output_dir() .. "/.", folds = 2, repeats = 1, params = { learners = 3 } }
   assert(own.model:find("/model%.rsm$") and own.features, own.model)
@@ -94,18 +94,19 @@ if other ~= "" then
   assert(tagged.model:find("/model%-small%.rsm$"), tagged.model)
 end
 )";
-    const auto first = dir.path() / "first";
+    const auto first = dir.path() / "first run";  // a space: not in an output name (diff review), so '_' in the tag
     auto run = rollsense::testing::run_rollsense("run " + script.string() + " --profile sim --seed 4 --out " +
-                                                 first.string());
+                                                 "'" + first.string() + "'");
     INFO(run.output);
     REQUIRE(run.status == 0);
     const auto second = dir.path() / "second";
     run = rollsense::testing::run_rollsense("run " + script.string() + " --profile sim --seed 5 --out " +
-                                            second.string() + " --set other=" + first.string() + "/");
+                                            second.string() + " --set 'other=" + first.string() + "/'");
     INFO(run.output);
     REQUIRE(run.status == 0);
-    for (const char* file : {"evaluation-first.txt", "evaluation-first.json", "report-first.html", "model-first.rsm",
-                             "evaluation.txt", "model.rsm", "features.csv", "model-small.rsm", "report-small.html"})
+    for (const char* file : {"evaluation-first_run.txt", "evaluation-first_run.json", "report-first_run.html",
+                             "model-first_run.rsm", "evaluation.txt", "model.rsm", "features.csv", "model-small.rsm",
+                             "report-small.html"})
         CHECK(std::filesystem::exists(second / file));
     CHECK_THAT(run.output, Catch::Contains("predict with --training " + first.string()));
 }

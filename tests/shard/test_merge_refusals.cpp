@@ -77,6 +77,27 @@ TEST_CASE("the three shards of a small run merge", "[merge]") {
     CHECK(rt::manifest_trials(dir / "merged") == 4);
 }
 
+// Diff review: a shard recorded before run-config.csv listed the modules and included profiles (module.*, include.*)
+// was refused beside one recorded after; --resume takes such a dataset, and so does merge. A digest that differs still
+// refuses it.
+TEST_CASE("shards merge whether or not their run-config.csv lists the modules read, not with another module", "[merge]") {
+    rt::TempDir dir;
+    const auto s0 = shard(dir, 0), s1 = shard(dir, 1), s2 = shard(dir, 2);
+    auto rows = lines(s1 / "run-config.csv");
+    REQUIRE(std::erase_if(rows, [](const std::string& row) { return row.starts_with("module.") ||
+                                                                    row.starts_with("include."); }) == 4);
+    write_lines(s1 / "run-config.csv", rows);
+    auto r = merge(dir / "merged", {s0, s1, s2});
+    INFO(r.output);
+    CHECK(r.status == 0);
+    auto edited = lines(s2 / "run-config.csv");
+    for (auto& row : edited)
+        if (row.starts_with("module.etroll_fnv1a,")) row = "module.etroll_fnv1a,0000000000000000";
+    write_lines(s2 / "run-config.csv", edited);
+    refused(merge(dir / "merged-again", {s0, s1, s2}), dir / "merged-again",
+            {"run-config.csv module.etroll_fnv1a: '0000000000000000' vs '"});
+}
+
 TEST_CASE("rollsense merge refuses shards of different configurations", "[merge]") {
     rt::TempDir dir;
     const auto s0 = shard(dir, 0), s2 = shard(dir, 2);

@@ -31,14 +31,38 @@ std::string file_digest(const fs::path& file) {
     return fs::is_regular_file(file, ec) ? fnv1a_hex(file_text(file)) : "(unreadable)";
 }
 
+// Lua source without its comments (`-- ...` and `--[[ ... ]]`, `--[==[ ... ]==]`), so that a call commented out
+// is not taken for one (diff review). Strings are not parsed: a "--" inside one cuts its line short.
+std::string without_comments(const std::string& text) {
+    std::string out;
+    for (std::size_t i = 0; i < text.size();) {
+        if (text.compare(i, 2, "--") != 0) {
+            out += text[i++];
+            continue;
+        }
+        std::size_t level = i + 2;  // --[==[: the '='s after the first '['
+        if (level < text.size() && text[level] == '[')
+            while (++level < text.size() && text[level] == '=') {}
+        if (level < text.size() && text[level] == '[' && text[i + 2] == '[') {
+            const std::string close = "]" + std::string(level - i - 3, '=') + "]";
+            const auto end = text.find(close, level + 1);
+            i = end == std::string::npos ? text.size() : end + close.size();
+        } else {
+            i = std::min(text.find('\n', i), text.size());
+        }
+    }
+    return out;
+}
+
 // The files a script or a profile reads besides itself, found by their literal calls (`require "lib.helper"`,
-// `include("etroll-joints")`), each once, depth first: a `KIND.NAME_fnv1a` row each, so that a resume refuses an
-// edited module or included profile as it refuses an edited script (Lua review: a resume mixed the trials of two
-// versions of a helper module). A name computed at run time is not seen; one not found is the run's own error.
+// `pcall(require, "lib.helper")`, `include("etroll-joints")`), each once, depth first: a `KIND.NAME_fnv1a` row each,
+// so that a resume refuses an edited module or included profile as it refuses an edited script (Lua review: a resume
+// mixed the trials of two versions of a helper module). A name computed at run time is not seen; one not found is
+// the run's own error.
 void add_read_files(RunConfig& config, const fs::path& file, const std::string& call_name, const std::string& kind,
                     const std::function<std::optional<fs::path>(const std::string&)>& resolve) {
-    static const std::regex call(R"((require|include)\s*\(?\s*["']([A-Za-z0-9_./-]+)["'])");
-    const std::string text = file_text(file);
+    static const std::regex call(R"(\b(require|include)\s*[(,]?\s*["']([A-Za-z0-9_./-]+)["'])");
+    const std::string text = without_comments(file_text(file));
     for (std::sregex_iterator it(text.begin(), text.end(), call), end; it != end; ++it) {
         if ((*it)[1] != call_name) continue;
         const std::string name = (*it)[2], key = kind + "." + name + "_fnv1a";

@@ -2,6 +2,7 @@
 // features, an evaluation and a trained model (the end of the stock
 // experiment); rs.classifier{...} loads a model and :identify() names the
 // object just rolled (live identification).
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -47,17 +48,22 @@ ParamSet params_from(lua_State* L, int table) {
 
 // Whether two spellings name one folder (through links, as the dataset is read).
 bool same_folder(const std::filesystem::path& a, const std::filesystem::path& b) {
-    std::error_code ec;
-    return std::filesystem::weakly_canonical(std::filesystem::absolute(a), ec) ==
-           std::filesystem::weakly_canonical(std::filesystem::absolute(b), ec);
+    std::error_code ec_a, ec_b;  // two paths that cannot be resolved are not one folder (diff review)
+    const auto ca = std::filesystem::weakly_canonical(std::filesystem::absolute(a), ec_a);
+    const auto cb = std::filesystem::weakly_canonical(std::filesystem::absolute(b), ec_b);
+    return !ec_a && !ec_b && ca == cb;
 }
 
-// The last name of a folder however spelt ("runs/paper11/", "../paper11"): the tag of its analysis.
+// The last name of a folder however spelt ("runs/paper11/", "../paper11"), as an output name can hold it (letters,
+// digits, '.', '_', '-'; any other character, a space say, becomes '_'): the tag of its analysis.
 std::string folder_name(const std::filesystem::path& folder) {
     std::error_code ec;
     auto full = std::filesystem::weakly_canonical(std::filesystem::absolute(folder), ec);
     if (full.filename().empty()) full = full.parent_path();
-    return full.filename().string();
+    std::string name = full.filename().string();
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
+    return name;
 }
 
 // The dataset of the rs.analyse under way (unfinished_analysis()): set when it starts, cleared when it returns.

@@ -75,7 +75,8 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
             }
         }
         if (!lib)  // a sensor's search, for the full "searched" message
-            return Error{ErrorCode::not_found, where + ": " + registry.find(dev.plugin, PluginKind::sensor).error().message};
+            return Error{ErrorCode::not_found,
+                         where + ": " + registry.find(dev.plugin, PluginKind::sensor).error().message};
         auto schema = PluginRegistry::schema_of(*lib);
         if (!schema) return schema.status().with_context(where);  // review: a schema() that threw named no device
         auto params = validate_params(*schema, dev.params, "devices." + dev.name + ".params");
@@ -155,17 +156,15 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                 if (!(v >= 0 && v <= DBL_MAX))
                     return Error{ErrorCode::invalid_argument, profile.at("joints." + info.name + "." + key) + " is " +
                                                                   fmt(v) + ", expected a number >= 0"};
-            if (!(lim->min >= info.min_position && lim->max <= info.max_position))  // the key outside named: a --set's
-                return Error{ErrorCode::invalid_argument,                           // error is then said as that --set's
+            // The key outside the device's range is named, so that a --set of it is said as that --set's error.
+            if (!(lim->min >= info.min_position && lim->max <= info.max_position))
+                return Error{ErrorCode::invalid_argument,
                              profile.at("joints." + info.name + (lim->min >= info.min_position ? ".max" : ".min")) +
-                                 ": the limits [" + fmt(lim->min) + ", " + fmt(lim->max) + "] are not within what the "
-                                 "device allows [" + fmt(info.min_position) + ", " + fmt(info.max_position) + "] " + info.unit};
-            Joint j;
-            j.name = info.name;
-            j.actuator = slot.handle.get();
-            j.index = i;
-            j.info = info;
-            j.limit = *lim;
+                                 ": the limits [" + fmt(lim->min) + ", " + fmt(lim->max) + "] are not within what the " +
+                                 "device allows [" + fmt(info.min_position) + ", " + fmt(info.max_position) + "] " +
+                                 info.unit};
+            Joint j{.name = info.name, .actuator = slot.handle.get(), .index = i, .info = info, .limit = *lim,
+                    .command = {}, .state = {}};
             if (info.max_velocity > 0 && (j.limit.max_velocity == 0 || j.limit.max_velocity > info.max_velocity))
                 j.limit.max_velocity = info.max_velocity;
             if (info.max_current > 0 && (j.limit.max_current == 0 || j.limit.max_current > info.max_current))
@@ -291,19 +290,20 @@ Status Robot::control_tick(double time, double dt) {
     return write_actuators(time);
 }
 
-void Robot::safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out) const {
+void Robot::safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out, bool keep_released) const {
     std::size_t k = 0;  // out is sized at create(): no allocation on the way to safety
     for (const auto& j : joints_)
         if (j.actuator == &actuator && k < out.size()) {
             out[k] = hold_command(j);  // torque off: the profile says so, or the joint's fault (or unknown position)
-            out[k++].torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty();
+            out[k++].torque_enabled = !j.limit.safe_torque_off && j.state.fault.empty() &&
+                                      (j.command.torque_enabled || !keep_released);
         }
 }
 
 // The safe commands go to every actuator that may still drive a joint: active ones, and those in error (one silent
 // servo puts its whole bus there while the others on it still push). A plugin applies what it can; its failure here
 // is logged, keeps the handle's state, and a second safe_state() tries again.
-void Robot::safe_state(double time) noexcept {
+void Robot::safe_state(double time, bool keep_released) noexcept {
     const auto devices = lock_devices();
     try {
         disable_all_controllers(time);
@@ -327,7 +327,7 @@ void Robot::safe_state(double time) noexcept {
                 else
                     report(log_warning, "safe state: " + read.message() + " (last known positions used)");
             }
-            safe_commands(*a.handle, a.commands);
+            safe_commands(*a.handle, a.commands, keep_released);
             for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = a.commands[i];
             auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, a.commands); }, true);
             if (!st.ok()) report(log_error, "safe state: " + st.message());

@@ -46,9 +46,9 @@ public:
     // recover, if failed) and clean up every device.
     bool shutdown(double time) noexcept;  // false: a device did not deactivate or clean up (logged)
     // Stop every joint now: the profile's safe action (hold here, or torque off) to every actuator that is active or
-    // failed, so the servos that still answer stop even when another one on their bus does not. Used on any failure
-    // (device, sensor, script, scheduler), cancellation and e-stop.
-    void safe_state(double time) noexcept;
+    // failed, so the servos that still answer stop even when another one on their bus does not. Used on any failure,
+    // a cancel, the e-stop and a script's normal end (keep_released: the joints it released stay released).
+    void safe_state(double time, bool keep_released = false) noexcept;
     // Refuse every command until released (emergency stop).
     void set_commands_locked(bool locked, std::string reason = {});
     std::string commands_locked_reason() const { return locked_ ? lock_reason_ : std::string(); }  // "": not locked
@@ -106,7 +106,7 @@ private:
     Status read_actuators(double time);
     Status write_actuators(double time);
     // The profile's safe action for each joint of `actuator`, into `out` (one per joint).
-    void safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out) const;
+    void safe_commands(const ActuatorHandle& actuator, std::vector<JointCommand>& out, bool keep_released) const;
     SampleInput sample_input(double time);
 
     struct ActuatorSlot {

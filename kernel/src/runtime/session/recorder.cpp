@@ -36,10 +36,10 @@ Status Recorder::open_dataset(const std::filesystem::path& dir, const DatasetInf
 
 Status Recorder::begin_trial(TrialInfo info) {
     if (recording_) return {ErrorCode::state_error, "a trial cannot begin while recording (call rs.record_stop() first)"};
-    warn_unsaved("by the next rs.trial");
     // The id names the trial's file: checked here so rs.trial fails at once,
     // not a batch of trials later when the file cannot be created.
     if (auto s = check_trial_info(info); !s.ok()) return s;
+    warn_unsaved("by the next rs.trial");
     info.seed = trial_seed(run_seed_, info.id);
     trial_ = std::move(info);
     trial_rng_.seed(trial_.seed);
@@ -99,7 +99,6 @@ void Recorder::warn_unsaved(const char* when) {
 }
 
 void Recorder::abort_recording() {
-    warn_unsaved("at the script's end");
     if (!recording_) return;
     recording_ = false;
     if (auto s = robot_.stop_recording(); !s.ok()) log_error("kernel", "stopping the recording: " + s.message());

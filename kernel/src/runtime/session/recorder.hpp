@@ -60,8 +60,10 @@ public:
     Status sample_tick(double now);
     std::function<void()> on_sample;  // after each sample taken (Session: its options' observer)
     std::size_t max_recording_bytes = SIZE_MAX;  // held until saved: the script's memory cap bounds it too (Session)
-    // The script's end: stop the sensors, keep nothing (a trial recorded and not saved is warned of).
+    // The script's end: stop the sensors, keep nothing.
     void abort_recording();
+    // A trial recorded and neither saved nor ended is warned of, as dropped `when`.
+    void warn_unsaved(const char* when);
 
     // Trials this run saved, less those a failed write lost: once flush() has returned, exactly the trials this run
     // made durable (in the manifest).
@@ -74,8 +76,6 @@ public:
     static std::uint64_t trial_seed(std::uint64_t run_seed, const std::string& trial_id);
 
 private:
-    void warn_unsaved(const char* when);
-
     Robot& robot_;
     const Clock& clock_;
     double sample_period_;

@@ -163,7 +163,7 @@ RunSummary Session::run() {
             CancelWatchdog watchdog(*sandbox_, safety_.interrupt_flag(), options_.sandbox.cancel_grace_ms,
                                     [this, wall_start](const std::string& why, ErrorCode code) { last_resort(why, code, wall_start); });
             s = run_main_chunk();
-            summary.script_ended = s.ok();
+            summary.script_ended = script_ended_ = s.ok();
             if (Status cleanup = run_cleanup(); s.ok()) s = cleanup;
         } catch (const std::bad_alloc&) {  // in the kernel's own work: the last resort needs no heap,
             const int sent = run_last_resort();  // then shutdown (below) tries the ordinary safe state
@@ -218,7 +218,7 @@ void Session::last_resort(const std::string& why, ErrorCode code, double wall_st
     if (recorder_ && recorder_->has_dataset()) {
         (void)recorder_->flush();
         write_run_info(Status(code, how), wall_start);
-        if (recorder_->trials_saved() + recorder_->trials_skipped() > 0 && !options_.way_on.empty()) std::fputs(options_.way_on.c_str(), stderr);
+        if (recorder_->trials_saved() + recorder_->trials_skipped() > 0 && !script_ended_) std::fputs(options_.way_on.c_str(), stderr);
     }
     std::fflush(stderr);
     std::_Exit(code == ErrorCode::cancelled ? 130 : 1);  // a limit the script passed is its failure, as in the hook
@@ -261,14 +261,14 @@ Status Session::spawn(lua_State* L, int function_index, std::string name) {
     return {};
 }
 
-// However the script ended: stop the hand first if it failed, then let the script's cleanup functions tidy up, on a
-// fresh cancellation and time budget. After a failed script their errors are logged and the run's status stays the
-// script's; after one that succeeded, a failed cleanup (the hand perhaps not parked) is returned, the run's failure.
-// The run's status is not logged here: the caller prints it (once) with its exit code.
+// However the script ended, the hand stopped (Lua review: a finger spinning at a normal end moved on through the
+// cleanup; the joints a script that ended released stay released), then its cleanup functions, on a fresh cancel and
+// time budget. After a failed script their errors are logged and the run's status stays the script's; after one that
+// succeeded, a failed cleanup (the hand perhaps not parked) is returned, the run's failure, printed by the caller.
 Status Session::run_cleanup() {
     if (!sandbox_) return {};
-    // However the script ended (review: after a normal end, a finger spinning then moved on through the cleanup).
-    robot_->safe_state(now());
+    robot_->safe_state(now(), /*keep_released=*/scheduler_->failure().ok());
+    if (scheduler_->failure().ok()) recorder_->warn_unsaved("at the script's end");  // a cancel's trial is lost as such
     recorder_->abort_recording();
     if (cleanup_refs_.empty()) return {};
     const Status main_failure = scheduler_->take_failure();
@@ -285,8 +285,7 @@ Status Session::run_cleanup() {
     Status cleanup = scheduler_->run(TaskRole::cleanup, now() + options_.cleanup_limit_s, over);
     // The cleanup's own failure (exit 1), not an interrupt's (130).
     if (cleanup.message().starts_with(over)) cleanup = Status(ErrorCode::limit_violation, cleanup.message());
-    // After a failure the hand is safe already (above); a cleanup step a device
-    // refuses because that failure left it in the error state is no news.
+    // A cleanup step a device refuses because the failure left it in the error state is no news.
     if (!cleanup.ok() && !main_failure.ok())
         log(cleanup.code() != ErrorCode::state_error ? LogLevel::error : LogLevel::info, "kernel",
             "cleanup stopped: " + cleanup.message());

@@ -60,7 +60,7 @@ struct RunSummary {
     double run_time_s = 0;           // on the run clock (robot time)
     double wall_time_s = 0;
     bool cancelled = false;
-    bool script_ended = false;  // its main chunk ran to its end: every trial it meant to record is saved
+    bool script_ended = false;  // its main chunk ran to its end: a failure after it (cleanup, shutdown) needs no resume
     std::optional<LoopTimingSummary> control_timing;  // monotonic clock only
 };
 
@@ -160,6 +160,7 @@ private:
     std::unique_ptr<Scheduler> scheduler_;
     std::vector<int> cleanup_refs_;
     bool prepared_ = false;
+    std::atomic<bool> script_ended_{false};  // RunSummary::script_ended, for the watchdog thread's way out
     ErrorCode raised_code_ = ErrorCode::ok;
 };
 
