@@ -160,7 +160,8 @@ TEST_CASE("a --set of the profile that the profile or a plugin refuses is a bad 
                          Case{"devices.tactile.params.nope=1", "unknown key 'nope'"},
                          Case{"sample_rate_hz=-5", "sample_rate_hz = -5: must be > 0"},
                          // Lua review: a joint limit outside the device's range was blamed on etroll-joints.lua (exit 3).
-                         Case{"joints.sensing_finger.max=500", "the limits [-60, 500] are not within what the device"}}) {
+                         Case{"joints.sensing_finger.max=500", "the limits [-60, 500] are not within what the device"},
+                         Case{"joints.sensing_finger.max=-100", "is not below its max, joints.sensing_finger.max (-100)"}}) {
         INFO(c.set);
         const auto r = run_rollsense("run " + kPaper + " --set " + c.set + " --no-progress --out " + shell_quoted(dir / "out"));
         INFO(r.output);

@@ -268,7 +268,7 @@ TEST_CASE("a content error names the file and line where the key is written", "[
         kt::write_file(dir / "profiles/joints.lua", replace(joints, "min = -50, max = 50", "min = 70, max = 50"));
         auto p = load_text(dir, text);
         REQUIRE_FALSE(p.ok());
-        CHECK(p.error().message == joints_lua + ":3: joints.finger.min is not below max (50)");
+        CHECK(p.error().message == joints_lua + ":3: joints.finger.min is not below its max, joints.finger.max (50)");
         kt::write_file(dir / "profiles/joints.lua", replace(joints, "max = 60, safe", "max = 60, saf"));
         p = load_text(dir, text);
         REQUIRE_FALSE(p.ok());

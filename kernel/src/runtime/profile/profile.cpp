@@ -330,7 +330,7 @@ Status read_profile_table(lua_State* L, Profile& p) {
             if (!v) return {ErrorCode::invalid_argument, jr.at(key) + " is missing (the kernel keeps the joint within min and max)"};
             *bound = *v;
         }
-        if (j.min >= j.max) return {ErrorCode::invalid_argument, jr.at("min") + " is not below max (" + format_param_value(j.max) + ")"};
+        if (j.min >= j.max) return {ErrorCode::invalid_argument, jr.at("min") + " is not below its max, joints." + name + ".max (" + format_param_value(j.max) + ")"};
         TRY(take(jr.number("max_velocity"), v));
         j.max_velocity = v.value_or(0);
         TRY(take(jr.number("max_current"), v));
