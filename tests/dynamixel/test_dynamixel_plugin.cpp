@@ -441,6 +441,9 @@ TEST_CASE("a hardware error becomes a fault on the joint, a typed error on write
     CHECK(st.message().find("servo 3") != std::string::npos);
     CHECK(st.message().find("overload") != std::string::npos);
     CHECK(st.message().find("reboot") != std::string::npos);
+    // Review: the run's error offered only the Lua call, which no script can make once the run has failed.
+    CHECK_THAT(st.message(), Catch::Contains("rollsense dxl reboot --device " + emu->device() + " --baud 57600 --id 3") &&
+                                 Catch::Contains("device:call('reboot', {joint='palm'})"));
 
     auto r = a.invoke("reboot", {{"joint", std::string("palm")}});
     INFO((r.ok() ? std::string() : r.error().message));
@@ -476,7 +479,9 @@ TEST_CASE("a hardware error on a released joint is warned of once, and not logge
     INFO(log.all());
     REQUIRE(log.lines().size() == 1);
     CHECK_THAT(log.lines()[0], Catch::StartsWith("warning ") && Catch::Contains("'palm'") &&
-                                   Catch::Contains("overload") && Catch::Contains("reboot"));
+                                   Catch::Contains("overload") &&
+                                   Catch::Contains("rollsense dxl reboot --device " + emu->device() +
+                                                   " --baud 57600 --id 3"));
     cmd[2].torque_enabled = true;
     CHECK(a.write(0, cmd).code() == ErrorCode::hardware_fault);
     CHECK(log.lines().size() == 1);
@@ -491,6 +496,26 @@ TEST_CASE("activation refuses a servo with a latched hardware error") {
     CHECK(st.code() == ErrorCode::hardware_fault);
     CHECK(st.message().find("sensing_finger") != std::string::npos);
     CHECK(st.message().find("overheating") != std::string::npos);
+}
+
+// Review: the refusal advised device:call('reboot', ...), but no script runs when activation fails; it gives the
+// command that works then, with this bus's port, baud and the servo's id, and the shutdown's release that follows
+// does not warn of the same error again.
+TEST_CASE("activation refused for a hardware error gives the rollsense dxl reboot command, once") {
+    auto emu = start_emulator(false);
+    on_bus(*emu, [](BusEmulator& b) { b.raise_hardware_error(1, hw_error::overload); return 0; });
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(emu->device())), {}).ok());
+    const testing::LogCapture log;
+    auto st = a.on_activate();
+    REQUIRE(st.code() == ErrorCode::hardware_fault);
+    CHECK_THAT(st.message(), Catch::Contains("rollsense dxl reboot --device " + emu->device() + " --baud 57600 --id 1"));
+    CHECK_THAT(st.message(), !Catch::Contains("device:call"));
+    std::vector<JointCommand> release(4);
+    for (auto& c : release) c.torque_enabled = false;
+    (void)a.write(0, release);
+    INFO(log.all());
+    CHECK(log.lines().empty());
 }
 
 TEST_CASE("a servo that stops answering mid-run ends the read in a timeout naming it") {

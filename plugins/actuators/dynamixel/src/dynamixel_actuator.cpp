@@ -258,11 +258,12 @@ Status DynamixelActuator::activate_servo(std::size_t i) {
     auto hw = bus_->read_value(ids_[i], addr::hardware_error_status, 1);
     if (!hw.ok()) return with_joint(i, hw.status());
     rt_[i].hardware_error = static_cast<std::uint8_t>(*hw);
+    // Said once, by this refusal: the safe state's release that follows does not warn of it again.
+    rt_[i].hardware_error_told = *hw != 0;
     if (*hw != 0)
         return {ErrorCode::hardware_fault,
                 who(i) + " reports a hardware error: " + describe_hardware_error(rt_[i].hardware_error) +
-                    "; remove the cause, then reboot it (device:call('reboot', {joint='" + config_.joints[i].name +
-                    "'}) or power-cycle)"};
+                    "; remove the cause, then " + reboot_way_out(i, false)};
     // Cleared before the goals are written: a tripped watchdog makes them read-only.
     if (auto st = set_watchdog(i, 0); !st.ok()) return st;
     if (auto st = prepare(i, config_.joints[i].default_mode); !st.ok()) return st;
@@ -429,14 +430,13 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
         // then printed again as the run's error).
         if (rt_[i].hardware_error && !c.torque_enabled && !rt_[i].hardware_error_told)
             log_warning(kLog, who(i) + ": hardware error (" + describe_hardware_error(rt_[i].hardware_error) +
-                                  ") while released; the servo turned its torque off. Remove the cause, then "
-                                  "device:call('reboot', {joint='" + j.name + "'}) before it moves again");
+                                  ") while released; the servo turned its torque off. Before it moves again, "
+                                  "remove the cause, then " + reboot_way_out(i, true));
         rt_[i].hardware_error_told = rt_[i].hardware_error != 0;
         if (rt_[i].hardware_error && c.torque_enabled)
             return {ErrorCode::hardware_fault,
                     who(i) + ": hardware error (" + describe_hardware_error(rt_[i].hardware_error) +
-                        "); the servo turned its torque off. Remove the cause, then "
-                        "device:call('reboot', {joint='" + j.name + "'})"};
+                        "); the servo turned its torque off. Remove the cause, then " + reboot_way_out(i, true)};
         if (!c.torque_enabled) continue;  // a release: no goal is sent (below), nothing to check
         if (is_position_mode(c.mode) && (c.position < j.min - 1e-9 || c.position > j.max + 1e-9))
             return {ErrorCode::limit_violation, who(i) + ": goal " + std::to_string(c.position) + " " + j.unit +
@@ -545,6 +545,16 @@ Result<std::size_t> DynamixelActuator::joint_index(const ValueMap& args) const {
     std::string known;
     for (const auto& j : config_.joints) known += (known.empty() ? "" : ", ") + j.name;
     return Error{ErrorCode::not_found, "no joint '" + name + "' on this bus (joints: " + known + ")"};
+}
+
+std::string DynamixelActuator::reboot_way_out(std::size_t i, bool in_script) const {
+    const std::string call = "device:call('reboot', {joint='" + config_.joints[i].name + "'})";
+    if (config_.device == "emulator")  // no port outside this process: the next run's emulated servos start afresh
+        return in_script ? "reboot it from the script: " + call : "run again (the emulated servos start afresh)";
+    std::string out = "reboot it: rollsense dxl reboot --device " + config_.device + " --baud " +
+                      std::to_string(config_.baud) + " --id " + std::to_string(ids_[i]) + " (or power-cycle it)";
+    if (in_script) out += "; a script that carries on can call " + call;
+    return out;
 }
 
 Status DynamixelActuator::reboot_joint(std::size_t i) {

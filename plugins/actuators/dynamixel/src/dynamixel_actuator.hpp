@@ -79,6 +79,10 @@ private:
     // The fault of a servo whose Bus Watchdog tripped during the run.
     Status watchdog_fault(std::size_t i) const;
     Status reboot_joint(std::size_t i);
+    // How to clear servo i's latched hardware error: the `rollsense dxl reboot` command line with this bus's
+    // port, baud and the servo's id (the one way when no script runs, as at activation); with `in_script`, the
+    // Lua call a script that carries on can make too.
+    std::string reboot_way_out(std::size_t i, bool in_script) const;
     Result<std::size_t> joint_index(const ValueMap& args) const;
     // A torque-off SYNC_WRITE for every servo, written from the crash handler
     // (hal/dynamixel/last_resort.hpp); registered while the bus is open and active.
