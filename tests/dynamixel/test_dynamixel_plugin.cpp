@@ -530,6 +530,55 @@ TEST_CASE("a servo that stops answering mid-run ends the read in a timeout namin
     CHECK(st.message().find("servo 4") != std::string::npos);
 }
 
+namespace {
+std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
+}  // namespace
+
+// Review (emulator killed mid-run): the shutdown's warning said "Both were sent once more without asking for a
+// reply (SYNC_WRITE)" although nothing could be sent, and the port's write/read failure had no way out.
+TEST_CASE("a port lost mid-run: read and write name the way out, the release does not claim a resend") {
+    auto emu = start_emulator(false);
+    const std::string device = emu->device();
+    DynamixelActuator a;
+    REQUIRE(a.on_configure(validated(etroll_raw(device)), {}).ok());
+    REQUIRE(a.on_activate().ok());
+    std::vector<JointState> s(4);
+    REQUIRE(a.read(0, s).ok());
+    const auto cmd = hold_all(a, s);
+    REQUIRE(a.write(0, cmd).ok());
+    emu.reset();  // the other end of the line is gone (kill -9 of rollsense-dxl-emu, a pulled adapter)
+    const std::string way_out = "check the USB adapter and its cable, and that " + device + " still exists";
+
+    auto w = a.write(0, cmd);
+    INFO(w.message());
+    CHECK(w.code() == ErrorCode::hardware_fault);
+    CHECK(occurrences(w.message(), way_out) == 1);
+    auto r = a.read(0, s);
+    INFO(r.message());
+    CHECK(r.code() == ErrorCode::hardware_fault);
+    CHECK(occurrences(r.message(), way_out) == 1);
+    CHECK_THAT(r.message(), !Catch::Contains("joint '"));  // the port failed, not a servo
+
+    auto d = a.on_deactivate();
+    INFO(d.message());
+    CHECK_FALSE(d.ok());
+    CHECK_THAT(d.message(), Catch::StartsWith("not confirmed released") && Catch::Contains("servo 4") &&
+                                Catch::Contains("failed too") && !Catch::Contains("Both were sent once more"));
+    CHECK(occurrences(d.message(), way_out) == 1);
+
+    const testing::LogCapture log;
+    CHECK(a.on_recover().ok());
+    INFO(log.all());
+    REQUIRE(log.lines().size() == 1);
+    CHECK_THAT(log.lines()[0], Catch::StartsWith("warning ") && Catch::Contains("failed too") &&
+                                   !Catch::Contains("Both were sent once more"));
+    CHECK(occurrences(log.lines()[0], way_out) == 1);
+}
+
 TEST_CASE("transient faults are absorbed by the bounded retries") {
     auto emu = start_emulator(false);
     DynamixelActuator a;

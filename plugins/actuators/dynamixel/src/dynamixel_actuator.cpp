@@ -72,7 +72,14 @@ std::string DynamixelActuator::who(std::size_t i) const {
 
 Status DynamixelActuator::with_joint(std::size_t i, Status st) const {
     if (st.ok()) return st;
+    if (bus_ && bus_->port_failed()) return port_failure(std::move(st));
     return std::move(st).with_context(who(i));
+}
+
+Status DynamixelActuator::port_failure(Status st) const {
+    if (st.ok()) return st;
+    return {st.code(), st.message() + "; check the USB adapter and its cable, and that " + config_.device +
+                           " still exists (a rollsense-dxl-emu link: restart the emulator)"};
 }
 
 Status DynamixelActuator::on_configure(const ParamSet& params, const PluginContext& context) {
@@ -287,8 +294,9 @@ Status DynamixelActuator::on_activate() {
     return {};
 }
 
-std::vector<DynamixelActuator::Unconfirmed> DynamixelActuator::release_servos() {
-    std::vector<Unconfirmed> unconfirmed;
+DynamixelActuator::Release DynamixelActuator::release_servos() {
+    Release out;
+    auto& unconfirmed = out.servos;
     std::vector<SyncWriteEntry> off;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
         // Written, not read first: a servo whose replies are corrupt still carries out a WRITE.
@@ -303,22 +311,30 @@ std::vector<DynamixelActuator::Unconfirmed> DynamixelActuator::release_servos() 
     // Once more for those that did not confirm, as a SYNC_WRITE: it asks for no
     // reply, so a servo that hears but cannot answer cleanly is released too.
     if (!off.empty()) {
-        if (config_.bus_watchdog_ms > 0) (void)bus_->sync_write(addr::bus_watchdog, 1, off);
-        (void)bus_->sync_write(addr::torque_enable, 1, off);
+        if (config_.bus_watchdog_ms > 0) out.resend = bus_->sync_write(addr::bus_watchdog, 1, off);
+        if (auto st = bus_->sync_write(addr::torque_enable, 1, off); out.resend.ok()) out.resend = std::move(st);
+        if (!out.resend.ok() && bus_->port_failed()) out.resend = port_failure(std::move(out.resend));
     }
-    return unconfirmed;
+    return out;
 }
 
-Status DynamixelActuator::not_confirmed(const std::vector<Unconfirmed>& servos, bool with_reasons) const {
+Status DynamixelActuator::not_confirmed(const Release& release, bool with_reasons) const {
+    const auto& servos = release.servos;
     if (servos.empty()) return {};
+    // A dead port: every servo's error is the same port error; it is said once, by the resend's.
+    const bool port_dead = !release.resend.ok();
     std::string list;
     for (const auto& [i, why] : servos)
-        list += (list.empty() ? "" : "; ") + (with_reasons ? why.error().describe()  // it names the joint
-                                                           : who(i) + " (" + std::string(to_string(why.code())) + ")");
-    return {servos.front().second.code(),
-            "not confirmed released (torque off, Bus Watchdog 0): " + list +
-                ". Both were sent once more without asking for a reply (SYNC_WRITE); check the torque is off "
-                "(rollsense dxl info) before the next run"};
+        list += (list.empty() ? "" : "; ") + (with_reasons && !port_dead
+                                                  ? why.error().describe()  // it names the joint
+                                                  : who(i) + " (" + std::string(to_string(why.code())) + ")");
+    // Review: "Both were sent once more" was said when the port was gone and nothing could be sent.
+    const std::string resend =
+        port_dead ? ". Sending both once more without asking for a reply (SYNC_WRITE) failed too: " +
+                        release.resend.message() + "; then check the torque is off (rollsense dxl info) before the next run"
+                  : ". Both were sent once more without asking for a reply (SYNC_WRITE); check the torque is off "
+                    "(rollsense dxl info) before the next run";
+    return {servos.front().second.code(), "not confirmed released (torque off, Bus Watchdog 0): " + list + resend};
 }
 
 Status DynamixelActuator::on_deactivate() {
@@ -359,7 +375,7 @@ Status DynamixelActuator::read(double time, std::span<JointState> states) {
     auto replies = bus_->sync_read(ids_, kStateBlockAddress, kStateBlockLength);
     if (!replies.ok()) {  // named by joint, as every other fault of one servo is
         const auto failed = std::find(ids_.begin(), ids_.end(), bus_->last_failed_id().value_or(0));
-        return failed == ids_.end() ? replies.status()
+        return failed == ids_.end() ? (bus_->port_failed() ? port_failure(replies.status()) : replies.status())
                                     : with_joint(static_cast<std::size_t>(failed - ids_.begin()), replies.status());
     }
     for (std::size_t i = 0; i < ids_.size(); ++i) {
@@ -521,7 +537,8 @@ Status DynamixelActuator::write(double time, std::span<const JointCommand> comma
                                                   j.joint_to_profile_velocity(c.profile_velocity), goal_ticks[i])});
     }
     if (!entries.empty())
-        if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok()) return st;
+        if (auto st = bus_->sync_write(kCommandBlockAddress, kCommandBlockLength, entries); !st.ok())
+            return bus_->port_failed() ? port_failure(std::move(st)) : st;
     for (auto i : enable_after)
         if (auto st = set_torque(i, true); !st.ok()) failed(std::move(st));
     // Control has resumed after a rest (invoke "rest"): the goals are out, now

@@ -52,7 +52,11 @@ private:
     };
 
     std::string who(std::size_t i) const;
+    // A servo's failure, named by its joint; a failure of the port itself (bus_->port_failed()) is the port's:
+    // it gets the way out of port_failure() instead.
     Status with_joint(std::size_t i, Status st) const;
+    // The port failed (adapter pulled, emulator gone): its error, with the way out.
+    Status port_failure(Status st) const;
     Status check_servos();
     // EEPROM items the joint needs in `mode` (mode, current limit, position
     // limits); turns torque off only if something has to change.
@@ -67,12 +71,16 @@ private:
     Status activate_servo(std::size_t i);
     // Bus Watchdog off and torque off on every servo; those that did not confirm
     // (no reply, a corrupt one) get both again without a reply asked for.
-    // Returns the servos that did not confirm, with why.
+    // Returns the servos that did not confirm, with why, and how the resend went (ok: sent, or none needed).
     using Unconfirmed = std::pair<std::size_t, Status>;
-    std::vector<Unconfirmed> release_servos();
+    struct Release {
+        std::vector<Unconfirmed> servos;
+        Status resend;
+    };
+    Release release_servos();
     // The servos not known to be released, named (with their errors, or only
     // their kinds when the fault was reported already); ok if none.
-    Status not_confirmed(const std::vector<Unconfirmed>& servos, bool with_reasons) const;
+    Status not_confirmed(const Release& release, bool with_reasons) const;
     // Bus Watchdog (98): clear a tripped one (it is logged: the last run ended
     // without telling the servo), then set it to `ms` (0 = off).
     Status set_watchdog(std::size_t i, int ms);

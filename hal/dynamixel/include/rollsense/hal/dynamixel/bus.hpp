@@ -73,6 +73,8 @@ public:
     const BusStatistics& statistics() const noexcept { return stats_; }
     // The servo whose reply the last failed transaction lacked (nullopt: the port failed, or none yet).
     std::optional<std::uint8_t> last_failed_id() const noexcept { return last_failed_id_; }
+    // The last transaction failed at the port itself (write/read failed: adapter pulled, emulator gone), not at a servo.
+    bool port_failed() const noexcept { return port_failed_; }
 
     Result<PingReply> ping(std::uint8_t id);
     // Ping every id in [first, last] one by one (a broadcast ping's replies
