@@ -44,8 +44,15 @@ if dataset == "" then
   local runs = rs.setting("runs")
   local objects = list(rs.setting("objects"))
   local speeds = list(rs.setting("speeds"))
-  rs.on_cleanup(etroll.park)
   local total, done = #objects * #speeds * runs, 0
+  -- The comparison is a 5-fold cross-validation: fewer trials than folds would fail it after every trial was
+  -- recorded. Refused before the first.
+  if total < 5 then
+    error(string.format("objects x speeds x runs = %d x %d x %d = %d trials, fewer than the 5 the comparison needs "
+      .. "(5-fold cross-validation): record more (e.g. --set runs=%d)", #objects, #speeds, runs, total,
+      math.ceil(5 / (#objects * #speeds))), 0)
+  end
+  rs.on_cleanup(etroll.park)
   for _, object in ipairs(objects) do
     for _, speed in ipairs(speeds) do
       for repetition = 1, runs do

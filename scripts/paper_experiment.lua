@@ -42,10 +42,19 @@ local runs = rs.setting("runs")
 local objects = list(rs.setting("objects"))
 local speeds = list(rs.setting("speeds"))
 
+local total = #objects * #speeds * runs
+-- The analysis at the end is a 5-fold cross-validation: with fewer trials than folds it can only fail, after
+-- every trial was recorded (review: 3 trials in real time on the hand, then the refusal). Refused before the first.
+local folds = 5
+if rs.setting("analyse") and total < folds then
+  error(string.format("objects x speeds x runs = %d x %d x %d = %d trials, fewer than the %d the analysis at the end "
+    .. "needs (%d-fold cross-validation): record more (e.g. --set runs=%d), or record only: --set analyse=false",
+    #objects, #speeds, runs, total, folds, folds, math.ceil(folds / (#objects * #speeds))), 0)
+end
+
 rs.on_cleanup(etroll.park)
 
 local shard, shards = rs.shard()
-local total = #objects * #speeds * runs
 local done, recorded, on_disk = 0, 0, 0
 for _, object in ipairs(objects) do
   local mount, index_in_mount = object .. "-1", 0
@@ -73,7 +82,7 @@ if shards > 1 then
     .. "(rollsense merge, then this script with --resume on it)", shard, shards))
 elseif rs.setting("analyse") then
   etroll.rest()  -- parked, Bus Watchdog off: no control period runs while the analysis works
-  local result = rs.analyse{ folds = 5, optimize = rs.setting("optimize") }
-  rs.log(string.format("%d trials, %d clean; 5-fold CV accuracy %.1f %% (95 %% interval %.1f-%.1f %%)",
-    result.trials, result.clean, 100 * result.accuracy, 100 * result.interval_low, 100 * result.interval_high))
+  local result = rs.analyse{ folds = folds, optimize = rs.setting("optimize") }
+  rs.log(string.format("%d trials, %d clean; %d-fold CV accuracy %.1f %% (95 %% interval %.1f-%.1f %%)",
+    result.trials, result.clean, folds, 100 * result.accuracy, 100 * result.interval_low, 100 * result.interval_high))
 end

@@ -12,8 +12,12 @@ using namespace rollsense::testing;
 namespace fs = std::filesystem;
 
 const std::string kPaper = shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "paper_experiment.lua");
-// Four trials (2 objects x 1 speed x 2 runs): too few for the script's 5-fold analysis.
+// Four trials (2 objects x 1 speed x 2 runs): too few for the script's 5-fold analysis (refused before the first
+// trial unless analyse=false).
 const std::string kFour = " --set runs=2 --set objects=C1,P2 --set speeds=10 --seed 5 --no-progress";
+// Six trials: enough for the 5 folds the script checks for, but the optimisation's nested CV tunes on an outer
+// fold's 4 training trials, too few for its own 5 folds: the analysis fails after the recording.
+const std::string kSix = " --set runs=3 --set objects=C1,P2 --set speeds=10 --set optimize=true --seed 5 --no-progress";
 
 std::size_t manifest_rows(const fs::path& dataset) { return count_of(read_file(dataset / "manifest.csv"), "\n") - 1; }
 }  // namespace
@@ -23,25 +27,25 @@ std::size_t manifest_rows(const fs::path& dataset) { return count_of(read_file(d
 TEST_CASE("a run whose analysis fails after its trials are recorded points at the analysis commands, not --resume") {
     TempDir dir("rollsense-cli-way-on");
     const auto out = dir / "out";
-    const auto failed = run_rollsense("run " + kPaper + kFour + " --out " + shell_quoted(out));
+    const auto failed = run_rollsense("run " + kPaper + kSix + " --out " + shell_quoted(out));
     INFO(failed.output);
     REQUIRE(failed.status == 1);
     CHECK(count_of(failed.output, "5 folds need at least 5 trials") == 1);
-    CHECK(failed.output.find("failed: 4 trials saved, 0 already on disk") != std::string::npos);
+    CHECK(failed.output.find("failed: 6 trials saved, 0 already on disk") != std::string::npos);
     CHECK(failed.output.find("continue with:") == std::string::npos);
-    CHECK(failed.output.find("the analysis failed, not the recording: the 4 trials of " + out.string() +
+    CHECK(failed.output.find("the analysis failed, not the recording: the 6 trials of " + out.string() +
                              " are on disk (--resume would run the same analysis on them again)") != std::string::npos);
     const std::string commands = "analyse them with: rollsense report " + out.string() + "; rollsense train " +
                                  out.string() + " -o " + (out / "model.rsm").string() + " (";
     CHECK(failed.output.find(commands) != std::string::npos);
-    REQUIRE(manifest_rows(out) == 4);
+    REQUIRE(manifest_rows(out) == 6);
 
     // What the message says: a resume runs the same analysis on the same trials and fails again ...
-    const auto resumed = run_rollsense("run " + kPaper + kFour + " -q --resume --out " + shell_quoted(out));
+    const auto resumed = run_rollsense("run " + kPaper + kSix + " -q --resume --out " + shell_quoted(out));
     INFO(resumed.output);
     CHECK(resumed.status == 1);
     CHECK(count_of(resumed.output, "5 folds need at least 5 trials") == 1);
-    CHECK(resumed.output.find("failed: 0 trials saved, 4 already on disk") != std::string::npos);
+    CHECK(resumed.output.find("failed: 0 trials saved, 6 already on disk") != std::string::npos);
     CHECK(resumed.output.find("continue with:") == std::string::npos);
     // ... and the printed commands, with an option that fits the dataset, analyse it.
     const auto report = run_rollsense("report " + shell_quoted(out) + " --folds 2 --repeats 2");
@@ -53,6 +57,45 @@ TEST_CASE("a run whose analysis fails after its trials are recorded points at th
     INFO(train.output);
     CHECK(train.status == 0);
     CHECK(fs::exists(out / "model.rsm"));
+}
+
+// User review (hardware path) item 3: a run of 3 trials (--set runs=1 --set objects=C1) recorded them, 37 s in real
+// time on the emulated hand, then its analysis refused ("5 folds need at least 5 trials ... give --folds 3 or fewer"),
+// an option `run` does not have. The scripts refuse such a run before the first trial, with the ways that work.
+TEST_CASE("the stock scripts refuse, before the first trial, fewer trials than the folds they analyse with") {
+    TempDir dir("rollsense-cli-way-on-folds");
+    const auto out = dir / "out";
+    const auto refused = run_rollsense("run " + kPaper + kFour + " --out " + shell_quoted(out));
+    INFO(refused.output);
+    CHECK(refused.status == 1);
+    CHECK(count_of(refused.output, "objects x speeds x runs = 2 x 1 x 2 = 4 trials, fewer than the 5 the analysis at "
+                                   "the end needs (5-fold cross-validation): record more (e.g. --set runs=3), or record "
+                                   "only: --set analyse=false") == 1);
+    CHECK(refused.output.find("failed: 0 trials saved") != std::string::npos);
+    CHECK(refused.output.find("continue with:") == std::string::npos);
+    CHECK(refused.output.find("the analysis failed") == std::string::npos);
+    CHECK_FALSE(fs::exists(out / "manifest.csv"));
+
+    // Both ways out it gives work: record only, or record more.
+    const auto only = run_rollsense("run " + kPaper + kFour + " --set analyse=false -q --out " + shell_quoted(dir / "only"));
+    INFO(only.output);
+    CHECK(only.status == 0);
+    CHECK(manifest_rows(dir / "only") == 4);
+    const auto more = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,P2 --set speeds=10 --seed 5 "
+                                    "--no-progress -q --out " + shell_quoted(dir / "more"));
+    INFO(more.output);
+    CHECK(more.status == 0);
+    CHECK(fs::exists(dir / "more" / "evaluation.txt"));
+
+    // compare_methods.lua records the same experiment and always compares, with 5 folds.
+    const auto compare = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "compare_methods.lua") +
+                                       " --set runs=1 --set objects=C1,P2 --set speeds=10 --no-progress --out " +
+                                       shell_quoted(dir / "compare"));
+    INFO(compare.output);
+    CHECK(compare.status == 1);
+    CHECK(count_of(compare.output, "objects x speeds x runs = 2 x 1 x 1 = 2 trials, fewer than the 5 the comparison "
+                                   "needs (5-fold cross-validation): record more (e.g. --set runs=3)") == 1);
+    CHECK(compare.output.find("failed: 0 trials saved") != std::string::npos);
 }
 
 // Review (cli item 2): the summary said "0 already on disk" of a dataset that held
