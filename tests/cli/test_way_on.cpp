@@ -162,6 +162,9 @@ TEST_CASE("the shipped speed sweep resumes, a script that records a trial on dis
     const auto cut = run_rollsense(sweep + " --time-limit 25");
     INFO(cut.output);
     REQUIRE(cut.status == 130);
+    // A cancel prints only the way on: the reminder about an edited script is for failures (README, dataset-format.md).
+    CHECK(cut.output.find("continue with: rollsense run ") != std::string::npos);
+    CHECK(cut.output.find("a resume runs the same script again") == std::string::npos);
     const auto resumed = run_rollsense(sweep + " --resume");
     INFO(resumed.output);
     CHECK(resumed.status == 0);
