@@ -50,7 +50,8 @@ TEST_CASE("configure: missing bus node and unsuitable adapters", "[mpl115a][faul
     auto missing = s.on_configure(params("/dev/i2c-247"), {});
     REQUIRE_FALSE(missing.ok());
     CHECK(missing.code() == ErrorCode::not_found);
-    CHECK_THAT(missing.message(), Catch::Contains("bus '/dev/i2c-247'") && Catch::Contains("fake:"));
+    CHECK_THAT(missing.message(), Catch::Contains("bus '/dev/i2c-247'") &&
+                                      Catch::Contains("bus = \"fake:strip\", simulate = true"));
 
     Rig rig("fault-adapter");
     rig.bus->set_functionality({true, false, 0});

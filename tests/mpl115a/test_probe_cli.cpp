@@ -40,6 +40,23 @@ TEST_CASE("probe on an empty bus or a missing node fails with exit status 4", "[
     INFO(missing.output);
     CHECK(missing.status == 4);
     CHECK_THAT(missing.output, Catch::Contains("/dev/i2c-247 not found"));
+    // Review: the hint was a profile's `bus = "fake:strip"`; for this command it is its own form, and that form works.
+    CHECK_THAT(missing.output, Catch::Contains("rollsense probe i2c fake:demo --simulate --strips 0") &&
+                                   !Catch::Contains("bus = "));
+    auto hinted = run("probe i2c fake:demo --simulate --strips 0");
+    INFO(hinted.output);
+    CHECK(hinted.status == 0);
+    CHECK_THAT(hinted.output, Catch::Contains("6 sensor(s) working, 0 with problems"));
+}
+
+// Review: docs/takkstrip.md showed `probe i2c fake:demo --simulate` as "a modelled strip" of 6 sensors; without
+// --strips it scans all 12 strips and models each: 72. What the help and the docs say.
+TEST_CASE("probe --simulate models a strip for every strip it scans", "[mpl115a][probe][cli]") {
+    auto all = run("probe i2c fake:all --simulate");
+    INFO(all.output);
+    CHECK(all.status == 0);
+    CHECK_THAT(all.output, Catch::Contains("72 sensor(s) working, 0 with problems"));
+    CHECK_THAT(run("probe --help").output, Catch::Contains("all 12 without --strips"));
 }
 
 TEST_CASE("probe refuses bad command lines with exit status 2", "[mpl115a][probe][cli]") {

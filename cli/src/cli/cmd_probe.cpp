@@ -53,7 +53,12 @@ int probe_i2c(const std::string& spec, const std::vector<int>& strips, bool simu
     if (simulate && spec.rfind("fake:", 0) != 0) throw UsageError("--simulate needs a fake:<name> bus, not " + spec);
     auto bus = hal::open_i2c_bus(spec);
     if (!bus.ok()) {
-        std::fprintf(stderr, "rollsense probe: %s\n", bus.error().describe().c_str());
+        // Review: the hint was the profile's form (bus = "fake:strip"), which this command does not take.
+        const char* without = bus.error().code == ErrorCode::not_found
+                                  ? "; without hardware, to see what good output looks like: rollsense probe i2c "
+                                    "fake:demo --simulate --strips 0"
+                                  : "";
+        std::fprintf(stderr, "rollsense probe: %s%s\n", bus.error().describe().c_str(), without);
         return bus.error().code == ErrorCode::invalid_argument ? kExitUsage : kExitHardware;
     }
     if (simulate) {
@@ -136,7 +141,8 @@ const Registration registration{{
     "  --strips LIST  strips to scan, e.g. 0 or 0,1 or 0-3 (default 0-11). Quick writes to\n"
     "                 other devices' addresses are harmless for most chips; narrow the list\n"
     "                 on a bus shared with devices you are unsure of.\n"
-    "  --simulate     attach modelled strips to a fake: bus first (to see the output format)\n"
+    "  --simulate     attach a modelled strip (6 sensors) to a fake: bus for every strip\n"
+    "                 scanned (all 12 without --strips) first, to see the output format\n"
     "\n"
     "exit status: 0 every sensor found works, 4 none found or some failing, 2 bad command line",
     &run_probe}};

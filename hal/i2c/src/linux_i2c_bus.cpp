@@ -109,7 +109,7 @@ Result<std::shared_ptr<I2cBus>> open_linux_i2c_bus(const std::string& path) {
             return Error{ErrorCode::not_found,
                          "I2C bus " + path + " not found (no such device node): load i2c-dev (sudo modprobe i2c-dev), "
                          "enable the controller (e.g. dtparam=i2c_arm=on on a Raspberry Pi) and list buses with "
-                         "'i2cdetect -l'; without hardware use a fake bus, e.g. bus = \"fake:strip\""};
+                         "'i2cdetect -l'"};  // the way without hardware is the caller's: a profile's, a command's
         if (err == EACCES || err == EPERM)
             return Error{ErrorCode::io_error, "permission denied opening I2C bus " + path +
                                                   ": add your user to the 'i2c' group (sudo usermod -aG i2c $USER, "

@@ -137,7 +137,11 @@ Status Mpl115aSensor::on_configure(const ParamSet& params, const PluginContext& 
     // The bus.
     const std::string& spec = params.get_string("bus");
     auto bus = hal::open_i2c_bus(spec);
-    if (!bus.ok()) return Status(bus.error()).with_context("bus '" + spec + "'");
+    if (!bus.ok()) {
+        auto st = Status(bus.error()).with_context("bus '" + spec + "'");
+        if (st.code() != ErrorCode::not_found) return st;
+        return {st.code(), st.message() + "; without hardware, a modelled strip: bus = \"fake:strip\", simulate = true"};
+    }
     bus_ = bus.value();
     const auto funcs = bus_->functionality();
     if (!funcs.smbus_quick || !funcs.combined_transfers)
