@@ -51,6 +51,10 @@ if rs.setting("analyse") and total < folds then
     .. "needs (%d-fold cross-validation): record more (e.g. --set runs=%d), or record only: --set analyse=false",
     #objects, #speeds, runs, total, folds, folds, math.ceil(folds / (#objects * #speeds))), 0)
 end
+if rs.setting("analyse") and #objects < 2 then  -- one class: nothing to tell apart, refused after the recording too
+  error("objects = " .. rs.setting("objects") .. ": the analysis at the end tells objects apart and needs two or more: "
+    .. "list more (e.g. --set objects=C1,C2), or record only: --set analyse=false", 0)
+end
 
 rs.on_cleanup(etroll.park)
 

@@ -86,6 +86,13 @@ TEST_CASE("the stock scripts refuse, before the first trial, fewer trials than t
     INFO(more.output);
     CHECK(more.status == 0);
     CHECK(fs::exists(dir / "more" / "evaluation.txt"));
+    // One object has nothing to tell apart: refused before the first trial too, not after five.
+    const auto one = run_rollsense("run " + kPaper + " --set runs=5 --set objects=C1 --set speeds=10 --no-progress --out " +
+                                   shell_quoted(dir / "one"));
+    INFO(one.output);
+    CHECK(one.status == 1);
+    CHECK(count_of(one.output, "objects = C1: the analysis at the end tells objects apart and needs two or more") == 1);
+    CHECK(one.output.find("failed: 0 trials saved") != std::string::npos);
 
     // compare_methods.lua records the same experiment and always compares, with 5 folds.
     const auto compare = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "compare_methods.lua") +
