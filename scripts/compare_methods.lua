@@ -45,8 +45,12 @@ if dataset == "" then
   local objects = list(rs.setting("objects"))
   local speeds = list(rs.setting("speeds"))
   local total, done = #objects * #speeds * runs, 0
-  -- The comparison is a 5-fold cross-validation: fewer trials than folds would fail it after every trial was
-  -- recorded. Refused before the first.
+  -- The comparison tells objects apart in a 5-fold cross-validation: one object, or fewer trials than folds, would
+  -- fail it after every trial was recorded. Refused before the first.
+  if #objects < 2 then
+    error("objects = " .. rs.setting("objects") .. ": the comparison tells objects apart and needs two or more: "
+      .. "list more (e.g. --set objects=C1,C2)", 0)
+  end
   if total < 5 then
     error(string.format("objects x speeds x runs = %d x %d x %d = %d trials, fewer than the 5 the comparison needs "
       .. "(5-fold cross-validation): record more (e.g. --set runs=%d)", #objects, #speeds, runs, total,

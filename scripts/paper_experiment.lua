@@ -43,17 +43,18 @@ local objects = list(rs.setting("objects"))
 local speeds = list(rs.setting("speeds"))
 
 local total = #objects * #speeds * runs
--- The analysis at the end is a 5-fold cross-validation: with fewer trials than folds it can only fail, after
--- every trial was recorded (review: 3 trials in real time on the hand, then the refusal). Refused before the first.
+-- The analysis at the end tells objects apart in a 5-fold cross-validation: one object, or fewer trials than folds,
+-- can only fail it, after every trial was recorded (review: 3 trials in real time on the hand, then the refusal).
+-- Refused before the first, the objects first (their way out changes the count).
 local folds = 5
+if rs.setting("analyse") and #objects < 2 then
+  error("objects = " .. rs.setting("objects") .. ": the analysis at the end tells objects apart and needs two or more: "
+    .. "list more (e.g. --set objects=C1,C2), or record only: --set analyse=false", 0)
+end
 if rs.setting("analyse") and total < folds then
   error(string.format("objects x speeds x runs = %d x %d x %d = %d trials, fewer than the %d the analysis at the end "
     .. "needs (%d-fold cross-validation): record more (e.g. --set runs=%d), or record only: --set analyse=false",
     #objects, #speeds, runs, total, folds, folds, math.ceil(folds / (#objects * #speeds))), 0)
-end
-if rs.setting("analyse") and #objects < 2 then  -- one class: nothing to tell apart, refused after the recording too
-  error("objects = " .. rs.setting("objects") .. ": the analysis at the end tells objects apart and needs two or more: "
-    .. "list more (e.g. --set objects=C1,C2), or record only: --set analyse=false", 0)
 end
 
 rs.on_cleanup(etroll.park)

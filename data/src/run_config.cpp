@@ -1,5 +1,6 @@
 #include "rollsense/run_config.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "rollsense/csv.hpp"
@@ -24,15 +25,21 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         const auto it = both.find(key);
         return it != both.end() && it->second.first && it->second.second && *it->second.first == *it->second.second;
     };
+    const auto lists_read_files = [](const RunConfig& config) {
+        return std::ranges::any_of(config, [](const auto& row) {
+            return row.first.starts_with("module.") || row.first.starts_with("include.");
+        });
+    };
+    const bool recorded_before_rows = !lists_read_files(recorded);
     std::vector<std::string> out;
     for (const auto& [k, values] : both) {
         // A profile file is compared by its content: "./hand.lua" and "/lab/hand.lua" are one profile.
         if (same(k) || (k == "profile" && same("profile_fnv1a"))) continue;
         const auto& [was, is] = values;
-        // A module or included profile is listed by name: one the recording did not list was read by an edited
-        // script or profile (said above), or the dataset predates these rows.
+        // A module or included profile is listed by name. A dataset that lists none predates these rows; otherwise
+        // one the recording did not list is a difference too (diff review: a pcall(require) that failed then).
         const bool read_file = k.starts_with("module.") || k.starts_with("include.");
-        if (read_file && !was) continue;
+        if (read_file && !was && recorded_before_rows) continue;
         // A hash is no reason a user reads (review): say what it means.
         // Only where the file is the same one (second review: another --profile was said to be edited).
         std::string file = k == "script_fnv1a" ? "script" : k == "profile_fnv1a" ? "profile" : "";
@@ -40,7 +47,7 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
             const auto dot = k.find('.');
             file = (k.starts_with("module.") ? "module " : "included profile ") + k.substr(dot + 1, k.size() - dot - 7);
         }
-        const std::string edited = !file.empty() && (read_file ? is != nullptr : same(file))
+        const std::string edited = !file.empty() && (read_file ? was && is : same(file))
                                        ? " (the " + file + " was edited since it recorded: restore it, or record anew "
                                                            "into another --out)"
                                        : "";

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 
@@ -148,14 +149,19 @@ std::vector<std::string> differences(const KeyValues& here, const KeyValues& the
     for (const auto& [k, v] : there) both[k].second = v;
     std::vector<std::string> out;
     const auto shown = [](const std::optional<std::string>& v) { return v ? "'" + *v + "'" : std::string("(none)"); };
-    // A module or included profile's digest that one side lacks: that shard was recorded before run-config.csv listed
-    // them (diff review; --resume is as lenient: run_config_differences).
-    const auto listed_later = [](const std::string& k, const auto& v) {
-        return (!v.first || !v.second) && (k.starts_with(std::string(kRunConfigFile) + " module.") ||
-                                           k.starts_with(std::string(kRunConfigFile) + " include."));
+    // A shard whose run-config.csv lists no module or included profile was recorded before it listed them: those
+    // rows are not compared with it (diff reviews; --resume is as lenient: run_config_differences).
+    const auto read_file = [](const std::string& k) {
+        return k.starts_with(std::string(kRunConfigFile) + " module.") ||
+               k.starts_with(std::string(kRunConfigFile) + " include.");
     };
+    const auto lists = [&](const KeyValues& config) {
+        return std::ranges::any_of(config, [&](const auto& row) { return read_file(row.first); });
+    };
+    const bool both_list = lists(here) && lists(there);
     for (const auto& [k, v] : both)
-        if (v.first != v.second && !listed_later(k, v)) out.push_back(k + ": " + shown(v.first) + " vs " + shown(v.second));
+        if (v.first != v.second && (both_list || !read_file(k)))
+            out.push_back(k + ": " + shown(v.first) + " vs " + shown(v.second));
     return out;
 }
 

@@ -152,5 +152,8 @@ TEST_CASE("the watchdog's way out offers no resume when the script had ended and
     CHECK(r.status == 1);
     CHECK(r.output.find("the watchdog made the hand safe") != std::string::npos);
     CHECK(r.output.find("continue with:") == std::string::npos);
+    // What it says instead (second diff review: it said nothing about the trial on disk).
+    CHECK(r.output.find("the script ran to its end and its trials are on disk; what failed came after it (above): a "
+                        "resume would record nothing") != std::string::npos);
     CHECK(fs::exists(dir / "out" / "trials" / "C1-v20-r001.csv"));
 }

@@ -93,6 +93,23 @@ TEST_CASE("the stock scripts refuse, before the first trial, fewer trials than t
     CHECK(one.status == 1);
     CHECK(count_of(one.output, "objects = C1: the analysis at the end tells objects apart and needs two or more") == 1);
     CHECK(one.output.find("failed: 0 trials saved") != std::string::npos);
+    // The objects are said first: one object and too few trials is told to list more objects, not to record more runs.
+    const auto both = run_rollsense("run " + kPaper + " --set runs=1 --set objects=C1 --set speeds=10 --no-progress --out " +
+                                    shell_quoted(dir / "both"));
+    CHECK(count_of(both.output, "needs two or more") == 1);
+    CHECK(both.output.find("record more") == std::string::npos);
+    // An object listed twice is the command line's mistake (second diff review: it recorded, then "3 already on disk").
+    const auto twice = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,C1 --set speeds=10 --no-progress "
+                                     "--out " + shell_quoted(dir / "twice"));
+    INFO(twice.output);
+    CHECK(twice.status == 2);
+    CHECK(count_of(twice.output, "'C1' is listed twice; list each object once") == 1);
+    const auto compare_one = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" /
+                                                                 "compare_methods.lua") +
+                                           " --set runs=5 --set objects=C1 --set speeds=10 --no-progress --out " +
+                                           shell_quoted(dir / "compare-one"));
+    CHECK(compare_one.status == 1);
+    CHECK(count_of(compare_one.output, "objects = C1: the comparison tells objects apart and needs two or more") == 1);
 
     // compare_methods.lua records the same experiment and always compares, with 5 folds.
     const auto compare = run_rollsense("run " + shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "scripts" / "compare_methods.lua") +
@@ -344,7 +361,8 @@ TEST_CASE("a resume refuses a script whose required module was edited since the 
     write_file(dir / "lib" / "helper.lua", "return { speed = 20 }\n");
     write_file(dir / "lib" / "old.lua", "return {}\n");
     write_file(dir / "lib" / "guarded.lua", "return {}\n");
-    write_file(dir / "two.lua", "local rs = require 'rollsense'\nlocal etroll = require 'etroll'\n"
+    write_file(dir / "two.lua", "local rs = require 'rollsense'\nlocal usage = 'a --[[ in a string is no comment'\n"
+                                "local etroll = require 'etroll'\n"
                                 "local helper = require('lib.helper')\nrs.on_cleanup(etroll.park)\n"
                                 "-- was: local old = require 'lib.old'\n--[==[ require 'lib.old' ]==]\n"
                                 "local ok = pcall(require, 'lib.guarded')\n"

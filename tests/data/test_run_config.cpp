@@ -75,8 +75,11 @@ TEST_CASE("run-config.csv round-trips, and its differences name each key with bo
                                    "--out)",
                                    "module.lib.helper_fnv1a: recorded '1f', this run '2e' (the module lib.helper was "
                                    "edited since it recorded: restore it, or record anew into another --out)"});
-    // A dataset recorded before these rows existed resumes; one whose module is no longer found does not.
+    // A dataset recorded before these rows existed resumes; one whose module is no longer found does not, nor one
+    // that lists modules but not this one (diff review: a pcall(require) that had failed then).
     CHECK(run_config_differences(RunConfig{{"script", "a.lua"}}, with).empty());
+    CHECK(run_config_differences(RunConfig{{"script", "a.lua"}, {"include.etroll-joints_fnv1a", "3a"}}, with) ==
+          std::vector<std::string>{"module.lib.helper_fnv1a: recorded (not given), this run '1f'"});
     CHECK(run_config_differences(with, RunConfig{{"script", "a.lua"}, {"include.etroll-joints_fnv1a", "3a"}}) ==
           std::vector<std::string>{"module.lib.helper_fnv1a: recorded '1f', this run (not given)"});
     auto none = read_run_config(dir / "nowhere");

@@ -96,6 +96,11 @@ TEST_CASE("shards merge whether or not their run-config.csv lists the modules re
     write_lines(s2 / "run-config.csv", edited);
     refused(merge(dir / "merged-again", {s0, s1, s2}), dir / "merged-again",
             {"run-config.csv module.etroll_fnv1a: '0000000000000000' vs '"});
+    // A shard that lists modules, but not this one, read other files (a pcall(require) that failed there).
+    std::erase_if(edited, [](const std::string& row) { return row.starts_with("module.etroll_fnv1a,"); });
+    write_lines(s2 / "run-config.csv", edited);
+    refused(merge(dir / "merged-again", {s0, s1, s2}), dir / "merged-again",
+            {"run-config.csv module.etroll_fnv1a: (none) vs '"});
 }
 
 TEST_CASE("rollsense merge refuses shards of different configurations", "[merge]") {

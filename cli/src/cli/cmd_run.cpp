@@ -25,6 +25,10 @@
 namespace rollsense::cli {
 namespace {
 
+// After a failure that came after the script's end (a cleanup, a device's shutdown): nothing left to resume.
+constexpr const char* kAfterTheEnd = "the script ran to its end and its trials are on disk; what failed came after it "
+                                     "(above): a resume would record nothing";
+
 const char* kHelp = R"(usage: rollsense run SCRIPT [options]
        rollsense run SCRIPT --help      the settings SCRIPT declares (runs no trial)
 
@@ -224,9 +228,10 @@ int run(const std::vector<std::string>& argv) {
     o.command_line = "rollsense run";
     for (const auto& a : argv) o.command_line += " " + a;
     // The watchdog's way out (three Ctrl-C, a script stuck in one C call) ends the process inside the run.
-    o.way_on = "the trials saved stay on disk; a resume runs the same script again (after a script stuck in one "
-               "call, fix it and record into a new --out)\ncontinue with: " + resume_command(pos[0], o.out_dir, deciding) +
-               "\n";
+    o.way_on = {"the trials saved stay on disk; a resume runs the same script again (after a script stuck in one "
+                "call, fix it and record into a new --out)\ncontinue with: " + resume_command(pos[0], o.out_dir, deciding) +
+                    "\n",
+                std::string(kAfterTheEnd) + "\n"};  // stuck in its cleanup (diff review: it offered a resume)
 
     // Review: a resume into a folder another run is recording failed as a run ("failed: 0 trials saved, N already
     // on disk", "continue with: ... --resume", exit 1). Another run's lock is the command line's refusal, before
@@ -286,8 +291,7 @@ int run(const std::vector<std::string>& argv) {
     // Review: a device that failed to shut down after the script's end (a plugin's on_deactivate threw) was
     // followed by "continue with: ... --resume", which would record nothing.
     if (summary.script_ended && summary.status.code() != ErrorCode::io_error)
-        std::fprintf(stderr, "the script ran to its end and its trials are on disk; what failed came after it "
-                             "(above): a resume would record nothing\n");
+        std::fprintf(stderr, "%s\n", kAfterTheEnd);
     else if (analysed && !summary.cancelled && summary.status.code() != ErrorCode::io_error)
         std::fprintf(stderr, "the analysis failed, not the recording: the %zu trials of %s are on disk (--resume "
                              "would run the same analysis on them again)\nanalyse them with: %s (options such as "

@@ -31,25 +31,39 @@ std::string file_digest(const fs::path& file) {
     return fs::is_regular_file(file, ec) ? fnv1a_hex(file_text(file)) : "(unreadable)";
 }
 
-// Lua source without its comments (`-- ...` and `--[[ ... ]]`, `--[==[ ... ]==]`), so that a call commented out
-// is not taken for one (diff review). Strings are not parsed: a "--" inside one cuts its line short.
-std::string without_comments(const std::string& text) {
+// The level of a long bracket (`[[` 1, `[==[` 3) opening at `at`, or 0 where none opens.
+std::size_t long_bracket(const std::string& t, std::size_t at) {
+    if (at >= t.size() || t[at] != '[') return 0;
+    std::size_t e = at + 1;
+    while (e < t.size() && t[e] == '=') ++e;
+    return e < t.size() && t[e] == '[' ? e - at : 0;
+}
+
+// Lua source with its comments dropped and its strings kept, so that neither a call commented out is taken for one
+// nor a `--` inside a string for a comment (diff reviews: a string holding "--[[" hid every later require).
+std::string without_comments(const std::string& t) {
+    const auto long_end = [&](std::size_t from, std::size_t level) {  // past the close of a long bracket, or the end
+        const auto end = t.find("]" + std::string(level - 1, '=') + "]", from);
+        return end == std::string::npos ? t.size() : end + level + 1;
+    };
     std::string out;
-    for (std::size_t i = 0; i < text.size();) {
-        if (text.compare(i, 2, "--") != 0) {
-            out += text[i++];
+    for (std::size_t i = 0; i < t.size();) {
+        std::size_t next = i + 1;
+        if (t.compare(i, 2, "--") == 0) {  // a comment: long, or to the end of its line
+            const auto level = long_bracket(t, i + 2);
+            next = level ? long_end(i + level + 3, level) : std::min(t.find('\n', i), t.size());
+            out += ' ';
+            i = next;
             continue;
         }
-        std::size_t level = i + 2;  // --[==[: the '='s after the first '['
-        if (level < text.size() && text[level] == '[')
-            while (++level < text.size() && text[level] == '=') {}
-        if (level < text.size() && text[level] == '[' && text[i + 2] == '[') {
-            const std::string close = "]" + std::string(level - i - 3, '=') + "]";
-            const auto end = text.find(close, level + 1);
-            i = end == std::string::npos ? text.size() : end + close.size();
-        } else {
-            i = std::min(text.find('\n', i), text.size());
+        if (const auto level = long_bracket(t, i)) {  // a long string
+            next = long_end(i + level + 1, level);
+        } else if (t[i] == '"' || t[i] == '\'') {  // a short string, its escapes skipped
+            while (next < t.size() && t[next] != t[i] && t[next] != '\n') next += t[next] == '\\' ? 2 : 1;
+            next = std::min(next + 1, t.size());
         }
+        out.append(t, i, next - i);
+        i = next;
     }
     return out;
 }
@@ -61,11 +75,12 @@ std::string without_comments(const std::string& text) {
 // the run's own error.
 void add_read_files(RunConfig& config, const fs::path& file, const std::string& call_name, const std::string& kind,
                     const std::function<std::optional<fs::path>(const std::string&)>& resolve) {
-    static const std::regex call(R"(\b(require|include)\s*[(,]?\s*["']([A-Za-z0-9_./-]+)["'])");
+    // Not a method or field of that name (`x.require "m"`): a plain call, or pcall's argument.
+    static const std::regex call(R"((^|[^\w.:])(require|include)\s*[(,]?\s*["']([A-Za-z0-9_./-]+)["'])");
     const std::string text = without_comments(file_text(file));
     for (std::sregex_iterator it(text.begin(), text.end(), call), end; it != end; ++it) {
-        if ((*it)[1] != call_name) continue;
-        const std::string name = (*it)[2], key = kind + "." + name + "_fnv1a";
+        if ((*it)[2] != call_name) continue;
+        const std::string name = (*it)[3], key = kind + "." + name + "_fnv1a";
         const auto found = resolve(name);
         if (!found || std::ranges::any_of(config, [&](const auto& row) { return row.first == key; })) continue;
         config.emplace_back(key, file_digest(*found));

@@ -37,10 +37,11 @@ int poll_ms(std::chrono::microseconds left) {
 // failure (exit 4), not as a file it could not read or write (exit 5).
 constexpr ErrorCode kLost = ErrorCode::hardware_fault;
 
-// "process 123 (rollsense run ...)" holding a flock on the file open at `fd`, from /proc/locks; empty if not found.
-std::string lock_holder(int fd) {
+// "process 123 (rollsense run ...)" holding a flock on the device file, from /proc/locks; empty if not found (its
+// holder took no lock, as programs other than rollsense may not).
+std::string lock_holder(const std::string& device) {
     struct stat st {};
-    if (::fstat(fd, &st) != 0) return {};
+    if (::stat(device.c_str(), &st) != 0) return {};
     char id[64];
     std::snprintf(id, sizeof id, " %02x:%02x:%llu ", major(st.st_dev), minor(st.st_dev),
                   static_cast<unsigned long long>(st.st_ino));
@@ -54,10 +55,13 @@ std::string lock_holder(int fd) {
         std::replace(command.begin(), command.end(), '\0', ' ');
         while (!command.empty() && command.back() == ' ') command.pop_back();
         if (command.size() > 120) command = command.substr(0, 117) + "...";
+        if (pid == std::to_string(::getpid())) return "this process: two devices on one port?";
         return "process " + pid + (command.empty() ? "" : " (" + command + ")");
     }
     return {};
 }
+
+std::string held_by(const std::string& holder) { return holder.empty() ? std::string() : " (" + holder + ")"; }
 
 }  // namespace
 
@@ -68,17 +72,18 @@ Result<SerialPort> SerialPort::open(const std::string& device, std::uint32_t bau
         std::string hint;
         if (err == ENOENT) hint = "; is the adapter plugged in? (ls /dev/ttyUSB* /dev/ttyACM*)";
         if (err == EACCES) hint = "; add yourself to the 'dialout' group (sudo usermod -aG dialout $USER) and log in again";
-        if (err == EBUSY) hint = "; another program has the port open";
+        if (err == EBUSY) hint = "; another program has the port open" + held_by(lock_holder(device));
         return Error{err == ENOENT ? ErrorCode::not_found : ErrorCode::io_error,
                      device + ": cannot open serial port: " + std::strerror(err) + hint};
     }
     // Exclusive for root too, whom TIOCEXCL (below) does not stop (hardware review: a second run as root drove the
     // servos beside the first, and both failed with bus errors that named no other program). Released at exit.
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        const std::string holder = errno == EWOULDBLOCK ? lock_holder(fd) : std::string();
+        const int err = errno;
         ::close(fd);
+        if (err != EWOULDBLOCK) return Error{ErrorCode::io_error, device + ": cannot lock serial port: " + std::strerror(err)};
         return Error{ErrorCode::io_error, device + ": cannot open serial port: another program has it open" +
-                                              (holder.empty() ? std::string() : " (" + holder + ")") +
+                                              held_by(lock_holder(device)) +
                                               "; stop it first: two programs on one bus corrupt each other's packets"};
     }
     return adopt(fd, device, baud);

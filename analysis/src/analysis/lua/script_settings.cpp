@@ -131,6 +131,10 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
         if (d.list == ListKind::object && items.size() != 1)
             return Error{ErrorCode::invalid_argument, where + ": give one object" + about};
         for (const auto& item : items) {
+            // An object twice names its trials twice (second diff review: C1,C1 recorded 3 trials, "3 already on disk").
+            if (d.list == ListKind::objects && std::count(items.begin(), items.end(), item) > 1)
+                return Error{ErrorCode::invalid_argument, where + ": '" + item + "' is listed twice; list each object "
+                                                                  "once" + about};
             if (d.list != ListKind::numbers && catalogue && !catalogue->find(item))
                 return Error{ErrorCode::invalid_argument,
                              where + ": '" + item + "' is not an object of " + catalogue->path().string() +

@@ -338,9 +338,9 @@ void Robot::safe_state(double time, bool keep_released) noexcept {
     }
 }
 
-bool Robot::shutdown(double time) noexcept {
+bool Robot::shutdown(double time, bool keep_released) noexcept {
     const auto devices = lock_devices();
-    safe_state(time);
+    safe_state(time, keep_released);
     bool clean = true;
     // Nobody else sees these statuses: logged here (a device logs no fault itself).
     // A failed device is recovered: its plugin releases what still answers (torque off), as deactivate would.

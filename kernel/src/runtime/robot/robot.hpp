@@ -44,7 +44,7 @@ public:
     Status activate(double time);
     // Best effort, never throws: stop every joint (hold, or torque off where the profile says so), then deactivate (or
     // recover, if failed) and clean up every device.
-    bool shutdown(double time) noexcept;  // false: a device did not deactivate or clean up (logged)
+    bool shutdown(double time, bool keep_released = false) noexcept;  // false: a device did not deactivate (logged)
     // Stop every joint now: the profile's safe action (hold here, or torque off) to every actuator that is active or
     // failed, so the servos that still answer stop even when another one on their bus does not. Used on any failure,
     // a cancel, the e-stop and a script's normal end (keep_released: the joints it released stay released).

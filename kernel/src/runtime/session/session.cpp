@@ -36,8 +36,7 @@ std::string utc_now() {
 }
 
 double wall_seconds() {
-    using namespace std::chrono;
-    return duration<double>(steady_clock::now().time_since_epoch()).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // The session whose run() is on, for the crash handlers below.
@@ -171,7 +170,7 @@ RunSummary Session::run() {
                                                        std::to_string(sent) + " last-resort actions sent");
         }
     }
-    if (robot_ && !robot_->shutdown(clock_ ? clock_->now() : 0.0) && s.ok())  // review: such a run exited 0
+    if (robot_ && !robot_->shutdown(clock_ ? clock_->now() : 0.0, /*keep_released=*/s.ok()) && s.ok())  // review: exited 0
         s = Status(ErrorCode::hardware_fault, "a device did not shut down cleanly (above): check it before the next run");
     if (recorder_ && recorder_->has_dataset()) {
         if (auto f = recorder_->flush(); !f.ok() && s.ok()) s = f;
@@ -218,7 +217,7 @@ void Session::last_resort(const std::string& why, ErrorCode code, double wall_st
     if (recorder_ && recorder_->has_dataset()) {
         (void)recorder_->flush();
         write_run_info(Status(code, how), wall_start);
-        if (recorder_->trials_saved() + recorder_->trials_skipped() > 0 && !script_ended_) std::fputs(options_.way_on.c_str(), stderr);
+        if (recorder_->trials_saved() + recorder_->trials_skipped() > 0) std::fputs(options_.way_on[script_ended_].c_str(), stderr);
     }
     std::fflush(stderr);
     std::_Exit(code == ErrorCode::cancelled ? 130 : 1);  // a limit the script passed is its failure, as in the hook

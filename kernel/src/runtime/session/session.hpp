@@ -5,6 +5,7 @@
 // runtime/lua/ are the layer that drives them from a script.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -44,7 +45,7 @@ struct SessionOptions {
     SandboxLimits sandbox;
     std::size_t commit_every = 0;             // 0: 1 on hardware, 64 in simulation
     std::string command_line;                 // for run-info.csv
-    std::string way_on;  // the watchdog's way out prints it last when trials are on disk (rollsense run: its resume)
+    std::array<std::string, 2> way_on;  // the watchdog's way out prints it when trials are on disk: [script ended]
     RunConfig run_config;                     // for run-config.csv; --resume refuses another
     DigitalLines digital_lines;               // opens the profile's e-stop and trigger lines
     // Observers (the live view, the progress bar): after each recorded sample and each rs.progress, on the script's
