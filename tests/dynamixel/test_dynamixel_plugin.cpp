@@ -444,6 +444,9 @@ TEST_CASE("a hardware error becomes a fault on the joint, a typed error on write
     // Review: the run's error offered only the Lua call, which no script can make once the run has failed.
     CHECK_THAT(st.message(), Catch::Contains("rollsense dxl reboot --device " + emu->device() + " --baud 57600 --id 3") &&
                                  Catch::Contains("device:call('reboot', {joint='palm'})"));
+    // While the run holds the port (its lock) the command is refused: the script's call first (second diff review).
+    CHECK_THAT(st.message(), Catch::Contains("a script that carries on can call device:call('reboot', {joint='palm'}); "
+                                             "after the run: rollsense dxl reboot"));
 
     auto r = a.invoke("reboot", {{"joint", std::string("palm")}});
     INFO((r.ok() ? std::string() : r.error().message));

@@ -1,7 +1,9 @@
 #include "dynamixel_actuator.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <string_view>
 
 #include "rollsense/hal/dynamixel/last_resort.hpp"
 #include "rollsense/log.hpp"
@@ -568,10 +570,17 @@ std::string DynamixelActuator::reboot_way_out(std::size_t i, bool in_script) con
     const std::string call = "device:call('reboot', {joint='" + config_.joints[i].name + "'})";
     if (config_.device == "emulator")  // no port outside this process: the next run's emulated servos start afresh
         return in_script ? "reboot it from the script: " + call : "run again (the emulated servos start afresh)";
-    std::string out = "reboot it: rollsense dxl reboot --device " + config_.device + " --baud " +
-                      std::to_string(config_.baud) + " --id " + std::to_string(ids_[i]) + " (or power-cycle it)";
-    if (in_script) out += "; a script that carries on can call " + call;
-    return out;
+    // The port as one shell word (a path with a space in it would not paste).
+    const bool plain = std::all_of(config_.device.begin(), config_.device.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("/._-:+").find(c) != std::string_view::npos;
+    });
+    const std::string port = plain ? config_.device : "'" + config_.device + "'";
+    const std::string command = "rollsense dxl reboot --device " + port + " --baud " + std::to_string(config_.baud) +
+                                " --id " + std::to_string(ids_[i]);
+    // While the run holds the port the command is refused (its lock): a script that carries on reboots it itself.
+    if (in_script) return "reboot it: a script that carries on can call " + call + "; after the run: " + command +
+                          " (or power-cycle it)";
+    return "reboot it: " + command + " (or power-cycle it)";
 }
 
 Status DynamixelActuator::reboot_joint(std::size_t i) {
