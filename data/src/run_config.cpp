@@ -17,6 +17,8 @@ std::string format_run_config(const RunConfig& config) {
 
 Result<RunConfig> read_run_config(const fs::path& dir) { return csv::read_key_values(dir / kRunConfigFile); }
 
+bool is_read_file_key(std::string_view key) { return key.starts_with("module.") || key.starts_with("include."); }
+
 std::vector<std::string> run_config_differences(const RunConfig& recorded, const RunConfig& now) {
     std::map<std::string, std::pair<const std::string*, const std::string*>> both;
     for (const auto& [k, v] : recorded) both[k].first = &v;
@@ -25,12 +27,8 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         const auto it = both.find(key);
         return it != both.end() && it->second.first && it->second.second && *it->second.first == *it->second.second;
     };
-    const auto lists_read_files = [](const RunConfig& config) {
-        return std::ranges::any_of(config, [](const auto& row) {
-            return row.first.starts_with("module.") || row.first.starts_with("include.");
-        });
-    };
-    const bool recorded_before_rows = !lists_read_files(recorded);
+    const bool recorded_before_rows =
+        std::ranges::none_of(recorded, [](const auto& row) { return is_read_file_key(row.first); });
     std::vector<std::string> out;
     for (const auto& [k, values] : both) {
         // A profile file is compared by its content: "./hand.lua" and "/lab/hand.lua" are one profile.
@@ -38,7 +36,7 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         const auto& [was, is] = values;
         // A module or included profile is listed by name. A dataset that lists none predates these rows; otherwise
         // one the recording did not list is a difference too (diff review: a pcall(require) that failed then).
-        const bool read_file = k.starts_with("module.") || k.starts_with("include.");
+        const bool read_file = is_read_file_key(k);
         if (read_file && !was && recorded_before_rows) continue;
         // A hash is no reason a user reads (review): say what it means.
         // Only where the file is the same one (second review: another --profile was said to be edited).

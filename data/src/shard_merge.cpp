@@ -151,9 +151,9 @@ std::vector<std::string> differences(const KeyValues& here, const KeyValues& the
     const auto shown = [](const std::optional<std::string>& v) { return v ? "'" + *v + "'" : std::string("(none)"); };
     // A shard whose run-config.csv lists no module or included profile was recorded before it listed them: those
     // rows are not compared with it (diff reviews; --resume is as lenient: run_config_differences).
-    const auto read_file = [](const std::string& k) {
-        return k.starts_with(std::string(kRunConfigFile) + " module.") ||
-               k.starts_with(std::string(kRunConfigFile) + " include.");
+    const std::string prefix = std::string(kRunConfigFile) + " ";  // configuration(): "FILE KEY"
+    const auto read_file = [&](const std::string& k) {
+        return k.starts_with(prefix) && is_read_file_key(std::string_view(k).substr(prefix.size()));
     };
     const auto lists = [&](const KeyValues& config) {
         return std::ranges::any_of(config, [&](const auto& row) { return read_file(row.first); });

@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,9 @@ using RunConfig = std::vector<std::pair<std::string, std::string>>;
 inline constexpr const char* kRunConfigFile = "run-config.csv";
 
 std::string format_run_config(const RunConfig& config);
+// A row naming a file the run read ("module.NAME_fnv1a", "include.NAME_fnv1a"), which a dataset recorded before
+// those rows existed lacks: resume and merge compare them only where both sides list such rows.
+bool is_read_file_key(std::string_view key);
 // Reads <dir>/run-config.csv; an empty config when the dataset has none
 // (recorded before the file existed).
 Result<RunConfig> read_run_config(const std::filesystem::path& dir);

@@ -49,13 +49,14 @@ std::string lock_holder(const std::string& device) {
     for (std::string line; std::getline(locks, line);) {
         const auto at = line.find(id);
         if (line.find("FLOCK") == std::string::npos || at == std::string::npos) continue;
-        const std::string pid = line.substr(line.rfind(' ', at - 1) + 1, at - line.rfind(' ', at - 1) - 1);
+        const auto pid_at = line.rfind(' ', at - 1) + 1;  // "1: FLOCK  ADVISORY  WRITE <pid> <dev:inode> 0 EOF"
+        const std::string pid = line.substr(pid_at, at - pid_at);
+        if (pid == std::to_string(::getpid())) return "this process: two devices on one port?";
         std::ifstream cmdline("/proc/" + pid + "/cmdline");
         std::string command((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
         std::replace(command.begin(), command.end(), '\0', ' ');
         while (!command.empty() && command.back() == ' ') command.pop_back();
         if (command.size() > 120) command = command.substr(0, 117) + "...";
-        if (pid == std::to_string(::getpid())) return "this process: two devices on one port?";
         return "process " + pid + (command.empty() ? "" : " (" + command + ")");
     }
     return {};
