@@ -47,14 +47,23 @@ local total = #objects * #speeds * runs
 -- can only fail it, after every trial was recorded (review: 3 trials in real time on the hand, then the refusal).
 -- Refused before the first, the objects first (their way out changes the count).
 local folds = 5
+-- With optimize, the search is scored by nested CV: it tunes in 5 folds of each outer fold's training trials (the
+-- outer test fold held out, folds dealt evenly), so those must number 5 too (review: 6 trials failed after recording).
+local needed = folds
+if rs.setting("optimize") then
+  while needed - math.ceil(needed / folds) < folds do needed = needed + 1 end
+end
 if rs.setting("analyse") and #objects < 2 then
   error("objects = " .. rs.setting("objects") .. ": the analysis at the end tells objects apart and needs two or more: "
     .. "list more (e.g. --set objects=C1,C2), or record only: --set analyse=false", 0)
 end
-if rs.setting("analyse") and total < folds then
+if rs.setting("analyse") and total < needed then
   error(string.format("objects x speeds x runs = %d x %d x %d = %d trials, fewer than the %d the analysis at the end "
-    .. "needs (%d-fold cross-validation): record more (e.g. --set runs=%d), or record only: --set analyse=false",
-    #objects, #speeds, runs, total, folds, folds, math.ceil(folds / (#objects * #speeds))), 0)
+    .. "needs (%s): record more (e.g. --set runs=%d), or record only: --set analyse=false",
+    #objects, #speeds, runs, total, needed, rs.setting("optimize")
+      and string.format("optimize: %d-fold cross-validation, tuned in %d folds of each training part", folds, folds)
+      or string.format("%d-fold cross-validation", folds),
+    math.ceil(needed / (#objects * #speeds))), 0)
 end
 
 rs.on_cleanup(etroll.park)

@@ -15,9 +15,19 @@ const std::string kPaper = shell_quoted(fs::path(ROLLSENSE_SOURCE_DIR) / "script
 // Four trials (2 objects x 1 speed x 2 runs): too few for the script's 5-fold analysis (refused before the first
 // trial unless analyse=false).
 const std::string kFour = " --set runs=2 --set objects=C1,P2 --set speeds=10 --seed 5 --no-progress";
-// Six trials: enough for the 5 folds the script checks for, but the optimisation's nested CV tunes on an outer
-// fold's 4 training trials, too few for its own 5 folds: the analysis fails after the recording.
-const std::string kSix = " --set runs=3 --set objects=C1,P2 --set speeds=10 --set optimize=true --seed 5 --no-progress";
+// Six trials, then an analysis in 5 folds whose nested CV tunes on an outer fold's 4 training trials, too few for its
+// own 5 folds: it fails after the recording. (The stock script refuses this before its first trial.)
+const std::string kSixThenOptimize = R"(local rs = require "rollsense"
+local etroll = require "etroll"
+for repetition = 1, 3 do
+  for _, object in ipairs{ "C1", "P2" } do
+    local trial = { object = object, speed = 10, repetition = repetition }
+    if not rs.has_trial(rs.trial_id(trial)) then etroll.run_trial(trial) end
+  end
+end
+rs.analyse{ folds = 5, optimize = true }
+)";
+const std::string kSeed = " --seed 5 --no-progress";
 
 std::size_t manifest_rows(const fs::path& dataset) { return count_of(read_file(dataset / "manifest.csv"), "\n") - 1; }
 }  // namespace
@@ -27,7 +37,9 @@ std::size_t manifest_rows(const fs::path& dataset) { return count_of(read_file(d
 TEST_CASE("a run whose analysis fails after its trials are recorded points at the analysis commands, not --resume") {
     TempDir dir("rollsense-cli-way-on");
     const auto out = dir / "out";
-    const auto failed = run_rollsense("run " + kPaper + kSix + " --out " + shell_quoted(out));
+    const auto script = shell_quoted(dir / "six.lua");
+    write_file(dir / "six.lua", kSixThenOptimize);
+    const auto failed = run_rollsense("run " + script + kSeed + " --out " + shell_quoted(out));
     INFO(failed.output);
     REQUIRE(failed.status == 1);
     CHECK(count_of(failed.output, "5 folds need at least 5 trials") == 1);
@@ -41,7 +53,7 @@ TEST_CASE("a run whose analysis fails after its trials are recorded points at th
     REQUIRE(manifest_rows(out) == 6);
 
     // What the message says: a resume runs the same analysis on the same trials and fails again ...
-    const auto resumed = run_rollsense("run " + kPaper + kSix + " -q --resume --out " + shell_quoted(out));
+    const auto resumed = run_rollsense("run " + script + kSeed + " -q --resume --out " + shell_quoted(out));
     INFO(resumed.output);
     CHECK(resumed.status == 1);
     CHECK(count_of(resumed.output, "5 folds need at least 5 trials") == 1);
@@ -98,6 +110,15 @@ TEST_CASE("the stock scripts refuse, before the first trial, fewer trials than t
                                     shell_quoted(dir / "both"));
     CHECK(count_of(both.output, "needs two or more") == 1);
     CHECK(both.output.find("record more") == std::string::npos);
+    // With optimize the nested CV tunes in 5 folds of each outer training part: 6 trials recorded, then failed there.
+    const auto tuned = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,P2 --set speeds=10 --set "
+                                     "optimize=true --no-progress --out " + shell_quoted(dir / "tuned"));
+    INFO(tuned.output);
+    CHECK(tuned.status == 1);
+    CHECK(count_of(tuned.output, "= 6 trials, fewer than the 7 the analysis at the end needs (optimize: 5-fold "
+                                 "cross-validation, tuned in 5 folds of each training part): record more (e.g. --set "
+                                 "runs=4)") == 1);
+    CHECK(tuned.output.find("failed: 0 trials saved") != std::string::npos);
     // An object listed twice is the command line's mistake (second diff review: it recorded, then "3 already on disk").
     const auto twice = run_rollsense("run " + kPaper + " --set runs=3 --set objects=C1,C1 --set speeds=10 --no-progress "
                                      "--out " + shell_quoted(dir / "twice"));
