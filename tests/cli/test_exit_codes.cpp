@@ -111,6 +111,31 @@ TEST_CASE("other failures keep their codes") {
               .status == 130);
 }
 
+// Diff review: a controller the profile lacks exited 3 ("bad profile"), a joint or a device the profile lacks 1; all
+// three are the script's mistake, as the table says. A script that does not parse is a bad input file (3), a joint that
+// did not arrive within its move's timeout a device's failure (4): the table says so too.
+TEST_CASE("a name the profile lacks is the script's mistake (1), a script that does not parse 3, a missed move 4") {
+    TempDir dir("rollsense-cli-codes-script");
+    const auto run = [&](const std::string& name, const std::string& body) {
+        write_file(dir / (name + ".lua"), "local rs = require 'rollsense'\n" + body + "\n");
+        return run_rollsense("run " + shell_quoted(dir / (name + ".lua")) + " --out " + shell_quoted(dir / name));
+    };
+    const auto controller = run("controller", "rs.controller('nope', true)");
+    INFO(controller.output);
+    CHECK(controller.status == 1);
+    CHECK(count_of(controller.output, "controller.lua:2: no controller 'nope' in profile 'sim'") == 1);
+    CHECK(run("joint", "rs.joint('nope')").status == 1);
+    CHECK(run("device", "rs.device('nope')").status == 1);
+    const auto syntax = run("syntax", "local x = = 1");
+    INFO(syntax.output);
+    CHECK(syntax.status == 3);
+    CHECK(count_of(syntax.output, "syntax.lua:2: unexpected symbol near '='") == 1);
+    const auto missed = run("missed", "rs.joint('palm'):move(100, {timeout_ms = 1})");
+    INFO(missed.output);
+    CHECK(missed.status == 4);
+    CHECK(count_of(missed.output, "missed.lua:2: timed out waiting for joint 'palm'") == 1);
+}
+
 // Review finding 18: "'2' is not a number in 5-252" for a reversed range, "frob needs --id N"
 // for an unknown action, and any --baud accepted while --new-baud knew the X-series rates.
 TEST_CASE("dxl's bad arguments are usage errors (2) that say what is wrong") {

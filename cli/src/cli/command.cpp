@@ -60,10 +60,10 @@ int exit_code_for(ErrorCode code, int fallback) {
 
 std::string exit_code_table() {
     return "  0    ok\n"
-           "  1    the job ran and failed (script error, failed evaluation)\n"
+           "  1    the job ran and failed (the script raised an error or named what the profile lacks, failed evaluation)\n"
            "  2    bad command line\n"
-           "  3    bad profile, plugin or input file\n"
-           "  4    a device failed or stopped answering\n"
+           "  3    bad profile, plugin or input file (a script that does not parse, an object the catalogue lacks)\n"
+           "  4    a device failed or stopped answering (a joint that did not arrive within its move's timeout too)\n"
            "  5    a file could not be read or written (disk full, read-only, permission)\n"
            "  130  interrupted (Ctrl-C, emergency stop, --time-limit)\n";
 }

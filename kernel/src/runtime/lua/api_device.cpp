@@ -64,7 +64,8 @@ int l_controller(lua_State* L) {
     const char* name = luaL_checkstring(L, 1);
     const bool on = lua_isnone(L, 2) || (luaL_checktype(L, 2, LUA_TBOOLEAN), lua_toboolean(L, 2) != 0);  // not 0, "off"
     if (!on) s.robot().disable_controller(name, s.now());
-    else if (auto st = s.robot().enable_controller(name, s.now()); !st.ok()) raise_status(L, st);
+    else if (auto st = s.robot().enable_controller(name, s.now()); !st.ok())  // a name it lacks: the script's, as rs.joint's
+        raise_status(L, st.code() == ErrorCode::not_found ? Status(ErrorCode::script_error, st.message()) : st);
     return 0;
 }
 

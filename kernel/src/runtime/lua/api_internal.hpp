@@ -18,9 +18,7 @@ LuaTask& waiting_task(lua_State* L, const char* function);
 // task then yields, `k` continuing. The Lua library yields by throwing a C++ exception: yielding here, where no C++
 // object is alive, spares the unwinder a second walk for every destructor.
 template <bool (*request)(lua_State*), lua_KFunction k>
-int waiting(lua_State* L) {
-    return request(L) ? lua_yieldk(L, 0, 0, k) : 0;
-}
+int waiting(lua_State* L) { return request(L) ? lua_yieldk(L, 0, 0, k) : 0; }
 // Continuation that turns a cancelled or timed-out wait into an error and returns nothing otherwise.
 int finish_wait(lua_State* L, int status, lua_KContext ctx);
 
