@@ -109,4 +109,22 @@ end
                              "report-small.html"})
         CHECK(std::filesystem::exists(second / file));
     CHECK_THAT(run.output, Catch::Contains("predict with --training " + first.string()));
+
+    // Diff review: another folder named "first run" wrote its outputs over the first's, untagged (the same tag).
+    const auto again = dir.path() / "elsewhere" / "first run";
+    std::filesystem::create_directories(again.parent_path());
+    std::filesystem::copy(first, again, std::filesystem::copy_options::recursive);
+    const auto twice = dir.path() / "twice.lua";
+    std::ofstream(twice) << "local rs = require 'rollsense'\n"
+                            "rs.analyse{ dataset = '" << first.string() << "', folds = 2, repeats = 1, "
+                            "params = { learners = 3 } }\n"
+                            "rs.analyse{ dataset = '" << first.string() << "/', folds = 2, repeats = 1 }\n"  // the same one
+                            "rs.analyse{ dataset = '" << again.string() << "', folds = 2, repeats = 1 }\n";
+    const auto third = dir.path() / "third";
+    run = rollsense::testing::run_rollsense("run " + twice.string() + " --profile sim --out " + third.string());
+    INFO(run.output);
+    CHECK(run.status == 1);
+    CHECK_THAT(run.output, Catch::Contains("twice.lua:4: rs.analyse: the outputs of " + again.string() +
+                                           " would replace those of " + first.string() + ", analysed earlier in this "
+                                           "run under the same tag 'first_run'; give this analysis a tag of its own"));
 }

@@ -5,6 +5,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 #include <memory>
 
 #include "rollsense/features.hpp"
@@ -64,6 +66,13 @@ std::string folder_name(const std::filesystem::path& folder) {
     for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
     return name;
+}
+
+// The dataset each tag's outputs describe in this run ("" the untagged): two datasets under one tag, two folders of
+// one name say, would write the same files, the second's replacing the first's (diff review).
+std::map<std::string, std::filesystem::path>& tagged_datasets() {
+    static std::map<std::string, std::filesystem::path> datasets;
+    return datasets;
 }
 
 // The dataset of the rs.analyse under way (unfinished_analysis()): set when it starts, cleared when it returns.
@@ -156,6 +165,12 @@ int l_analyse(lua_State* L) {
     if (tag.find('/') != std::string::npos || (!tag.empty() && tag[0] == '.'))
         return luaL_error(L, "rs.analyse: tag '%s' (given, or the folder name of dataset=) must be a plain name (no '/', "
                              "no leading '.'); give tag=\"NAME\"", tag.c_str());
+    const auto [earlier, first_use] = tagged_datasets().emplace(tag, dataset_dir);
+    if (!first_use && !same_folder(earlier->second, dataset_dir))
+        return luaL_error(L, "rs.analyse: the outputs of %s would replace those of %s, analysed earlier in this run under "
+                             "the same %s; give this analysis a tag of its own (tag=\"NAME\")",
+                          dataset_dir.c_str(), earlier->second.c_str(),
+                          tag.empty() ? "names (untagged)" : ("tag '" + tag + "'").c_str());
     const std::string suffix = tag.empty() ? "" : "-" + tag;
     // The model's name is checked before anything is written.
     const std::string model_name = opt_field_string(L, opts, "model", "model" + suffix + ".rsm");
