@@ -577,6 +577,10 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
                                    "cannot be checked against the run that recorded the dataset (only its setup in "
                                    "dataset-info.csv is), and none is written now");
             w->info_.run_config.clear();
+        } else if (auto was = read_run_config(dir); was && !lists_read_files(*was)) {
+            // Recorded before the module and include rows: it keeps none (diff review: today's digests were written,
+            // and described the trials recorded earlier too).
+            std::erase_if(w->info_.run_config, [](const auto& row) { return is_read_file_key(row.first); });
         }
         on_disk = std::move(*read);
         if (auto s = keep_earlier_run_info(dir); !s.ok()) return s.error();

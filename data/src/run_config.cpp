@@ -19,6 +19,10 @@ Result<RunConfig> read_run_config(const fs::path& dir) { return csv::read_key_va
 
 bool is_read_file_key(std::string_view key) { return key.starts_with("module.") || key.starts_with("include."); }
 
+bool lists_read_files(const RunConfig& config) {
+    return std::ranges::any_of(config, [](const auto& row) { return is_read_file_key(row.first); });
+}
+
 std::vector<std::string> run_config_differences(const RunConfig& recorded, const RunConfig& now) {
     std::map<std::string, std::pair<const std::string*, const std::string*>> both;
     for (const auto& [k, v] : recorded) both[k].first = &v;
@@ -27,8 +31,7 @@ std::vector<std::string> run_config_differences(const RunConfig& recorded, const
         const auto it = both.find(key);
         return it != both.end() && it->second.first && it->second.second && *it->second.first == *it->second.second;
     };
-    const bool recorded_before_rows =
-        std::ranges::none_of(recorded, [](const auto& row) { return is_read_file_key(row.first); });
+    const bool recorded_before_rows = !lists_read_files(recorded);
     std::vector<std::string> out;
     for (const auto& [k, values] : both) {
         // A profile file is compared by its content: "./hand.lua" and "/lab/hand.lua" are one profile.

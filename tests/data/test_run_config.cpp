@@ -126,3 +126,28 @@ TEST_CASE("resume refuses another run configuration and records a cut-short tria
     CHECK((*resumed)->has_trial("C1-v10-r001"));
     CHECK_FALSE((*resumed)->has_trial("C2-v10-r001"));  // recorded again by the run
 }
+
+// Diff review: a dataset recorded before the module and include rows existed was resumed (as it should), but its
+// run-config.csv was rewritten with today's digests, which then described the trials recorded earlier too.
+TEST_CASE("a resumed dataset recorded before the module rows keeps none, one that lists them keeps today's",
+          "[run_config]") {
+    const RunConfig old_config{{"script", "a.lua"}, {"set.runs", "3"}};
+    const RunConfig now{{"script", "a.lua"}, {"module.etroll_fnv1a", "1f"}, {"set.runs", "3"}};
+    for (const bool listed_before : {false, true}) {
+        INFO(listed_before);
+        TempDir dir("rollsense-run-config-rows");
+        {
+            auto w = DatasetWriter::open(dir.path(), info_with(listed_before ? now : old_config), DatasetOpenMode::create);
+            REQUIRE(w.ok());
+            REQUIRE((*w)->add_trial(record("C1"), samples(20)).ok());
+            REQUIRE((*w)->flush().ok());
+        }
+        auto resumed = DatasetWriter::open(dir.path(), info_with(now), DatasetOpenMode::resume);
+        REQUIRE(resumed.ok());
+        REQUIRE((*resumed)->add_trial(record("C2"), samples(20)).ok());
+        REQUIRE((*resumed)->flush().ok());
+        const auto written = read_run_config(dir.path());
+        REQUIRE(written.ok());
+        CHECK(*written == (listed_before ? now : old_config));
+    }
+}

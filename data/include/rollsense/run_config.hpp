@@ -35,6 +35,7 @@ std::string format_run_config(const RunConfig& config);
 // A row naming a file the run read ("module.NAME_fnv1a", "include.NAME_fnv1a"), which a dataset recorded before
 // those rows existed lacks: resume and merge compare them only where both sides list such rows.
 bool is_read_file_key(std::string_view key);
+bool lists_read_files(const RunConfig& config);
 // Reads <dir>/run-config.csv; an empty config when the dataset has none
 // (recorded before the file existed).
 Result<RunConfig> read_run_config(const std::filesystem::path& dir);
