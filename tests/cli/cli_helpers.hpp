@@ -20,13 +20,6 @@ inline std::string rollsense_bin() { return std::string(ROLLSENSE_BIN_DIR) + "/r
 
 inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
-// Counts non-overlapping occurrences of `needle`.
-inline std::size_t count_of(const std::string& hay, const std::string& needle) {
-    std::size_t n = 0;
-    for (auto pos = hay.find(needle); pos != std::string::npos; pos = hay.find(needle, pos + needle.size())) ++n;
-    return n;
-}
-
 // In a forked child: becomes `rollsense ARGS` (exit 127 if it cannot).
 [[noreturn]] inline void exec_rollsense(const std::vector<std::string>& args) {
     std::vector<std::string> all{rollsense_bin()};

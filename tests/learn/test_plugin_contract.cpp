@@ -19,6 +19,7 @@ const std::string kPluginPath = std::string(" --plugin-path ") + ROLLSENSE_LEARN
 const std::string kPlugin = kPluginPath + " --classifier test_odd_scores";
 const std::string kNamed = "plugin error: classifier plugin 'test_odd_scores' ";
 
+using rollsense::testing::count_of;
 rollsense::testing::CommandRun rollsense_cli(const std::string& args) { return rollsense::testing::run_rollsense(args); }
 
 // evaluate with `mode` must stop with exit 3 saying `says` after the plugin's name, writing nothing.
@@ -138,7 +139,7 @@ TEST_CASE("a classifier plugin with no class names once trained is said to retur
 // cross-validation, when tuning first set the parameter.
 TEST_CASE("a classifier plugin whose search space names an undeclared parameter is refused by plugins --check and "
           "before evaluate --optimize cross-validates", "[learn][cli][plugin]") {
-    const std::string path = std::string(" --plugin-path ") + ROLLSENSE_STRAY_SEARCH_PLUGIN_DIR;
+    const std::string path = std::string(" --plugin-path ") + ROLLSENSE_TEST_PLUGINS_DIR + "/test-plugins-stray-search";
     const std::string says = "classifier plugin 'test_stray_search' names the parameter 'depth' in its search_space(), "
                              "which its schema() does not declare (it declares: smoothing)";
     const std::string way_out = "declare 'depth' in schema() or drop it from search_space()";
@@ -165,4 +166,33 @@ TEST_CASE("a classifier plugin whose search space names an undeclared parameter 
     CHECK(r.status == 3);
     CHECK_THAT(r.output, Catch::Contains(says));
     fs::remove_all(dir);
+}
+
+// User review (out-of-tree plugins): a search space wider than the schema passed --check and failed at the first
+// optimiser evaluation, after the preset's CV, read as the user's own value (exit 1); a plugin that cannot be
+// configured with its defaults passed --check, which the docs say configures it.
+TEST_CASE("plugins --check refuses a search space wider than the schema, and a classifier its defaults cannot configure",
+          "[learn][cli][plugin]") {
+    const std::string plugins = std::string(" --plugin-path ") + ROLLSENSE_TEST_PLUGINS_DIR + "/test-plugins-";
+    const std::string wide = "the search_space() of classifier plugin 'test_wide_search': key 'smoothing': 50 is outside "
+                             "the allowed range [0, 10]; tuning may try only values its schema() accepts: the plugin "
+                             "must narrow its search_space() or widen its schema()";
+    auto r = rollsense_cli("plugins --check" + plugins + "wide-search");
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "FAILED configured with its defaults: " + wide) == 1);
+    const auto dir = rollsense::testing::make_dataset();
+    r = rollsense_cli("evaluate " + (dir / "dataset").string() + " --folds 3 --repeats 1 --optimize" + plugins +
+                      "wide-search --classifier test_wide_search -o " + (dir / "eval.txt").string());
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, wide) == 1);
+    CHECK_THAT(r.output, !Catch::Contains("cross-validating the preset"));
+    fs::remove_all(dir);
+
+    r = rollsense_cli("plugins --check" + plugins + "throwing-configure");
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "FAILED configured with its defaults: classifier plugin 'test_throwing_configure': threw "
+                             "an exception in configure: no licence file found") == 1);
 }

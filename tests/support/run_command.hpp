@@ -26,6 +26,13 @@ inline CommandRun run_command(const std::string& command) {
     return r;
 }
 
+// Counts non-overlapping occurrences of `needle` (a message printed once, not twice).
+inline std::size_t count_of(const std::string& hay, const std::string& needle) {
+    std::size_t n = 0;
+    for (auto pos = hay.find(needle); pos != std::string::npos; pos = hay.find(needle, pos + needle.size())) ++n;
+    return n;
+}
+
 // `rollsense ARGS` from this build.
 inline CommandRun run_rollsense(const std::string& args) {
     return run_command(std::string(ROLLSENSE_BIN_DIR) + "/rollsense " + args);

@@ -1,10 +1,13 @@
-// A classifier plugin whose search_space() names a parameter ('depth') that
-// its schema() does not declare, as a plugin written outside this repository
-// might after renaming a parameter: `plugins --check` and `evaluate --optimize`
-// must refuse it up front, naming the plugin and the parameter. Otherwise an
-// honest classifier: the training set's class frequencies, smoothed.
+// A classifier plugin whose declarations are wrong, as a plugin written outside this repository might get them
+// (built once per mistake, tests/learn/CMakeLists.txt): `plugins --check` and `evaluate --optimize` must refuse it up
+// front, naming the plugin and the way out.
+//   STRAY_MISTAKE_stray_search: search_space() names a parameter ('depth') schema() does not declare (renamed, say);
+//   STRAY_MISTAKE_wide_search: search_space() searches 'smoothing' up to 50, which schema() caps at 10;
+//   STRAY_MISTAKE_throwing_configure: configuring it (with its defaults too) throws.
+// Otherwise an honest classifier: the training set's class frequencies, smoothed.
 #include <algorithm>
 #include <fstream>
+#include <stdexcept>
 
 #include "rollsense/plugin.hpp"
 
@@ -18,12 +21,19 @@ ParamSchema stray_search_schema() {
 class StraySearch final : public Classifier {
 public:
     Status on_configure(const ParamSet& p, const PluginContext&) override {
+#ifdef STRAY_MISTAKE_throwing_configure
+        throw std::runtime_error("no licence file found");
+#endif
         smoothing_ = p.get_number("smoothing");
         return {};
     }
     SearchSpace search_space(std::size_t, std::size_t) const override {
         using Scale = SearchDimension::Scale;
+#ifdef STRAY_MISTAKE_stray_search
         return {{"smoothing", Scale::real_linear, 0.0, 10.0, {}}, {"depth", Scale::integer_linear, 1, 8, {}}};
+#else
+        return {{"smoothing", Scale::real_linear, 0.0, 50.0, {}}};
+#endif
     }
     Status train(const FeatureTable& data) override {
         classes_ = data.class_names;
@@ -67,5 +77,5 @@ private:
 };
 }  // namespace
 
-ROLLSENSE_PLUGIN(StraySearch, classifier, "test_stray_search", "0.0.1",
-                 "test classifier whose search space names a parameter its schema lacks", stray_search_schema)
+ROLLSENSE_PLUGIN(StraySearch, classifier, STRAY_NAME, "0.0.1", "test classifier whose declarations are wrong",
+                 stray_search_schema)

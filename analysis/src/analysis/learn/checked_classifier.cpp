@@ -67,7 +67,27 @@ Status check_search_space(const SearchSpace& space, const ParamSchema& schema, c
                     "), so tuning could not set it; the plugin must declare '" + d.name +
                     "' in schema() or drop it from search_space() (ask its author)"};
     }
+    // Every value tuning may try is one the schema accepts (user review: k searched up to 50 against a schema's
+    // [1, 10] failed at the first optimiser evaluation, after the preset's CV, and read as the user's own k).
+    using Scale = SearchDimension::Scale;
+    for (const auto& d : space) {
+        std::vector<ParamValue> ends(d.choices.begin(), d.choices.end());
+        if (d.scale == Scale::integer_linear || d.scale == Scale::integer_log)
+            ends = {static_cast<std::int64_t>(d.low), static_cast<std::int64_t>(d.high)};
+        else if (d.scale != Scale::categorical)
+            ends = {d.low, d.high};
+        for (const auto& value : ends)
+            if (auto ok = validate_params(schema, {{d.name, value}}, "the search_space() of " + who); !ok)
+                return {ErrorCode::plugin_error, ok.error().message + "; tuning may try only values its schema() "
+                                                 "accepts: the plugin must narrow its search_space() or widen its "
+                                                 "schema() (ask its author)"};
+    }
     return {};
+}
+
+Status in_classifier(Status status, const std::string& name) {
+    if (status.message().starts_with("classifier plugin '" + name + "'")) return status;
+    return std::move(status).with_context("classifier '" + name + "'");
 }
 
 namespace {

@@ -20,10 +20,11 @@ namespace rollsense::learn {
 // names the classifier in the error.
 Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who);
 
-// Every dimension of `space` names a parameter of `schema`: tuning sets them as
-// parameters, so a name the schema does not declare would be refused only after
-// the preset's cross-validation, when tuning first configures a classifier
-// (review); a plugin error naming `who`, the parameter and the way out.
+// Every dimension of `space` names a parameter of `schema` and stays within
+// what it accepts (both ends, every choice): tuning sets them as parameters, so
+// a name the schema does not declare, or a value it refuses, would fail only
+// after the preset's cross-validation, when tuning first configures a
+// classifier (reviews); a plugin error naming `who`, the parameter and the way out.
 Status check_search_space(const SearchSpace& space, const ParamSchema& schema, const std::string& who);
 
 // `inner` behind check_prediction on every predict (classes: its class_names()
@@ -32,6 +33,10 @@ Status check_search_space(const SearchSpace& space, const ParamSchema& schema, c
 // train, load, predict, save or invoke is returned as a plugin error naming `who` with the exception's text,
 // and load's errors name `who`; one from input, search_space or class_names,
 // which have no error return, is thrown on as that error (a StatusError).
+// `status` in the context of the classifier `name` (a --classifier entry), unless its message starts with the
+// plugin of that name already (user review: "classifier 'knn': classifier plugin 'knn': ...").
+Status in_classifier(Status status, const std::string& name);
+
 ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who, ParamSchema schema);
 
 }  // namespace rollsense::learn

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <set>
 
+#include "analysis/learn/checked_classifier.hpp"
 #include "analysis/learn/folds.hpp"
 #include "analysis/learn/parallel_for.hpp"
 
@@ -239,7 +240,7 @@ Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows
         const auto one_started = std::chrono::steady_clock::now();
         auto one = evaluate_one(rows, input.tables[request.table], row_of, group_ptr, ev.plan, ev.schemes, request, options,
                                 classifiers.size() > 1);
-        if (!one) return Status(one.error()).with_context("classifier '" + request.name + "'");
+        if (!one) return in_classifier(one.error(), request.name);
         one->input = input.kinds[request.table];
         one->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - one_started).count();
         ev.classifiers.push_back(std::move(one).value());

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "rollsense/atomic_file.hpp"
+#include "analysis/learn/checked_classifier.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/inputs.hpp"
 #include "analysis/learn/plugin_factory.hpp"
@@ -72,7 +73,7 @@ Result<std::vector<PreparedClassifier>> prepare_classifiers(runtime::PluginRegis
         if (!factory) return factory.error();
         // One instance now: checks the parameters and tells the input kind.
         auto probe = (*factory)(s.params);
-        if (!probe) return Status(probe.error()).with_context("classifier '" + s.name + "'");
+        if (!probe) return in_classifier(probe.error(), s.name);
         out.push_back({s, std::move(factory).value(), (*probe)->input()});
     }
     return out;

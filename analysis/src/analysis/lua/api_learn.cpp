@@ -68,7 +68,7 @@ std::string folder_name(const std::filesystem::path& folder) {
     return name;
 }
 
-// The dataset each tag's outputs describe in this run ("" the untagged): two datasets under one tag, two folders of
+// The dataset each tag's outputs describe in this session ("" the untagged): two datasets under one tag, two folders of
 // one name say, would write the same files, the second's replacing the first's (diff review).
 std::map<std::string, std::filesystem::path>& tagged_datasets() {
     static std::map<std::string, std::filesystem::path> datasets;
@@ -576,6 +576,7 @@ void register_learn(lua_State* L) {
         {"classifier", l_classifier}, {"identification_channels", l_identification_channels}, {nullptr, nullptr}};
     luaL_setfuncs(L, fns, 0);
     analysis_under_way().reset();  // a new session
+    tagged_datasets().clear();
     // Features from memory: every trial this session's recorder makes durable
     // goes through a RecordedFeatures, which rs.analyse reads (its upvalue). The
     // recorder's observer owns it, and the recorder outlives the Lua state.

@@ -16,7 +16,8 @@ ComponentHandle::~ComponentHandle() {
 
 const std::string& ComponentHandle::plugin_name() const { return library_->name(); }
 
-std::string ComponentHandle::describe() const {
+std::string ComponentHandle::describe() const {  // a classifier is no device of the profile (user review)
+    if (library_->manifest().kind == PluginKind::classifier) return "classifier plugin '" + plugin_name() + "'";
     return "device '" + instance_ + "' (plugin '" + plugin_name() + "')";
 }
 
