@@ -262,6 +262,25 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     INFO(shipped.output);
     CHECK(shipped.status == 0);
     CHECK(shipped.output.find("SCHEMA FAILED") == std::string::npos);
+
+    // User review (out-of-tree plugins): a build's copy given with --plugin-path, its namesake also installed (the
+    // docs' workflow), failed --check; the installed copy is unused, by the search order, not a failure.
+    TempDir over("rollsense-cli-plugins-override");
+    const std::string installed = std::string(ROLLSENSE_BIN_DIR) + "/../lib/rollsense/plugins/librollsense_example_bump.so";
+    std::filesystem::copy_file(installed, over / "librollsense_example_bump.so");
+    const auto overriding = run_rollsense("plugins --check --plugin-path " + shell_quoted(over.path()));
+    INFO(overriding.output);
+    CHECK(overriding.status == 0);
+    CHECK(count_of(overriding.output, "  unused ") == 1);
+    CHECK(overriding.output.find("FAILED") == std::string::npos);
+    // Two copies in one folder are a mistake: which one runs depends on their names.
+    std::filesystem::copy_file(installed, over / "librollsense_example_bump2.so");
+    const auto two_copies = run_rollsense("plugins --check --plugin-path " + shell_quoted(over.path()));
+    INFO(two_copies.output);
+    CHECK(two_copies.status == 3);
+    CHECK(count_of(two_copies.output, "FAILED " + (over / "librollsense_example_bump2.so").string() + "\n      shadowed: a "
+                                 "plugin named 'example_bump' was already found at " +
+                                 (over / "librollsense_example_bump.so").string() + ", in the same folder") == 1);
 }
 
 // Review: a plugin whose static initialiser throws ended `plugins` with "unexpected error" naming no file, and a

@@ -2,6 +2,8 @@
 // reported with its reason; instances keep their library loaded.
 #include <catch2/catch.hpp>
 
+#include <map>
+
 #include "kernel_fixture.hpp"
 #include "log_capture.hpp"
 #include "runtime/plugin/plugin_registry.hpp"
@@ -153,14 +155,26 @@ TEST_CASE("asking for a plugin of the wrong kind says which kind it is", "[loade
     CHECK_THAT(r.error().message, Catch::Contains("is an actuator plugin, not a sensor"));
 }
 
-TEST_CASE("a second plugin with the same name is reported as shadowed", "[loader]") {
+// User review (out-of-tree plugins): the copy a folder earlier in the search path overrides (a build's --plugin-path
+// over the installed one) is the search order at work; two of one name in one folder are a mistake.
+TEST_CASE("a second plugin with the same name is reported as shadowed, overridden when in a later folder", "[loader]") {
     kt::TempDir dir;
-    fs::copy_file(fs::path(ROLLSENSE_PLUGIN_DIR) / "librollsense_example_bump.so", dir / "librollsense_copy.so");
-    PluginRegistry reg({ROLLSENSE_PLUGIN_DIR, dir.path()});
-    bool shadowed = false;
-    for (const auto& c : reg.scan())
-        if (c.path.filename() == "librollsense_copy.so") shadowed = c.failure.find("shadowed") != std::string::npos;
-    CHECK(shadowed);
+    const fs::path bump = fs::path(ROLLSENSE_PLUGIN_DIR) / "librollsense_example_bump.so";
+    fs::create_directories(dir / "later");
+    fs::copy_file(bump, dir / "later" / "librollsense_copy.so");
+    fs::copy_file(bump, dir / "librollsense_a.so");
+    fs::copy_file(bump, dir / "librollsense_b.so");
+    PluginRegistry reg({dir.path(), dir / "later"});
+    std::map<std::string, const PluginCandidate*> by_file;
+    for (const auto& c : reg.scan()) by_file[c.path.filename().string()] = &c;
+    REQUIRE(by_file.size() == 3);
+    CHECK(by_file["librollsense_a.so"]->library);
+    CHECK(by_file["librollsense_b.so"]->failure ==
+          "shadowed: a plugin named 'example_bump' was already found at " + (dir / "librollsense_a.so").string() +
+              ", in the same folder");
+    CHECK_FALSE(by_file["librollsense_b.so"]->overridden);
+    CHECK_THAT(by_file["librollsense_copy.so"]->failure, Catch::EndsWith(", earlier in the search path"));
+    CHECK(by_file["librollsense_copy.so"]->overridden);
 }
 
 // Review (s8 item 2): a damaged copy earlier in the search path (e.g. a rebuild cut short in a

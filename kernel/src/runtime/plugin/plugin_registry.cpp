@@ -139,13 +139,11 @@ const std::vector<PluginCandidate>& PluginRegistry::scan() {
         std::sort(files.begin(), files.end());
         for (const auto& f : files) {
             auto c = load_file(f);
-            if (c.library) {
-                auto [it, inserted] = seen.emplace(c.library->name(), f);
-                if (!inserted) {
-                    c.failure = "shadowed: a plugin named '" + c.library->name() + "' was already found at " +
-                                it->second.string() + " (earlier in the search path)";
-                    c.library.reset();
-                }
+            if (auto [it, first] = c.library ? seen.emplace(c.library->name(), f) : std::pair(seen.end(), true); !first) {
+                c.overridden = it->second.parent_path() != dir;  // --plugin-path over the installed copy: by design
+                c.failure = "shadowed: a plugin named '" + c.library->name() + "' was already found at " +
+                            it->second.string() + (c.overridden ? ", earlier in the search path" : ", in the same folder");
+                c.library.reset();
             }
             candidates_.push_back(std::move(c));
         }

@@ -40,6 +40,7 @@ struct PluginCandidate {
     std::filesystem::path path;
     std::shared_ptr<const LoadedLibrary> library;  // null when it failed to load
     std::string failure;                           // why it is not usable
+    bool overridden = false;                       // a namesake in a folder earlier in the search path is used
     bool warned = false;                           // find() said once that a namesake runs instead
     bool is_plugin(const std::string& n) const {  // loaded as plugin n, or its file (librollsense_<n>.so) refused
         return library ? library->name() == n : path.filename().string().starts_with("librollsense_" + n + ".so");
