@@ -2,7 +2,8 @@
 # passes the -D variables). Each step stops the test with a message naming
 # the step, the command and its output.
 #   1. install the `sdk` component of the build into WORK_DIR/prefix
-#   2. probe the package: targets, version rule, conformance headers compile
+#   2. probe the package: targets, version rule, conformance headers compile,
+#      a program calling the installed features and HAL libraries links
 #   3. copy example_bump as example_bump_oot (a manifest name of its own, so
 #      it cannot be mistaken for, or shadowed by, the in-tree plugin) beside
 #      out_of_tree/CMakeLists.txt; configure and build it against the prefix
@@ -70,7 +71,7 @@ get_filename_component(config_dir "${config_files}" DIRECTORY)
 # 2. probe
 run("configuring the package probe (tests/sdk_package/probe)" "${CMAKE_COMMAND}" -S "${here}/probe"
     -B "${WORK_DIR}/probe" ${configure_args} -DEXPECT_VERSION=${ROLLSENSE_VERSION})
-run("building the package probe (conformance headers)" "${CMAKE_COMMAND}" --build "${WORK_DIR}/probe")
+run("building the package probe (conformance headers, installed libraries)" "${CMAKE_COMMAND}" --build "${WORK_DIR}/probe")
 
 # 3. the out-of-tree plugin
 set(src "${WORK_DIR}/src")
