@@ -263,6 +263,11 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     CHECK(shipped.status == 0);
     CHECK(shipped.output.find("SCHEMA FAILED") == std::string::npos);
 
+    // User review (out-of-tree plugins): a string parameter's choices were shown only by the error of a wrong one.
+    const auto params = run_rollsense("plugins --params");
+    CHECK(params.output.find("split_criterion        string           = 'gdi' one of 'gdi', 'deviance', 'twoing'\n") !=
+          std::string::npos);
+
     // User review (out-of-tree plugins): a build's copy given with --plugin-path, its namesake also installed (the
     // docs' workflow), failed --check; the installed copy is unused, by the search order, not a failure.
     TempDir over("rollsense-cli-plugins-override");

@@ -46,6 +46,8 @@ void print_schema(const ParamSchema& schema) {
         if (p.min || p.max)
             range = " [" + (p.min ? format_param_value(*p.min) : std::string("-inf")) + ", " +
                     (p.max ? format_param_value(*p.max) : std::string("inf")) + "]";
+        for (std::size_t i = 0; i < p.choices.size(); ++i)  // user review: shown only by the error of a wrong one
+            range += (i == 0 ? " one of " : ", ") + format_param_value(p.choices[i]);
         std::printf("      %-22s %-16s = %s%s%s\n          %s\n", p.name.c_str(), std::string(to_string(p.type)).c_str(),
                     def.c_str(), range.c_str(), p.unit.empty() ? "" : (" " + p.unit).c_str(), p.doc.c_str());
     }
