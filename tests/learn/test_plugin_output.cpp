@@ -61,7 +61,9 @@ TEST_CASE("a classifier plugin's wrong scores or label stop evaluate, train's us
         r = rollsense_cli("predict " + model.string() + " " + d + " --plugin-path " + ROLLSENSE_LEARN_TEST_PLUGIN_DIR);
         INFO(r.output);
         CHECK(r.status == 3);
-        CHECK_THAT(r.output, Catch::Contains("rollsense predict: plugin error: classifier plugin 'test_odd_scores' " + std::string(c.says)));
+        // The trial it broke on is named (user review).
+        CHECK_THAT(r.output, Catch::Contains("rollsense predict: plugin error: trial 'C1-r0': classifier plugin "
+                                             "'test_odd_scores' " + std::string(c.says)));
     }
     // Review (plugins): a training the plugin refused (an error status, not a throw) was said without its name.
     for (const char* command : {"train", "evaluate"}) {

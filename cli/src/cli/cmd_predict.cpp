@@ -230,7 +230,8 @@ void range_warnings(const std::array<double, features::kFeatureCount>& x, const 
 Status decide(const Classifier& clf, std::span<const double> input, Outcome& o) {
     auto p = clf.predict(input);
     if (!p) {
-        if (p.error().code == ErrorCode::plugin_error) return p.error();
+        if (p.error().code == ErrorCode::plugin_error)  // the trial it broke on (user review: not named)
+            return Status(p.error()).with_context("trial '" + o.trial_id + "'");
         o.reason = "the classifier failed: " + p.error().describe();
         return {};
     }
