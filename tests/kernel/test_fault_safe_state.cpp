@@ -40,7 +40,7 @@ Profile faulty_bus(const std::string& inject) {
                           {"contact", std::vector<double>{nan, 20, nan}},
                           {"free_speed_per_ma", 0.2},
                           {"extended", std::vector<std::string>{}},
-                          {"inject", std::vector<std::string>{inject}}}});
+                          {"inject", inject.empty() ? std::vector<std::string>{} : std::vector<std::string>{inject}}}});
     for (auto [name, lo, hi, torque_off] : {std::tuple{"finger", -50.0, 50.0, false},
                                             std::tuple{"pusher", -60.0, 60.0, true},
                                             std::tuple{"palm", 30.0, 110.0, false}}) {
@@ -103,6 +103,36 @@ Outcome run_until_fault(const std::string& inject) {
 }
 
 }  // namespace
+
+// The nineteenth note's list: the release at a normal end (Session: keep_released = the run ended well) was tested
+// through the cleanup only, not through the shutdown's own safe state.
+TEST_CASE("the shutdown after a normal end keeps a released joint released, after a failure it holds it", "[safety]") {
+    for (const bool keep_released : {true, false}) {
+        INFO(keep_released);
+        const Profile profile = faulty_bus("");
+        PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
+        auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
+        REQUIRE(created.ok());
+        auto& robot = **created;
+        REQUIRE(robot.activate(0.0).ok());
+        Joint& finger = *robot.find_joint("finger");
+        JointCommand release = hold_command(finger);
+        release.torque_enabled = false;
+        REQUIRE(robot.command_joint(finger, release).ok());
+        REQUIRE(robot.control_tick(0.01, 0.01).ok());
+        auto* handle = dynamic_cast<ActuatorHandle*>(robot.find_device("hand"));
+        REQUIRE(handle);
+        std::vector<JointState> states(3);
+        REQUIRE(handle->plugin().read(0.02, states).ok());
+        REQUIRE_FALSE(states[0].torque_enabled);
+
+        robot.shutdown(0.03, keep_released);
+        // What the shutdown's safe state wrote, before the devices were released.
+        CHECK(finger.command.torque_enabled == !keep_released);
+        CHECK(robot.find_joint("palm")->command.torque_enabled);       // hold, either way
+        CHECK_FALSE(robot.find_joint("pusher")->command.torque_enabled);  // the profile's torque off, either way
+    }
+}
 
 TEST_CASE("one servo falls silent: every joint that still answers gets the profile's safe action", "[safety][fault]") {
     const auto r = run_until_fault("finger:silent:1.0");
