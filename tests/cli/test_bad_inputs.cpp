@@ -280,7 +280,8 @@ TEST_CASE("rollsense plugins --check fails on a schema that declares a parameter
     CHECK(overriding.output.find("FAILED") == std::string::npos);
     // Two copies in one folder are a mistake: which one runs depends on their names.
     std::filesystem::copy_file(installed, over / "librollsense_example_bump2.so");
-    const auto two_copies = run_rollsense("plugins --check --plugin-path " + shell_quoted(over.path()));
+    // Written with a trailing '/' too (diff review: the folder was then taken for an earlier one, and passed).
+    const auto two_copies = run_rollsense("plugins --check --plugin-path " + shell_quoted(over.path().string() + "/"));
     INFO(two_copies.output);
     CHECK(two_copies.status == 3);
     CHECK(count_of(two_copies.output, "FAILED " + (over / "librollsense_example_bump2.so").string() + "\n      shadowed: a "

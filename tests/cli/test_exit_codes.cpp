@@ -124,6 +124,19 @@ TEST_CASE("a name the profile lacks is the script's mistake (1), a script that d
     INFO(controller.output);
     CHECK(controller.status == 1);
     CHECK(count_of(controller.output, "controller.lua:2: no controller 'nope' in profile 'sim'") == 1);
+    // Switched off too (diff review: it passed in silence, leaving a misspelt controller on).
+    const auto off = run("off", "rs.controller('nope', false)");
+    CHECK(off.status == 1);
+    CHECK(count_of(off.output, "off.lua:2: no controller 'nope' in profile 'sim'") == 1);
+    // A controller the profile configures with a joint it lacks is the profile's mistake (3), not the script's.
+    write_file(dir / "bad-controller.lua", "local p = include('sim')\n"
+                                           "p.controllers = { palm_parallel = { sensing = 'nope_joint' } }\nreturn p\n");
+    write_file(dir / "profiled.lua", "local rs = require 'rollsense'\nrs.controller('palm_parallel', true)\n");
+    const auto profiled = run_rollsense("run " + shell_quoted(dir / "profiled.lua") + " --profile " +
+                                        shell_quoted(dir / "bad-controller.lua") + " --out " + shell_quoted(dir / "p"));
+    INFO(profiled.output);
+    CHECK(profiled.status == 3);
+    CHECK(count_of(profiled.output, "no joint 'nope_joint' (set controllers.palm_parallel.sensing in the profile)") == 1);
     CHECK(run("joint", "rs.joint('nope')").status == 1);
     CHECK(run("device", "rs.device('nope')").status == 1);
     const auto syntax = run("syntax", "local x = = 1");

@@ -98,7 +98,7 @@ int run(const std::vector<std::string>& argv) {
         if (schema && args.flag("--check") && m.kind == PluginKind::classifier)
             if (auto s = learn::check_classifier_declarations(registry, m.name); !s) {
                 ++failed;
-                std::printf("      FAILED configured with its defaults: %s\n", s.message().c_str());
+                std::printf("      FAILED: %s\n", s.message().c_str());
             }
     }
     std::printf("\nbuilt-in controllers:");

@@ -3,6 +3,7 @@
 // front, naming the plugin and the way out.
 //   STRAY_MISTAKE_stray_search: search_space() names a parameter ('depth') schema() does not declare (renamed, say);
 //   STRAY_MISTAKE_wide_search: search_space() searches 'smoothing' up to 50, which schema() caps at 10;
+//   STRAY_MISTAKE_crooked_search: search_space() searches its integer 'neighbours' on a real scale;
 //   STRAY_MISTAKE_throwing_configure: configuring it (with its defaults too) throws.
 // Otherwise an honest classifier: the training set's class frequencies, smoothed.
 #include <algorithm>
@@ -15,7 +16,11 @@ namespace {
 using namespace rollsense;
 
 ParamSchema stray_search_schema() {
-    return {param_number("smoothing", 1.0, "added to every class's count", 0.0, 10.0)};
+    return {param_number("smoothing", 1.0, "added to every class's count", 0.0, 10.0),
+#ifdef STRAY_MISTAKE_crooked_search
+            param_int("neighbours", 3, "unused: an integer to search", 1, 9),
+#endif
+    };
 }
 
 class StraySearch final : public Classifier {
@@ -31,6 +36,8 @@ public:
         using Scale = SearchDimension::Scale;
 #ifdef STRAY_MISTAKE_stray_search
         return {{"smoothing", Scale::real_linear, 0.0, 10.0, {}}, {"depth", Scale::integer_linear, 1, 8, {}}};
+#elif defined(STRAY_MISTAKE_crooked_search)
+        return {{"smoothing", Scale::real_linear, 0.0, 10.0, {}}, {"neighbours", Scale::real_linear, 1, 9, {}}};
 #else
         return {{"smoothing", Scale::real_linear, 0.0, 50.0, {}}};
 #endif

@@ -20,7 +20,11 @@ Result<SearchSpace> declared_search_space(const ClassifierFactory& factory, cons
     // ranges may depend on the configured parameters as well as the shape.
     auto probe = factory(params);
     if (!probe) return Status(probe.error()).with_context("asking the classifier for its search space");
-    return (*probe)->search_space(rows, cols);
+    try {  // a checked plugin throws its refused space (checked_classifier): a Status here, not a C++ exception in Lua
+        return (*probe)->search_space(rows, cols);
+    } catch (const StatusError& e) {
+        return e.status();
+    }
 }
 
 Result<SearchSpace> tuning_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,

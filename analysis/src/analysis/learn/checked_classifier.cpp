@@ -67,17 +67,31 @@ Status check_search_space(const SearchSpace& space, const ParamSchema& schema, c
                     "), so tuning could not set it; the plugin must declare '" + d.name +
                     "' in schema() or drop it from search_space() (ask its author)"};
     }
-    // Every value tuning may try is one the schema accepts (user review: k searched up to 50 against a schema's
-    // [1, 10] failed at the first optimiser evaluation, after the preset's CV, and read as the user's own k).
+    // A space the optimiser can search, of values the schema accepts (user review: k searched up to 50 against a
+    // schema's [1, 10] failed at the first optimiser evaluation, after the preset's CV, read as the user's own k;
+    // diff review: an empty range, a log scale from 0, a real scale for an integer, after the preset's CV too).
     using Scale = SearchDimension::Scale;
     for (const auto& d : space) {
+        const bool real = d.scale == Scale::real_linear || d.scale == Scale::real_log;
+        const auto spec = std::ranges::find(schema, d.name, &ParamSpec::name);  // declared: checked above
+        const std::string wrong =
+            d.scale == Scale::categorical ? (d.choices.empty() ? "no choices" : "")
+            : !(d.high >= d.low)          ? "an empty range [" + format_number(d.low) + ", " + format_number(d.high) + "]"
+            : (d.scale == Scale::integer_log || d.scale == Scale::real_log) && !(d.low > 0)
+                ? "a log scale from " + format_number(d.low) + " (it must start above 0)"
+            : real && spec->type == ParamType::integer ? "a real scale for an integer parameter"
+                                                       : "";
+        if (!wrong.empty())
+            return {ErrorCode::plugin_error, who + ": search_space() gives '" + d.name + "' " + wrong +
+                                                 ", which tuning cannot search: the plugin must fix its search_space() "
+                                                 "(ask its author)"};
         std::vector<ParamValue> ends(d.choices.begin(), d.choices.end());
         if (d.scale == Scale::integer_linear || d.scale == Scale::integer_log)
             ends = {static_cast<std::int64_t>(d.low), static_cast<std::int64_t>(d.high)};
         else if (d.scale != Scale::categorical)
             ends = {d.low, d.high};
         for (const auto& value : ends)
-            if (auto ok = validate_params(schema, {{d.name, value}}, "the search_space() of " + who); !ok)
+            if (auto ok = validate_params(schema, {{d.name, value}}, who + ": search_space()"); !ok)
                 return {ErrorCode::plugin_error, ok.error().message + "; tuning may try only values its schema() "
                                                  "accepts: the plugin must narrow its search_space() or widen its "
                                                  "schema() (ask its author)"};

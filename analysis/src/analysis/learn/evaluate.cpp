@@ -81,8 +81,8 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
     auto space = options.optimize
                      ? tuning_space(factory, request.params, n_rows, n_cols, options.space, request.name)
                      : declared_search_space(factory, request.params, n_rows, n_cols, options.space);
-    if (!space && options.optimize) return space.error();  // before minutes of CV
-    rep.space = space ? std::move(space).value() : SearchSpace{};  // else the CV below reports the factory's error
+    if (!space) return space.error();  // before minutes of CV (a space the plugin got wrong is refused either way)
+    rep.space = std::move(space).value();
 
     say(options, "cross-validating the preset" + (several ? " of " + request.name : std::string()) + ": " +
                      std::to_string(plan.repeats()) + " x " + std::to_string(plan.folds) + "-fold on " +

@@ -57,7 +57,7 @@ Status check_classifier_declarations(runtime::PluginRegistry& registry, const st
     auto factory = plugin_classifier_factory(registry, plugin);
     if (!factory) return factory.error();
     auto probe = (*factory)(ParamSet{});  // configured with its defaults, as the docs promise (user review: not said)
-    if (!probe) return probe.error();
+    if (!probe) return Status(probe.error()).with_context("configured with its defaults");
     // The stock run's shape (1164 trials of 13 features): a space's ranges may depend on the shape, the names it
     // gives should not (and a space that does is still checked whenever tuning asks for it).
     try {

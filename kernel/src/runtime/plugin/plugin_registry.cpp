@@ -61,10 +61,10 @@ std::vector<fs::path> PluginRegistry::default_search_path(const std::vector<fs::
     const auto prefix = fs::path(boost::dll::program_location().string()).parent_path().parent_path();
     out.push_back(prefix / ROLLSENSE_PLUGIN_INSTALL_SUBDIR);
     out.push_back(prefix / "lib" / "rollsense" / "plugins");
-    // Remove duplicates (the two above when the install layout is the build tree's), keep order.
+    // Remove duplicates (the two above when the install layout is the build tree's; "dir/" and "dir"), keep order.
     std::vector<fs::path> unique;
     for (auto& p : out) {
-        auto norm = p.lexically_normal();
+        const auto norm = p.lexically_normal().has_filename() ? p.lexically_normal() : p.lexically_normal().parent_path();
         if (std::find(unique.begin(), unique.end(), norm) == unique.end()) unique.push_back(norm);
     }
     return unique;
@@ -140,7 +140,7 @@ const std::vector<PluginCandidate>& PluginRegistry::scan() {
         for (const auto& f : files) {
             auto c = load_file(f);
             if (auto [it, first] = c.library ? seen.emplace(c.library->name(), f) : std::pair(seen.end(), true); !first) {
-                c.overridden = it->second.parent_path() != dir;  // --plugin-path over the installed copy: by design
+                c.overridden = it->second.parent_path() != f.parent_path();  // --plugin-path over an installed copy
                 c.failure = "shadowed: a plugin named '" + c.library->name() + "' was already found at " +
                             it->second.string() + (c.overridden ? ", earlier in the search path" : ", in the same folder");
                 c.library.reset();
