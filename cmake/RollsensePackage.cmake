@@ -5,8 +5,9 @@
 # Included once, from the top-level CMakeLists.txt, after every layer.
 #
 # The `sdk` install component is everything a plugin author needs and nothing
-# of the runtime: the SDK and data libraries and headers, the conformance
-# suites, and the package files. A plain `cmake --install` installs it too.
+# of the runtime: the SDK, data, features and HAL (i2c, gpio) libraries and
+# headers, the conformance suites, and the package files. A plain
+# `cmake --install` installs it too.
 include(CMakePackageConfigHelpers)
 
 set(ROLLSENSE_PACKAGE_INSTALL_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/rollsense")

@@ -116,6 +116,8 @@ end
     std::filesystem::copy(first, again, std::filesystem::copy_options::recursive);
     const auto twice = dir.path() / "twice.lua";
     std::ofstream(twice) << "local rs = require 'rollsense'\n"
+                            "assert(not pcall(rs.analyse, { dataset = '" << again.string() << "', classifier = "
+                            "'no_such' }))\n"  // failed before writing: the tag stays free (diff review)
                             "rs.analyse{ dataset = '" << first.string() << "', folds = 2, repeats = 1, "
                             "params = { learners = 3 } }\n"
                             "rs.analyse{ dataset = '" << first.string() << "/', folds = 2, repeats = 1 }\n"  // the same one
@@ -124,7 +126,7 @@ end
     run = rollsense::testing::run_rollsense("run " + twice.string() + " --profile sim --out " + third.string());
     INFO(run.output);
     CHECK(run.status == 1);
-    CHECK_THAT(run.output, Catch::Contains("twice.lua:4: rs.analyse: the outputs of " + again.string() +
+    CHECK_THAT(run.output, Catch::Contains("twice.lua:5: rs.analyse: the outputs of " + again.string() +
                                            " would replace those of " + first.string() + ", analysed earlier in this "
                                            "run under the same tag 'first_run'; give this analysis a tag of its own"));
 }

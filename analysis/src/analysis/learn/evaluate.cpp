@@ -81,8 +81,10 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
     auto space = options.optimize
                      ? tuning_space(factory, request.params, n_rows, n_cols, options.space, request.name)
                      : declared_search_space(factory, request.params, n_rows, n_cols, options.space);
-    if (!space) return space.error();  // before minutes of CV (a space the plugin got wrong is refused either way)
-    rep.space = std::move(space).value();
+    // Before minutes of CV: a space the plugin got wrong is refused either way; a classifier the factory cannot make
+    // is said by the CV's first fold, as such.
+    if (!space && (options.optimize || space.error().code == ErrorCode::plugin_error)) return space.error();
+    rep.space = space ? std::move(space).value() : SearchSpace{};
 
     say(options, "cross-validating the preset" + (several ? " of " + request.name : std::string()) + ": " +
                      std::to_string(plan.repeats()) + " x " + std::to_string(plan.folds) + "-fold on " +

@@ -165,8 +165,9 @@ int l_analyse(lua_State* L) {
     if (tag.find('/') != std::string::npos || (!tag.empty() && tag[0] == '.'))
         return luaL_error(L, "rs.analyse: tag '%s' (given, or the folder name of dataset=) must be a plain name (no '/', "
                              "no leading '.'); give tag=\"NAME\"", tag.c_str());
-    const auto [earlier, first_use] = tagged_datasets().emplace(tag, dataset_dir);
-    if (!first_use && !same_folder(earlier->second, dataset_dir))
+    // Taken when its outputs are written (diff review: an analysis that failed before writing took the tag).
+    if (const auto earlier = tagged_datasets().find(tag);
+        earlier != tagged_datasets().end() && !same_folder(earlier->second, dataset_dir))
         return luaL_error(L, "rs.analyse: the outputs of %s would replace those of %s, analysed earlier in this run under "
                              "the same %s; give this analysis a tag of its own (tag=\"NAME\")",
                           dataset_dir.c_str(), earlier->second.c_str(),
@@ -242,6 +243,7 @@ int l_analyse(lua_State* L) {
     check(L, result.status());
     const learn::Evaluation& evaluation = result->evaluation;
     const learn::EvaluationReport& primary = evaluation.primary();
+    tagged_datasets().emplace(tag, dataset_dir);
     check(L, s.write_output_text("evaluation" + suffix + ".txt", learn::format_evaluation(evaluation)));
     check(L, s.write_output_text("evaluation" + suffix + ".json", learn::evaluation_json(evaluation)));
 

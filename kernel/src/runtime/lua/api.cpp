@@ -25,7 +25,7 @@ Session* session_of(lua_State* L) {
 }
 
 void raise_status(lua_State* L, const Status& status) {
-    if (auto* s = session_of(L)) s->set_raised_code(status.code());
+    if (auto* s = session_of(L)) s->set_raised(status);
     luaL_error(L, "%s", status.message().c_str());
     throw StatusError(status);  // not reached: luaL_error does not return
 }
@@ -125,10 +125,8 @@ int finish_wait(lua_State* L, int, lua_KContext) {
     LuaTask* t = resumed_task(L);
     if (!t) return 0;
     if (t->outcome() == WaitOutcome::cancelled) return raise_cancelled(L, s);
-    if (t->outcome() == WaitOutcome::timed_out) {
-        s.set_raised_code(ErrorCode::timeout);
-        return luaL_error(L, "timed out waiting for %s", t->waiting_for().c_str());
-    }
+    if (t->outcome() == WaitOutcome::timed_out)
+        raise_status(L, Status(ErrorCode::timeout, "timed out waiting for " + t->waiting_for()));
     return 0;
 }
 

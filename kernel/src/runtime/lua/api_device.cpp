@@ -62,9 +62,9 @@ int l_recover(lua_State* L) {
 int l_controller(lua_State* L) {
     Session& s = Session::of(L);
     const char* name = luaL_checkstring(L, 1);
+    const bool on = lua_isnone(L, 2) || (luaL_checktype(L, 2, LUA_TBOOLEAN), lua_toboolean(L, 2) != 0);  // not 0, "off"
     const bool known = s.robot().find_controller(name);  // unknown, switched off too (diff review): enable refuses it
-    const bool on = !known || lua_isnone(L, 2) || (luaL_checktype(L, 2, LUA_TBOOLEAN), lua_toboolean(L, 2) != 0);
-    if (!on) s.robot().disable_controller(name, s.now());
+    if (!on && known) s.robot().disable_controller(name, s.now());
     else if (auto st = s.robot().enable_controller(name, s.now()); !st.ok())  // unknown: the script's, as rs.joint's
         raise_status(L, known ? st : Status(ErrorCode::script_error, st.message()));
     return 0;

@@ -101,7 +101,7 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     // runs for it): the line the allocator noted, which cap, and the way out.
     const std::string trace = status == LUA_ERRMEM ? sandbox_.memory_error() : error_text_raw(thread_, -1);
     // The code a binding raised (a limit violation, a hardware fault) stays the script's error code.
-    ErrorCode code = session_of(main)->take_raised_code();
+    ErrorCode code = session_of(main)->take_raised_code(trace);
     if (sandbox_.cancelled()) code = sandbox_.cancel_code();
     if (code == ErrorCode::ok) code = ErrorCode::script_error;
     // A refused --set is the command line's error: its text names the setting's declaration, no traceback.

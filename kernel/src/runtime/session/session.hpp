@@ -124,13 +124,13 @@ public:
     static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 
-    // The error code of the last Status a binding raised as a Lua error, so a script that dies of it keeps the code
-    // (limit violation, hardware fault).
-    void set_raised_code(ErrorCode code) { raised_code_ = code; }
-    ErrorCode take_raised_code() {
-        auto c = raised_code_;
-        raised_code_ = ErrorCode::ok;
-        return c;
+    // The last Status a binding raised as a Lua error: a script that dies of it keeps its code (limit violation,
+    // hardware fault); not one that dies of another error after a pcall caught it (diff review: exit 3 for an error()).
+    void set_raised(Status status) { raised_ = std::move(status); }
+    ErrorCode take_raised_code(const std::string& error_text) {
+        const auto code = error_text.find(raised_.message()) != std::string::npos ? raised_.code() : ErrorCode::ok;
+        raised_ = {};
+        return code;
     }
 
     // Derive a per-trial seed from the run seed and the trial id.
@@ -162,7 +162,7 @@ private:
     std::vector<int> cleanup_refs_;
     bool prepared_ = false;
     std::atomic<bool> script_ended_{false};  // RunSummary::script_ended, for the watchdog thread's way out
-    ErrorCode raised_code_ = ErrorCode::ok;
+    Status raised_;
 };
 
 }  // namespace rollsense::runtime
