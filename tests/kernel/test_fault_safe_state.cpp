@@ -56,6 +56,19 @@ Profile faulty_bus(const std::string& inject) {
     return p;
 }
 
+// The robot of `profile`, activated at t = 0; the registry that loaded its plugins lives as long.
+struct ActiveRobot {
+    explicit ActiveRobot(const Profile& profile)
+        : registry{PluginRegistry::default_search_path(profile.plugin_path)} {
+        auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
+        REQUIRE(created.ok());
+        robot = std::move(created).value();
+        REQUIRE(robot->activate(0.0).ok());
+    }
+    PluginRegistry registry;
+    std::unique_ptr<Robot> robot;
+};
+
 struct Outcome {
     Status failure;
     double failed_at = -1;
@@ -66,11 +79,8 @@ struct Outcome {
 // injected fault stops the loop, then make the robot safe as the scheduler does.
 Outcome run_until_fault(const std::string& inject) {
     const Profile profile = faulty_bus(inject);
-    PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
-    auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
-    REQUIRE(created.ok());
-    auto& robot = **created;
-    REQUIRE(robot.activate(0.0).ok());
+    ActiveRobot active(profile);
+    auto& robot = *active.robot;
     JointCommand push;
     push.mode = ControlMode::current;
     push.current = 100;
@@ -110,11 +120,8 @@ TEST_CASE("the shutdown after a normal end keeps a released joint released, afte
     for (const bool keep_released : {true, false}) {
         INFO(keep_released);
         const Profile profile = faulty_bus("");
-        PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
-        auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
-        REQUIRE(created.ok());
-        auto& robot = **created;
-        REQUIRE(robot.activate(0.0).ok());
+        ActiveRobot active(profile);
+        auto& robot = *active.robot;
         Joint& finger = *robot.find_joint("finger");
         JointCommand release = hold_command(finger);
         release.torque_enabled = false;
@@ -155,11 +162,8 @@ TEST_CASE("a hardware error on one servo: the others get their safe action", "[s
     // Reported as a fault in the joint's state; the run stops through the
     // script or scheduler, which calls safe_state() like here.
     const Profile profile = faulty_bus("finger:hardware-error:0.5");
-    PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
-    auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
-    REQUIRE(created.ok());
-    auto& robot = **created;
-    REQUIRE(robot.activate(0.0).ok());
+    ActiveRobot active(profile);
+    auto& robot = *active.robot;
     JointCommand push;
     push.mode = ControlMode::current;
     push.current = 100;
@@ -194,11 +198,8 @@ TEST_CASE("the mock refuses a malformed fault injection, naming it", "[fault]") 
 // in three periods. Each is said once now.
 TEST_CASE("repeated safe states log each failure once", "[safety][fault]") {
     const Profile profile = faulty_bus("finger:silent:0.5");
-    PluginRegistry registry{PluginRegistry::default_search_path(profile.plugin_path)};
-    auto created = Robot::create(profile, registry, ROLLSENSE_SHARE_DIR);
-    REQUIRE(created.ok());
-    auto& robot = **created;
-    REQUIRE(robot.activate(0.0).ok());
+    ActiveRobot active(profile);
+    auto& robot = *active.robot;
     const testing::LogCapture log;
     for (double t : {1.0, 1.01, 1.02}) robot.safe_state(t);  // active still: read and write both fail each time
     INFO(log.all());
