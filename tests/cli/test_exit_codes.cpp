@@ -139,7 +139,7 @@ TEST_CASE("a name the profile lacks is the script's mistake (1), a script that d
     CHECK(count_of(profiled.output, "no joint 'nope_joint' (set controllers.palm_parallel.sensing in the profile)") == 1);
     CHECK(run("joint", "rs.joint('nope')").status == 1);
     // A refusal a pcall caught does not lend its code to a later error of the script's own (diff review: exit 3 for an
-    // error('...')); raised again, it keeps it.
+    // error('...')); raised again before another refusal, it keeps it.
     const std::string refused = "local ok, e = pcall(rs.trial, { object = 'Z9', speed = 10, repetition = 1 })\n";
     const auto own = run("own", refused + "error('the script gives up')");
     INFO(own.output);

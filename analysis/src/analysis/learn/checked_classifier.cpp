@@ -76,6 +76,8 @@ Status check_search_space(const SearchSpace& space, const ParamSchema& schema, c
         const auto spec = std::ranges::find(schema, d.name, &ParamSpec::name);  // declared: checked above
         const std::string wrong =
             d.scale == Scale::categorical ? (d.choices.empty() ? "no choices" : "")
+            : !std::isfinite(d.low) || !std::isfinite(d.high)
+                ? "a range that is not finite [" + format_number(d.low) + ", " + format_number(d.high) + "]"
             : !(d.high >= d.low)          ? "an empty range [" + format_number(d.low) + ", " + format_number(d.high) + "]"
             : (d.scale == Scale::integer_log || d.scale == Scale::real_log) && !(d.low > 0)
                 ? "a log scale from " + format_number(d.low) + " (it must start above 0)"

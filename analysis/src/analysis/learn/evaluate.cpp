@@ -81,8 +81,8 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
     auto space = options.optimize
                      ? tuning_space(factory, request.params, n_rows, n_cols, options.space, request.name)
                      : declared_search_space(factory, request.params, n_rows, n_cols, options.space);
-    // Before minutes of CV: a space the plugin got wrong is refused either way; a classifier the factory cannot make
-    // is said by the CV's first fold, as such.
+    // Before minutes of CV: a plugin's error (a space it got wrong, a configure that threw) is said at once either
+    // way; another the factory gives (a parameter out of range, say) is left to the CV's first fold, which names it.
     if (!space && (options.optimize || space.error().code == ErrorCode::plugin_error)) return space.error();
     rep.space = space ? std::move(space).value() : SearchSpace{};
 

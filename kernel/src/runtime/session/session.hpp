@@ -124,11 +124,12 @@ public:
     static Status check_output_name(const std::string& name, const std::string& what);
     const std::filesystem::path& output_dir() const { return options_.out_dir; }
 
-    // The last Status a binding raised as a Lua error: a script that dies of it keeps its code (limit violation,
-    // hardware fault); not one that dies of another error after a pcall caught it (diff review: exit 3 for an error()).
+    // The last Status a binding raised as a Lua error: a script that dies of it (its text in the error's) keeps its code
+    // (limit violation, hardware fault); not one that dies of another error after a pcall caught it (diff review).
     void set_raised(Status status) { raised_ = std::move(status); }
     ErrorCode take_raised_code(const std::string& error_text) {
-        const auto code = error_text.find(raised_.message()) != std::string::npos ? raised_.code() : ErrorCode::ok;
+        const bool carried = !raised_.message().empty() && error_text.find(raised_.message()) != std::string::npos;
+        const auto code = carried ? raised_.code() : ErrorCode::ok;
         raised_ = {};
         return code;
     }
