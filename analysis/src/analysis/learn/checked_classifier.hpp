@@ -20,12 +20,17 @@ namespace rollsense::learn {
 // names the classifier in the error.
 Status check_prediction(const Prediction& p, const std::vector<std::string>& class_names, const std::string& who);
 
-// Every dimension of `space` names a parameter of `schema` and stays within
-// what it accepts (both ends, every choice): tuning sets them as parameters, so
-// a name the schema does not declare, or a value it refuses, would fail only
-// after the preset's cross-validation, when tuning first configures a
+// Every dimension of `space` names a parameter of `schema`, is one tuning can
+// search (a finite, non-empty range or choices; a log scale above 0; a real
+// scale only for a number) and stays within what the schema accepts (both ends,
+// every choice): tuning sets them as parameters, so any of these would fail
+// only after the preset's cross-validation, when tuning first configures a
 // classifier (reviews); a plugin error naming `who`, the parameter and the way out.
 Status check_search_space(const SearchSpace& space, const ParamSchema& schema, const std::string& who);
+
+// `status` in the context of the classifier `name` (a --classifier entry), unless its message starts with the
+// plugin of that name already (user review: "classifier 'knn': classifier plugin 'knn': ...").
+Status in_classifier(Status status, const std::string& name);
 
 // `inner` behind check_prediction on every predict (classes: its class_names()
 // once trained or loaded, where none is a plugin error) and check_search_space
@@ -33,10 +38,6 @@ Status check_search_space(const SearchSpace& space, const ParamSchema& schema, c
 // train, load, predict, save or invoke is returned as a plugin error naming `who` with the exception's text,
 // and load's errors name `who`; one from input, search_space or class_names,
 // which have no error return, is thrown on as that error (a StatusError).
-// `status` in the context of the classifier `name` (a --classifier entry), unless its message starts with the
-// plugin of that name already (user review: "classifier 'knn': classifier plugin 'knn': ...").
-Status in_classifier(Status status, const std::string& name);
-
 ClassifierPtr checked_classifier(ClassifierPtr inner, std::string who, ParamSchema schema);
 
 }  // namespace rollsense::learn
