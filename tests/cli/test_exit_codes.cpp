@@ -137,6 +137,14 @@ TEST_CASE("a name the profile lacks is the script's mistake (1), a script that d
     INFO(profiled.output);
     CHECK(profiled.status == 3);
     CHECK(count_of(profiled.output, "no joint 'nope_joint' (set controllers.palm_parallel.sensing in the profile)") == 1);
+    // The same refusal in a rs.wait_until condition keeps its code (diff review: exit 1).
+    write_file(dir / "waiting.lua", "local rs = require 'rollsense'\n"
+                                    "rs.wait_until(function() rs.controller('palm_parallel', true) return true end)\n");
+    const auto waiting = run_rollsense("run " + shell_quoted(dir / "waiting.lua") + " --profile " +
+                                       shell_quoted(dir / "bad-controller.lua") + " --out " + shell_quoted(dir / "w"));
+    INFO(waiting.output);
+    CHECK(waiting.status == 3);
+    CHECK(count_of(waiting.output, "wait_until condition failed: ") == 1);
     CHECK(run("joint", "rs.joint('nope')").status == 1);
     // A refusal a pcall caught does not lend its code to a later error of the script's own (diff review: exit 3 for an
     // error('...')); raised again before another refusal, it keeps it.

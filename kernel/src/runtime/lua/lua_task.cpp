@@ -119,7 +119,8 @@ std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::stri
             // Any error value: nil, a table, a userdata (hooks are on again here).
             const std::string msg = rc == LUA_ERRMEM ? sandbox.memory_error() : error_text(main, -1);
             lua_pop(main, 1);
-            return Status(sandbox.cancelled() ? sandbox.cancel_code() : ErrorCode::script_error,
+            const ErrorCode raised = sandbox.cancelled() ? sandbox.cancel_code() : session_of(main)->take_raised_code(msg);
+            return Status(raised != ErrorCode::ok ? raised : ErrorCode::script_error,  // a refusal it died of: its code
                           "wait_until condition failed: " + msg + " (the condition of rs.wait_until at " + called_at + ")");
         }
         const bool met = lua_toboolean(main, -1);
