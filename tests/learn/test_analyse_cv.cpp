@@ -49,6 +49,10 @@ local tuned = rs.analyse{ folds = 2, repeats = 1, params = { learners = 3 }, opt
 assert(tuned.model and tuned.nested_accuracy, "a tuned model and a nested figure")
 ok, err = pcall(rs.analyse, { series_time_axis = "whole" })
 assert(not ok and tostring(err):find("roll_relative", 1, true), tostring(err))
+-- The default's name, given to the feature classifier, is refused as any other (review: it passed in silence).
+ok, err = pcall(rs.analyse, { series_amplitude = "global_scale", tag = "named" })
+assert(not ok and tostring(err):find("amplitude global_scale", 1, true) and
+       tostring(err):find("applies to series classifiers", 1, true), tostring(err))
 )";
     const auto out = dir.path() / "run";
     const auto run = rollsense::testing::run_rollsense("run " + script.string() + " --profile sim --seed 4 --out " +

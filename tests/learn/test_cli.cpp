@@ -762,6 +762,14 @@ TEST_CASE("train and evaluate refuse options that cannot apply, before any work 
     CHECK_THAT(all.output, Catch::Contains("trials=all (--trials all) takes every trial the series rule accepts") && !Catch::Contains("clean "));
     const auto evaluated = rollsense_cli("evaluate " + d + " --repeats 1 --series-amplitude z_per_channel");
     CHECK(evaluated.status == 2);
+    // Named at their preset values, as much ignored (review: global_scale, the default's name, passed in silence).
+    for (const std::string& named : {"--series-amplitude global_scale", "--series-time-axis contact"}) {
+        const auto preset = rollsense_cli("evaluate " + d + " --repeats 1 " + named);
+        INFO(preset.output);
+        CHECK(preset.status == 2);
+        CHECK_THAT(preset.output, Catch::Contains("(" + named.substr(0, named.find(' ')) + ", series_") &&
+                                      Catch::Contains("applies to series classifiers") && !Catch::Contains("clean "));
+    }
     for (const char* f : {"a.rsm", "b.rsm", "c.rsm"}) CHECK_FALSE(fs::exists(dir / f));
     fs::remove_all(dir);
 }

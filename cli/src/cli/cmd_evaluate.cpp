@@ -131,10 +131,14 @@ learn::InputOptions input_options_from_args(const Args& args) {
     learn::InputOptions in;
     if (const auto t = args.option("--trials"); !t.empty())
         in.trials = value_or_throw_usage(learn::parse_trial_selection(t), "--trials");
-    if (const auto a = args.option("--series-amplitude"); !a.empty())
+    if (const auto a = args.option("--series-amplitude"); !a.empty()) {
         in.series.amplitude = value_or_throw_usage(learn::parse_amplitude(a), "--series-amplitude");
-    if (const auto t = args.option("--series-time-axis"); !t.empty())
+        in.amplitude_named = true;
+    }
+    if (const auto t = args.option("--series-time-axis"); !t.empty()) {
         in.series.time_axis = value_or_throw_usage(learn::parse_time_axis(t), "--series-time-axis");
+        in.time_axis_named = true;
+    }
     return in;
 }
 

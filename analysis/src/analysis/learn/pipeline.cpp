@@ -170,10 +170,11 @@ Status check_input_options(const std::vector<ClassifierInput>& kinds, const Inpu
     const bool need_series = std::ranges::count(kinds, ClassifierInput::series) > 0;
     const series::SeriesSettings preset;
     // Review: --series-amplitude with a feature classifier was ignored without a word.
-    if (!need_series && (options.series.time_axis != preset.time_axis || options.series.amplitude != preset.amplitude))
+    const bool axis = options.time_axis_named || options.series.time_axis != preset.time_axis;
+    if (!need_series && (axis || options.amplitude_named || options.series.amplitude != preset.amplitude))
         return {ErrorCode::invalid_argument,
                 "the series rule's " +
-                    std::string(options.series.time_axis != preset.time_axis
+                    std::string(axis
                                     ? "time axis " + std::string(series::to_string(options.series.time_axis)) +
                                           " (--series-time-axis, series_time_axis)"
                                     : "amplitude " + std::string(series::to_string(options.series.amplitude)) +

@@ -80,6 +80,9 @@ struct InputOptions {
     series::SeriesSettings series;  // the series rule's settings (docs/series-preparation.md)
     TrialSelection trials = TrialSelection::paper_clean;
     unsigned threads = 0;           // series preparation threads (0 = all cores)
+    // The user named the series rule's amplitude or time axis (--series-*, series_*), if only at its preset value: a
+    // list of feature classifiers then refuses it rather than ignore it (review: the default's name passed in silence).
+    bool amplitude_named = false, time_axis_named = false;
 };
 
 // The channels a series classifier reads: the three the 13 features read

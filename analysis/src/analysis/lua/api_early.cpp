@@ -68,6 +68,7 @@ int l_prefix_models(lua_State* L) {
         auto amp = learn::parse_amplitude(a);
         if (!amp) raise_status(L, Status(amp.error()).with_context("rs.prefix_models"));
         inputs.series.amplitude = *amp;
+        inputs.amplitude_named = true;
     }
     auto trained = [&] {
         SliceGuard guard{s.sandbox(), L};

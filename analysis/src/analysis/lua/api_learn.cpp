@@ -226,11 +226,13 @@ int l_analyse(lua_State* L) {
         auto amp = learn::parse_amplitude(a);
         if (!amp) raise_status(L, Status(amp.error()).with_context("rs.analyse"));
         request.inputs.series.amplitude = *amp;
+        request.inputs.amplitude_named = true;
     }
     if (const auto t = opt_field_string(L, opts, "series_time_axis", ""); !t.empty()) {
         auto axis = learn::parse_time_axis(t);
         if (!axis) raise_status(L, Status(axis.error()).with_context("rs.analyse"));
         request.inputs.series.time_axis = *axis;
+        request.inputs.time_axis_named = true;
     }
 
     auto result = learn::run_pipeline(s.registry(), request, [&s, &dataset](const std::vector<features::FeatureRow>& rows) {
