@@ -197,6 +197,22 @@ TEST_CASE("a run-config.csv that is a folder is named by --resume as the dataset
     CHECK(count_of(r.output, "cannot resume: " + (ds / "run-config.csv").string() + ": is a folder, not a CSV file") == 1);
 }
 
+// User review (Lua scripts): --resume into a folder that does not exist (a path mistyped after a crash) recorded the
+// whole run again there, without a word; the stopped dataset stayed half done.
+TEST_CASE("a resume into a folder that does not exist is a usage error (2) that records nothing") {
+    TempDir dir("rollsense-cli-resume-missing");
+    const fs::path typo = dir / "dss";
+    const auto r = run_rollsense(record_four_trials(typo) + " --resume");
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(count_of(r.output, "--resume: " + typo.string() + " does not exist: there is no dataset to continue") == 1);
+    CHECK_FALSE(fs::exists(typo));
+    // An existing folder, empty (a run stopped before its first file), still resumes: a requeued shard's case.
+    fs::create_directory(typo);
+    CHECK(run_rollsense(record_four_trials(typo) + " --resume").status == 0);
+    CHECK(fs::exists(typo / "manifest.csv"));
+}
+
 // The dynamixel plugin's refusals of its parameters named neither the profile
 // file nor the parameter ("'baud' 1000001 is not ..."), and a position-mode joint's
 // max beyond one turn only warned at activation: both are the profile's error (3),

@@ -43,7 +43,8 @@ options:
                         empty, or with --resume the run's dataset (a file,
                         or a folder holding other files, is refused: the run
                         would write over them); default: runs/<script>-<date>-<time>
-  --resume              continue the dataset in --out: trials already on disk
+  --resume              continue the dataset in --out (a folder that does not
+                        exist is refused): trials already on disk
                         are kept and skipped; the result equals an uninterrupted run.
                         Refused when script, profile, --set or --seed differ
                         from the run that recorded it (run-config.csv), and

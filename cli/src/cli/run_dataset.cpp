@@ -193,6 +193,12 @@ Status check_out_folder(const fs::path& dir, bool resume, const std::optional<Sh
                                                  " (choose a new or empty folder with --out, or a dataset folder to "
                                                  "continue with --resume)"};
     std::error_code ec;
+    // User review: a resume into a misspelt folder recorded the whole run again there, the stopped dataset left as it was.
+    if (resume && !fs::exists(dir, ec))
+        return {ErrorCode::invalid_argument,
+                "--resume: " + dir.string() + " does not exist: there is no dataset to continue there (the stopped "
+                "run printed its folder after \"continue with:\"); check the path, or start a new dataset there without "
+                "--resume"};
     if (!fs::is_directory(dir, ec) || fs::is_empty(dir, ec)) return {};  // new or empty
     if (holds_dataset(dir))
         return resume ? check_resumed_shard(dir, shard) : check_no_dataset_in(dir);
