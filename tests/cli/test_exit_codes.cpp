@@ -158,6 +158,14 @@ TEST_CASE("a name the profile lacks is the script's mistake (1), a script that d
     INFO(syntax.output);
     CHECK(syntax.status == 3);
     CHECK(count_of(syntax.output, "syntax.lua:2: unexpected symbol near '='") == 1);
+    // A module that does not parse is as much the script's file (user review: exit 1 through require, 3 in the script).
+    fs::create_directories(dir / "lib");
+    write_file(dir / "lib" / "broken.lua", "local M = {}\nfunction M.f(\nreturn M\n");
+    const auto module = run("module", "local broken = require 'lib.broken'");
+    INFO(module.output);
+    CHECK(module.status == 3);
+    CHECK(count_of(module.output, "require('lib.broken'): ") == 1);
+    CHECK(count_of(module.output, "broken.lua:3: <name> or '...' expected near 'return'") == 1);
     const auto missed = run("missed", "rs.joint('palm'):move(100, {timeout_ms = 1})");
     INFO(missed.output);
     CHECK(missed.status == 4);

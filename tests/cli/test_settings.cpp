@@ -286,6 +286,23 @@ TEST_CASE("a declared default of catalogue objects that the catalogue does not h
     }
 }
 
+// User review (Lua scripts): settings declared after a trial were checked only there; a bad --set was refused with a
+// trial on disk and its value in run-config.csv, so that the resume with the value fixed was refused too.
+TEST_CASE("rs.settings after a trial began is the script's error, named with the trial and the way out") {
+    TempDir dir("rollsense-settings-late");
+    write_file(dir / "late.lua", "local rs = require 'rollsense'\n"
+                                 "local etroll = require 'etroll'\n"
+                                 "etroll.run_trial{ object = 'C1', speed = 10, repetition = 1 }\n"
+                                 "rs.settings{ runs = { default = 2, kind = 'integer', min = 1, help = 'r' } }\n");
+    const auto r = run_rollsense("run " + shell_quoted(dir / "late.lua") + " --set runs=x --out " +
+                                 shell_quoted(dir / "out"));
+    INFO(r.output);
+    CHECK(r.status == 1);
+    CHECK(count_of(r.output, "late.lua:4: rs.settings: declared after a trial began ('C1-v10-r001'): a --set is "
+                             "checked before the first trial only if its setting is declared before it") == 1);
+    CHECK(r.output.find("move this rs.settings") != std::string::npos);
+}
+
 // User review item 2: --set 'objects= C1' passed the check (its items are split at commas and spaces) but the script
 // read ' C1', and the trial id made of it was refused mid-run. The script reads the items as checked: one comma
 // between them, no space, for each kind of list.

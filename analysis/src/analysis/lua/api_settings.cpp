@@ -53,6 +53,12 @@ int l_settings(lua_State* L) {
     if (module && (ns.empty() || ns.find('.') != std::string::npos || is_profile_path(ns + ".x")))
         refuse(L, "rs.settings('" + ns + "', {...}): a module's settings live under one plain name that is not a "
                   "profile entry (devices, joints, ...); use the module's name, e.g. rs.settings('etroll', {...})");
+    // User review: declared after a trial, a bad --set was refused only then, trials on disk and the bad value in
+    // run-config.csv, so that no resume could continue them.
+    if (const auto& begun = s.recorder().trial(); !begun.id.empty())
+        refuse(L, "rs.settings: declared after a trial began ('" + begun.id + "'): a --set is checked before the first "
+                  "trial only if its setting is declared before it; move this rs.settings (or the require of the "
+                  "module that declares it) above the first rs.trial");
     const auto declarations = script_settings::read_declarations(L, module ? 2 : 1, ns);
     Settings& st = s.settings();
 

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "rollsense/log.hpp"
+#include "runtime/lua/api.hpp"
 #include "runtime/lua/pattern_guard.hpp"
 
 namespace rollsense::runtime {
@@ -163,8 +164,7 @@ void Sandbox::build_environment() {
 }
 
 Status Sandbox::load_file(const std::filesystem::path& file) {
-    std::error_code ec;
-    if (!std::filesystem::exists(file, ec))
+    if (std::error_code ec; !std::filesystem::exists(file, ec))
         return {ErrorCode::not_found, file.string() + ": no such script"};
     return bind_loaded(luaL_loadfilex(L_, file.c_str(), "t"));  // "t": text only; a precompiled chunk is refused
 }
@@ -244,12 +244,12 @@ int Sandbox::lua_require(lua_State* L) {
     for (const auto& dir : self.module_path_) {
         auto file = dir / (rel + ".lua");
         searched += "\n\t" + file.string();
-        std::error_code ec;
-        if (!std::filesystem::exists(file, ec)) continue;
+        if (std::error_code ec; !std::filesystem::exists(file, ec)) continue;
         if (!inside(dir, file))
             return luaL_error(L, "require('%s'): %s leads outside %s (a symbolic link?); modules must lie inside it",
                               name.c_str(), file.c_str(), dir.c_str());
-        if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK) return lua_error(L);
+        if (luaL_loadfilex(L, file.c_str(), "t") != LUA_OK)  // a module that does not parse: the script's (exit 3)
+            raise_status(L, {ErrorCode::parse_error, "require('" + name + "'): " + lua_tostring(L, -1)});
         lua_rawgeti(L, LUA_REGISTRYINDEX, self.env_ref_);
         lua_setupvalue(L, -2, 1);
         lua_pushstring(L, name.c_str());
