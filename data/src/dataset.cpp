@@ -596,7 +596,7 @@ Result<std::unique_ptr<DatasetWriter>> DatasetWriter::open(const fs::path& dir, 
             w->resumed_order_.push_back(t.info.id);
             if (auto loaded = on_disk->load(t); loaded) {
                 w->trials_.push_back(t);
-                w->ids_.insert(t.info.id);
+                w->ids_.emplace(t.info.id, true);
             } else {
                 log_warning("dataset", loaded.error().message + ": trial '" + t.info.id + "' is recorded again");
             }
@@ -667,7 +667,10 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     // Checked before anything is queued: an id the filesystem refuses would
     // otherwise fail the whole batch later, losing the other trials in it.
     if (auto s = check_trial_info(record.info); !s.ok()) return s;
-    if (has_trial(record.info.id))
+    if (auto it = ids_.find(record.info.id); it != ids_.end() && !it->second)  // user review: it read as resumed
+        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' was saved already in this run (a trial is "
+                                                "saved once: begin the next with rs.trial{...} under another id)"};
+    else if (it != ids_.end())
         return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string() +
                                                 " (a resumed run records only what is not on disk: skip a recorded trial with "
                                                 "'if not rs.has_trial(id)', as scripts/paper_experiment.lua does)"};
@@ -680,7 +683,7 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     record.invalid_samples = 0;
     for (auto v : data.valid) record.invalid_samples += v ? 0 : 1;
     append_manifest_row(pending_.manifest_rows, record);
-    ids_.insert(record.info.id);
+    ids_.emplace(record.info.id, false);
     pending_.trials.push_back({record, data});
     trials_.push_back(std::move(record));
     if (pending_.trials.size() >= commit_every_) hand_over();

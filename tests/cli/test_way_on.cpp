@@ -224,6 +224,16 @@ TEST_CASE("the shipped speed sweep resumes, a script that records a trial on dis
     CHECK(twice.status == 1);
     CHECK(twice.output.find("trial 'C1-v10-r001' is already in ") != std::string::npos);
     CHECK(twice.output.find("skip a recorded trial with 'if not rs.has_trial(id)'") != std::string::npos);
+    // Saved twice in one run, no resume: said as such (user review: the resume's advice, for a run that resumed nothing).
+    write_file(dir / "twice.lua", "local rs = require 'rollsense'\n"
+                                  "rs.trial{ object = 'C1', speed = 10, repetition = 1 }\n"
+                                  "rs.record_start() rs.wait(100) rs.record_stop()\nrs.save_trial()\nrs.save_trial()\n");
+    const auto in_one_run = run_rollsense("run " + shell_quoted(dir / "twice.lua") + " --no-progress --out " +
+                                          shell_quoted(dir / "twice"));
+    INFO(in_one_run.output);
+    CHECK(in_one_run.status == 1);
+    CHECK(count_of(in_one_run.output, "twice.lua:5: trial 'C1-v10-r001' was saved already in this run") == 1);
+    CHECK(in_one_run.output.find("rs.has_trial") == std::string::npos);
 }
 
 // Review (user journeys) item 3 and (bad input) item 3: the note that a resume

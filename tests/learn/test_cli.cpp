@@ -763,7 +763,7 @@ TEST_CASE("train and evaluate refuse options that cannot apply, before any work 
     const auto evaluated = rollsense_cli("evaluate " + d + " --repeats 1 --series-amplitude z_per_channel");
     CHECK(evaluated.status == 2);
     // Named at their preset values, as much ignored (review: global_scale, the default's name, passed in silence).
-    for (const std::string& named : {"--series-amplitude global_scale", "--series-time-axis contact"}) {
+    for (const std::string named : {"--series-amplitude global_scale", "--series-time-axis contact"}) {
         const auto preset = rollsense_cli("evaluate " + d + " --repeats 1 " + named);
         INFO(preset.output);
         CHECK(preset.status == 2);

@@ -24,7 +24,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
-#include <unordered_set>
+#include <unordered_map>
 #include <vector>
 
 #include "rollsense/atomic_file.hpp"
@@ -173,7 +173,7 @@ private:
     std::filesystem::path dir_;
     DatasetInfo info_;
     std::vector<TrialRecord> trials_;
-    std::unordered_set<std::string> ids_;  // of trials_: has_trial() in constant time
+    std::unordered_map<std::string, bool> ids_;  // of trials_, has_trial() in constant time: on disk when opened?
     std::vector<std::string> resumed_order_;  // the manifest's ids when resumed, if it dropped any: their places
     Batch pending_;
     std::size_t commit_every_ = 1;
