@@ -667,13 +667,15 @@ Status DatasetWriter::add_trial(TrialRecord record, const TrialData& data) {
     // Checked before anything is queued: an id the filesystem refuses would
     // otherwise fail the whole batch later, losing the other trials in it.
     if (auto s = check_trial_info(record.info); !s.ok()) return s;
-    if (auto it = ids_.find(record.info.id); it != ids_.end() && !it->second)  // user review: it read as resumed
-        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' was saved already in this run (a trial is "
-                                                "saved once: begin the next with rs.trial{...} under another id)"};
-    else if (it != ids_.end())
-        return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' is already in " + dir_.string() +
-                                                " (a resumed run records only what is not on disk: skip a recorded trial with "
-                                                "'if not rs.has_trial(id)', as scripts/paper_experiment.lua does)"};
+    // On disk when opened, or saved in this run (user review: the second read as the first, with a resume's advice).
+    if (auto it = ids_.find(record.info.id); it != ids_.end())
+        return {ErrorCode::invalid_argument,
+                "trial '" + record.info.id + "' " +
+                    (it->second ? "is already in " + dir_.string() +
+                                      " (a resumed run records only what is not on disk: skip a recorded trial with "
+                                      "'if not rs.has_trial(id)', as scripts/paper_experiment.lua does)"
+                                : std::string("was saved already in this run (a trial is saved once: begin the next "
+                                              "with rs.trial{...} under another id)"))};
     if (data.channels.size() != info_.channels.size() || data.joints.size() != info_.joints.size())
         return {ErrorCode::invalid_argument, "trial '" + record.info.id + "' has " +
                                                  std::to_string(data.channels.size()) + " channels, the dataset " +
