@@ -208,3 +208,22 @@ TEST_CASE("repeated safe states log each failure once", "[safety][fault]") {
     CHECK(log.count("error kernel: safe state:") == 1);
     robot.shutdown(1.1);
 }
+
+// User review (the servo emulator killed mid-run): the safe state's failure on the device that had just failed
+// repeated the fault's whole text, way out included, which the run's error prints anyway: said once now.
+TEST_CASE("a safe state that fails on a device with the device's own fault names the device, not the fault again",
+          "[safety][fault]") {
+    const Profile profile = faulty_bus("finger:silent:0.5");
+    ActiveRobot active(profile);
+    auto& robot = *active.robot;
+    Status fault;
+    for (int period = 1; fault.ok() && period <= 100; ++period) fault = robot.control_tick(period * 0.01, 0.01);
+    REQUIRE_FALSE(fault.ok());  // the device is in error, with this status
+    const testing::LogCapture log;
+    robot.safe_state(1.0);  // its write fails again, with the same status
+    INFO(log.all());
+    CHECK(log.count("error kernel: safe state: device 'hand' (plugin 'mock_actuator'): not reached, by the same error "
+                    "as its fault") == 1);
+    CHECK(log.count("does not answer") == 0);
+    robot.shutdown(1.1);
+}

@@ -330,7 +330,10 @@ void Robot::safe_state(double time, bool keep_released) noexcept {
             safe_commands(*a.handle, a.commands, keep_released);
             for (std::size_t i = 0; i < a.joints.size(); ++i) joints_[a.joints[i]].command = a.commands[i];
             auto st = a.handle->call("write", [&] { return a.handle->plugin().write(time, a.commands); }, true);
-            if (!st.ok()) report(log_error, "safe state: " + st.message());
+            if (!st.ok())  // its fault again: the run's error says it with its way out (review: printed thrice)
+                report(log_error, "safe state: " + (st.message() == a.handle->last_error().message()
+                                                        ? a.handle->describe() + ": not reached, by the same error as its fault"
+                                                        : st.message()));
         } catch (...) {
             // std::bad_alloc in a message: the next device must still be tried.
             log_error("kernel", "safe state: out of memory or an exception while stopping a device");
@@ -356,10 +359,7 @@ bool Robot::shutdown(double time, bool keep_released) noexcept {
     return clean;
 }
 
-void Robot::set_commands_locked(bool locked, std::string reason) {
-    locked_ = locked;
-    lock_reason_ = std::move(reason);
-}
+void Robot::set_commands_locked(bool locked, std::string reason) { locked_ = locked, lock_reason_ = std::move(reason); }
 
 Status Robot::command_joint(Joint& j, const JointCommand& c) {
     const std::string who = "joint '" + j.name + "'";

@@ -323,19 +323,24 @@ DynamixelActuator::Release DynamixelActuator::release_servos() {
 Status DynamixelActuator::not_confirmed(const Release& release, bool with_reasons) const {
     const auto& servos = release.servos;
     if (servos.empty()) return {};
-    // A dead port: every servo's error is the same port error; it is said once, by the resend's.
+    // A dead port: every servo's error is the same port error, said once, by the resend's; and not at all when the
+    // device's fault was reported already (!with_reasons): that fault was the port's, printed with its way out (user
+    // review: the emulator killed mid-run printed the port's error three times).
     const bool port_dead = !release.resend.ok();
     std::string list;
     for (const auto& [i, why] : servos)
-        list += (list.empty() ? "" : "; ") + (with_reasons && !port_dead
-                                                  ? why.error().describe()  // it names the joint
-                                                  : who(i) + " (" + std::string(to_string(why.code())) + ")");
+        list += (list.empty() ? "" : "; ") +
+                (port_dead ? who(i)
+                           : with_reasons ? why.error().describe()  // it names the joint
+                                          : who(i) + " (" + std::string(to_string(why.code())) + ")");
+    const std::string check = "check the torque is off (rollsense dxl info) before the next run";
     // Review: "Both were sent once more" was said when the port was gone and nothing could be sent.
     const std::string resend =
-        port_dead ? ". Sending both once more without asking for a reply (SYNC_WRITE) failed too: " +
-                        release.resend.message() + "; then check the torque is off (rollsense dxl info) before the next run"
-                  : ". Both were sent once more without asking for a reply (SYNC_WRITE); check the torque is off "
-                    "(rollsense dxl info) before the next run";
+        !port_dead     ? ". Both were sent once more without asking for a reply (SYNC_WRITE); " + check
+        : with_reasons ? ". Sending both once more without asking for a reply (SYNC_WRITE) failed too: " +
+                             release.resend.message() + "; then " + check
+                       : ". Sending both once more without asking for a reply (SYNC_WRITE) failed too: the port is "
+                         "gone, as the device's fault says; once it is back, " + check;
     return {servos.front().second.code(), "not confirmed released (torque off, Bus Watchdog 0): " + list + resend};
 }
 
