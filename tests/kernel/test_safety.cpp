@@ -384,6 +384,9 @@ rs.write_output("not_stopped.txt", "")
         CHECK_THAT(r.summary.status.message(),
                    Catch::Contains("past its limit " + std::to_string(static_cast<int>(c.limit)) + " (joint limits [") &&
                        Catch::Contains("stopped by the safe state"));
+        // And where the script was (user review: a fault of the control loop named no line, Ctrl-C did).
+        CHECK_THAT(r.summary.status.message(), Catch::Contains(" (task 'main' waited at ") &&
+                                                   Catch::EndsWith("script.lua:9)"));
         CHECK_FALSE(std::filesystem::exists(r.out / "not_stopped.txt"));
         double at = 0;
         char mode[32] = {}, torque[8] = {};

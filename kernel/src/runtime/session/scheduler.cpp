@@ -44,16 +44,18 @@ void Scheduler::fail(Status status) {
     if (failure_.ok()) failure_ = std::move(status);
 }
 
-// Ctrl-C, --time-limit and the e-stop name no place in the script: the first task that waits says where, so a wait
-// that could never end is found.
+// Ctrl-C, --time-limit, the e-stop and a fault the control loop finds (a device's, a joint past its limit) name no
+// place in the script: the first task that waits says where, so a wait that could never end is found.
+std::string Scheduler::where_waited() const {
+    for (const auto& s : slots_)
+        if (const std::string line = s->task && s->wait.kind != Wait::Kind::none ? s->task->where() : ""; !line.empty())
+            return " (task '" + s->task->name() + "' waited at " + line + ")";
+    return {};
+}
+
 void Scheduler::cancel(const std::string& reason) {
     cancellation_.cancel(reason);
-    std::string where;
-    for (const auto& s : slots_)
-        if (s->task && s->wait.kind != Wait::Kind::none && where.empty())
-            if (const std::string line = s->task->where(); !line.empty())
-                where = " (task '" + s->task->name() + "' waited at " + line + ")";
-    fail(Status(ErrorCode::cancelled, reason + where));
+    fail(Status(ErrorCode::cancelled, reason + where_waited()));
 }
 
 void Scheduler::on_recording_start(double t) {
@@ -119,15 +121,11 @@ void Scheduler::check_conditions() {
 
 // Cancelled: every live task hears of it, and every wait ends as cancelled.
 void Scheduler::cancel_waits() {
-    for (auto& sp : slots_) {
-        Slot& s = *sp;
-        if (!s.task) continue;
-        s.task->on_cancel();
-        if (s.wait.kind != Wait::Kind::none) {
-            s.wait = Wait{};
-            s.outcome = WaitOutcome::cancelled;
+    for (auto& s : slots_)
+        if (s->task) {
+            s->task->on_cancel();
+            if (s->wait.kind != Wait::Kind::none) s->wait = Wait{}, s->outcome = WaitOutcome::cancelled;
         }
-    }
 }
 
 Status Scheduler::control_tick() {
@@ -189,7 +187,7 @@ Status Scheduler::run(TaskRole phase, double deadline, const std::string& over_d
         safety_.update_trigger(now());
         if (now() >= next_control_) {
             if (auto s = control_tick(); !s.ok()) {
-                fail(s);
+                fail(Status(s.code(), s.message() + where_waited()));
                 robot_.safe_state(now());
                 cancellation_.cancel(s.message());
                 if (cleanup) break;
@@ -197,7 +195,7 @@ Status Scheduler::run(TaskRole phase, double deadline, const std::string& over_d
         }
         if (recorder_.recording() && now() >= recorder_.next_sample()) {
             if (auto s = recorder_.sample_tick(now()); !s.ok()) {
-                fail(s);
+                fail(Status(s.code(), s.message() + where_waited()));
                 robot_.safe_state(now());
                 cancellation_.cancel(s.message());
             }

@@ -71,6 +71,7 @@ private:
     Status control_tick();
     void cancel_waits();
     double next_event() const;
+    std::string where_waited() const;  // " (task 'main' waited at s.lua:12)", or empty
 
     Clock& clock_;
     Robot& robot_;
