@@ -226,7 +226,9 @@ TEST_CASE("a switch takes true or false only: torque 0 or off switches nothing o
         local said = {}
         for _, call in ipairs({ function() f:torque(0) end, function() f:torque("off") end, function() f:torque() end,
                                 function() rs.controller("palm", "off") end,
-                                function() f:move(10, { wait = 0 }) end }) do
+                                function() f:move(10, { wait = 0 }) end, function() f:move(10, { wait = {} }) end,
+                                function() f:move(10, { velocity = { 20 } }) end,
+                                function() f:move(10, { velocity = "fast" }) end }) do
           local ok, err = pcall(call)
           said[#said + 1] = tostring(ok) .. " " .. tostring(err)
         end
@@ -239,6 +241,11 @@ TEST_CASE("a switch takes true or false only: torque 0 or off switches nothing o
     CHECK_THAT(out, Catch::Contains("bad argument #1 to 'torque' (boolean expected, got no value)"));
     CHECK_THAT(out, Catch::Contains("bad argument #2 to 'controller' (boolean expected, got string)"));
     CHECK_THAT(out, Catch::Contains("option 'wait' must be true or false, not 0"));
+    // Named by type, not a table's address (user review).
+    CHECK_THAT(out, Catch::Contains("option 'wait' must be true or false, not a table"));
+    CHECK_THAT(out, Catch::Contains("option 'velocity' must be a finite number, not a table"));
+    CHECK_THAT(out, Catch::Contains("option 'velocity' must be a finite number, not 'fast'"));
+    CHECK_THAT(out, !Catch::Contains("0x"));
 }
 
 TEST_CASE("recording samples sensors and joints at the profile's rate", "[lua]") {

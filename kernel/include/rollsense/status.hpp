@@ -106,9 +106,7 @@ private:
 };
 
 // Throw if a status is an error; return the value of a Result otherwise.
-inline void throw_if_error(const Status& s) {
-    if (!s.ok()) throw StatusError(s);
-}
+inline void throw_if_error(const Status& s) { if (!s.ok()) throw StatusError(s); }
 template <class T>
 T value_or_throw(Result<T> r) { return r ? std::move(r).value() : throw StatusError(r.status()); }
 

@@ -151,9 +151,7 @@ template <class T> const T& typed(const ParamValue& v, const std::string& name, 
 }  // namespace
 
 bool ParamSet::get_bool(const std::string& name) const { return typed<bool>(at(name), name, "boolean"); }
-std::int64_t ParamSet::get_int(const std::string& name) const {
-    return typed<std::int64_t>(at(name), name, "integer");
-}
+std::int64_t ParamSet::get_int(const std::string& name) const { return typed<std::int64_t>(at(name), name, "integer"); }
 double ParamSet::get_number(const std::string& name) const {
     const auto& v = at(name);
     if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);

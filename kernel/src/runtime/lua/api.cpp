@@ -154,11 +154,18 @@ bool push_option(lua_State* L, int table, const char* key) {
 }
 }  // namespace
 
+const char* shown_value(lua_State* L, int index) {
+    const int type = lua_type(L, index);
+    return type == LUA_TNUMBER || type == LUA_TBOOLEAN ? luaL_tolstring(L, index, nullptr)
+           : type == LUA_TSTRING ? lua_pushfstring(L, "'%s'", lua_tostring(L, index))
+                                 : lua_pushfstring(L, "a %s", luaL_typename(L, index));
+}
+
 double opt_field_number(lua_State* L, int table, const char* key, double fallback) {
     const bool given = push_option(L, table, key);
     const double v = given ? lua_tonumber(L, -1) : fallback;
     if (given && (!lua_isnumber(L, -1) || !std::isfinite(v)))  // NaN or infinity would pass every range check
-        luaL_error(L, "option '%s' must be a finite number, not %s", key, luaL_tolstring(L, -1, nullptr));
+        luaL_error(L, "option '%s' must be a finite number, not %s", key, shown_value(L, -1));
     lua_pop(L, 1);
     return v;
 }
@@ -166,7 +173,7 @@ double opt_field_number(lua_State* L, int table, const char* key, double fallbac
 bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback) {
     const bool given = push_option(L, table, key);
     if (given && !lua_isboolean(L, -1))  // 0 and "off" are true in Lua: a switch takes true or false only
-        luaL_error(L, "option '%s' must be true or false, not %s", key, luaL_tolstring(L, -1, nullptr));
+        luaL_error(L, "option '%s' must be true or false, not %s", key, shown_value(L, -1));
     const bool v = given ? lua_toboolean(L, -1) != 0 : fallback;
     lua_pop(L, 1);
     return v;

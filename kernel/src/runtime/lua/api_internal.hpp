@@ -36,6 +36,9 @@ void refuse_unknown_names(lua_State* L, int table, const char* prefix);
 // Raises "CALL: unknown option 'velocty' (options: velocity, ...)" for a key of
 // the option table at `table` that is not in `valid` (nothing when it is no table).
 void check_options(lua_State* L, int table, const char* call, std::initializer_list<const char*> valid);
+// A refused value as a message shows it, pushed: a number or boolean itself, a string quoted, anything else its
+// type ("a table": a table's address says nothing).
+const char* shown_value(lua_State* L, int index);
 double opt_field_number(lua_State* L, int table, const char* key, double fallback);
 bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback);
 std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback);

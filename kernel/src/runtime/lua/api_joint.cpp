@@ -10,9 +10,7 @@ namespace {
 
 constexpr const char* kJointMeta = "rollsense.joint";
 
-Joint& check_joint(lua_State* L, int index) {
-    return **static_cast<Joint**>(luaL_checkudata(L, index, kJointMeta));
-}
+Joint& check_joint(lua_State* L, int index) { return **static_cast<Joint**>(luaL_checkudata(L, index, kJointMeta)); }
 
 void push_joint(lua_State* L, Joint* j) {
     *static_cast<Joint**>(lua_newuserdatauv(L, sizeof(Joint*), 0)) = j;

@@ -18,14 +18,13 @@ void read_trial_key(lua_State* L, TrialInfo& info, const char* call) {
     lua_getfield(L, 1, "speed");
     const int type = lua_type(L, -1);
     if (type == LUA_TNUMBER ? !std::isfinite(lua_tonumber(L, -1)) : type != LUA_TSTRING && type != LUA_TNIL)
-        luaL_error(L, "%s: speed %s: give a number or a label (a string)", call, luaL_tolstring(L, -1, nullptr));
+        luaL_error(L, "%s: speed is %s: give a number or a label (a string)", call, shown_value(L, -1));
     if (type != LUA_TNIL) info.speed = luaL_tolstring(L, -1, nullptr), lua_pop(L, 1);
     lua_pop(L, 1);
     lua_getfield(L, 1, "repetition");
     const double rep = lua_isnil(L, -1) ? 0 : lua_isnumber(L, -1) ? lua_tonumber(L, -1) : -1;
     if (!(rep >= 0 && rep <= INT32_MAX && rep == std::floor(rep)))
-        luaL_error(L, "%s: repetition %s: give a whole number in [0, 2147483647]", call,
-                   luaL_tolstring(L, -1, nullptr));
+        luaL_error(L, "%s: repetition is %s: give a whole number in [0, 2147483647]", call, shown_value(L, -1));
     info.repetition = static_cast<int>(rep);
     lua_pop(L, 1);
 }
