@@ -213,6 +213,32 @@ TEST_CASE("a resume into a folder that does not exist is a usage error (2) that 
     CHECK(fs::exists(typo / "manifest.csv"));
 }
 
+// User review (sharded runs): `--shard ''` (a batch script's unset variable) recorded the whole run, `--seed ''` took
+// the default seed, and an option given twice kept the last (submit.sh's SCRIPT --out X gave each shard two --out).
+TEST_CASE("an option with an empty value, or a single option given twice, is a usage error (2) that records nothing") {
+    TempDir dir("rollsense-cli-option-twice");
+    const fs::path out = dir / "ds";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {" --shard ''", "option --shard has an empty value (an unset shell variable?): give a value, or leave the option out"},
+        {" --seed ''", "option --seed has an empty value"},
+        {" --profile=", "option --profile has an empty value"},
+        {" --seed 3", "option --seed is given 2 times ('11' and '3'): give it once"},  // 11: record_four_trials
+        {" --out " + (dir / "other").string(), "option --out is given 2 times"}};
+    for (const auto& [extra, says] : cases) {
+        INFO(extra);
+        const auto r = run_rollsense(record_four_trials(out) + extra);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(count_of(r.output, says) == 1);
+        CHECK_FALSE(fs::exists(out));
+        CHECK_FALSE(fs::exists(dir / "other"));
+    }
+    REQUIRE(run_rollsense(record_four_trials(out)).status == 0);
+    const auto report = run_rollsense("report " + out.string() + " -o a.html --output b.html");
+    CHECK(report.status == 2);
+    CHECK(count_of(report.output, "option --output (-o) is given 2 times") == 1);
+}
+
 // The dynamixel plugin's refusals of its parameters named neither the profile
 // file nor the parameter ("'baud' 1000001 is not ..."), and a position-mode joint's
 // max beyond one turn only warned at activation: both are the profile's error (3),

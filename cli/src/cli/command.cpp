@@ -74,9 +74,16 @@ bool Args::wants_help() const {
     return false;
 }
 
+// Given twice, one of the two values would be dropped without a word (review: `submit.sh ... SCRIPT --out X` gave
+// every shard's run two --out, and the first shard recorded the whole run into X).
 std::string Args::option(std::string_view name, std::string_view short_name) const {
     auto all = options(name);
-    if (all.empty() && !short_name.empty()) all = options(short_name);
+    if (!short_name.empty())
+        for (auto& v : options(short_name)) all.push_back(std::move(v));
+    if (all.size() > 1)
+        throw UsageError("option " + std::string(name) + (short_name.empty() ? "" : " (" + std::string(short_name) + ")") +
+                         " is given " + std::to_string(all.size()) + " times ('" + all[0] + "' and '" + all[1] +
+                         "'): give it once");
     return all.empty() ? std::string() : all.back();
 }
 
@@ -91,6 +98,11 @@ std::vector<std::string> Args::options(std::string_view name) const {
             out.push_back(args_[++i]);
         }
     }
+    // An empty value would read as the option left out (review: `--shard ''`, a batch script's unset variable,
+    // recorded the whole run; `--seed ''` took the default seed).
+    if (std::ranges::find(out, std::string()) != out.end())
+        throw UsageError("option " + std::string(name) + " has an empty value (an unset shell variable?): give a value, "
+                         "or leave the option out");
     if (std::find(std::begin(kFolderOptions), std::end(kFolderOptions), name) != std::end(kFolderOptions))
         for (const auto& folder : out) check_folder(name, folder);
     return out;

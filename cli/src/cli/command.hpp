@@ -61,10 +61,10 @@ public:
     explicit Args(const std::vector<std::string>& args) : args_(args) {}
     // True if --help or -h is present.
     bool wants_help() const;
-    // Value of "--name VALUE" or "--name=VALUE"; empty if absent. Throws
-    // UsageError if the option is present without a value.
+    // Value of "--name VALUE" or "--name=VALUE" (or of its `short_name`); empty if absent. Throws
+    // UsageError if the option is present without a value, with an empty one, or more than once.
     std::string option(std::string_view name, std::string_view short_name = {}) const;
-    // Every occurrence. A folder option (--plugin-path, --training) is checked here for every
+    // Every occurrence (an empty value throws UsageError). A folder option (--plugin-path, --training) is checked here for every
     // command: a value that is not an existing folder throws UsageError naming both.
     std::vector<std::string> options(std::string_view name) const;
     bool flag(std::string_view name) const;
