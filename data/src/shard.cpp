@@ -1,6 +1,7 @@
 #include "rollsense/shard.hpp"
 
 #include "rollsense/csv.hpp"
+#include "rollsense/shell_words.hpp"
 
 namespace rollsense {
 
@@ -61,7 +62,7 @@ std::string resume_command(const std::filesystem::path& dir) {
     if (auto info = csv::read_key_values(dir / "run-info.csv"))
         for (const auto& [key, value] : *info)
             if (key == "shard") shard = " --shard " + value;
-    return "rollsense run SCRIPT" + shard + " --out " + dir.string() + " --resume";
+    return "rollsense run SCRIPT" + shard + " --out " + shell_quote(dir.string()) + " --resume";
 }
 
 Result<std::vector<std::string>> read_shard_plan(const std::filesystem::path& dir, std::size_t count) {

@@ -9,7 +9,6 @@
 
 #include <map>
 #include <optional>
-#include <sstream>
 #include <unordered_map>
 
 #include "rollsense/atomic_file.hpp"
@@ -18,6 +17,7 @@
 #include "rollsense/directory_lock.hpp"
 #include "rollsense/run_config.hpp"
 #include "rollsense/shard.hpp"
+#include "rollsense/shell_words.hpp"
 
 namespace rollsense {
 namespace fs = std::filesystem;
@@ -99,11 +99,9 @@ Result<ShardDataset> open_shard(const fs::path& dir) {
 }
 
 // The --set KEY=VALUE options of a command line as run-info.csv records it
-// (words joined by spaces), the last value of each key.
+// (words quoted for the shell), the last value of each key.
 std::map<std::string, std::string> set_options(const std::string& command_line) {
-    std::vector<std::string> words;
-    std::istringstream in(command_line);
-    for (std::string w; in >> w;) words.push_back(w);
+    const std::vector<std::string> words = shell_split(command_line);
     std::map<std::string, std::string> out;
     for (std::size_t i = 0; i < words.size(); ++i) {
         std::string kv;
@@ -451,7 +449,8 @@ Result<MergeSummary> merge_shards(const fs::path& out_given, const std::vector<f
     fs::path created = staged;  // the outermost folder this merge creates
     std::error_code ec;
     for (auto p = out.parent_path(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) created = p;
-    const MergeSummary summary{shards.size(), placed->size(), shards.front().value("command_line")};
+    const MergeSummary summary{shards.size(), placed->size(), shards.front().value("command_line"),
+                               shards.front().value("working_dir")};
     remove_dead_stagings(out, staging_prefix);
     fs::remove_all(staged, ec);  // a killed merge's, whose process id this one reuses
     // The staging folder on its own first: a folder this user cannot write in

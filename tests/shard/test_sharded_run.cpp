@@ -56,6 +56,41 @@ TEST_CASE("the stock experiment split three ways merges into the unsharded run's
     CHECK(rt::same_trials(whole, merged) == 54);
 }
 
+// User review (sharded runs): the analysis command the merge prints lost words of paths with spaces (run-info.csv
+// recorded the command line unquoted) and kept the script's path relative to a folder the merge did not run in.
+TEST_CASE("the command the merge prints analyses the merged dataset from any folder, whatever its paths hold",
+          "[shard][merge]") {
+    rt::TempDir dir;
+    const auto work = dir / "cust dir";
+    fs::create_directories(work);
+    fs::copy_file(rt::paper_experiment(), work / "my exp.lua");
+    const std::string options = " -q --no-progress --seed 11 --set runs=1 --set 'objects=C1, C2' --set analyse=false";
+    for (int k = 0; k < 2; ++k) {
+        const auto r = rt::run_command("cd '" + work.string() + "' && " + ROLLSENSE_BIN_DIR + "/rollsense run 'my exp.lua'" +
+                                       options + " --shard " + std::to_string(k) + "/2 --out 'my run/shard " +
+                                       std::to_string(k) + "'");
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+    }
+    CHECK_THAT(rt::read_file(work / "my run/shard 0/run-info.csv"),
+               Catch::Contains("\"rollsense run 'my exp.lua' -q") && Catch::Contains("--out 'my run/shard 0'\"\n") &&
+                   Catch::Contains("\nworking_dir," + work.string() + "\n"));
+    const auto m = rt::run_command("cd '" + dir.path().string() + "' && " + ROLLSENSE_BIN_DIR + "/rollsense merge 'm all' " +
+                                   "'cust dir/my run/shard 0' 'cust dir/my run/shard 1'");
+    INFO(m.output);
+    REQUIRE(m.status == 0);
+    const std::string said = "analyse it as the unsharded run: ";
+    const auto at = m.output.find(said);
+    REQUIRE(at != std::string::npos);
+    const std::string command = m.output.substr(at + said.size(), m.output.find('\n', at) - at - said.size());
+    CHECK(command == "cd '" + work.string() + "' && rollsense run 'my exp.lua'" + options + " --out '" +
+                         (dir / "m all").string() + "' --resume");
+    const auto a = rt::run_command("PATH=" + std::string(ROLLSENSE_BIN_DIR) + ":$PATH; " + command);
+    INFO(a.output);
+    CHECK(a.status == 0);
+    CHECK_THAT(a.output, Catch::Contains("0 trials saved, 6 already on disk"));
+}
+
 TEST_CASE("a shard stopped halfway is refused by the merge, and resumed it equals an uninterrupted shard",
           "[shard][resume]") {
     rt::TempDir dir;

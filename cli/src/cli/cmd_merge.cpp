@@ -1,7 +1,6 @@
 // rollsense merge OUT SHARD...: the datasets of a sharded run joined into the
 // dataset the unsharded run records, with its features.
 #include <cstdio>
-#include <sstream>
 #include <string>
 
 #include "cli/command.hpp"
@@ -11,6 +10,7 @@
 #include "rollsense/features.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/shard_merge.hpp"
+#include "rollsense/shell_words.hpp"
 #include "analysis/report/provenance.hpp"
 
 namespace rollsense::cli {
@@ -48,20 +48,21 @@ options:
   -v, --verbose         debug messages;   -q, --quiet   no info messages: warnings, errors
                         and the closing summary (what was merged, the way on))";
 
-// The shards' command line turned into the one that analyses the merged
-// dataset: without --shard, --out and --resume, then --out OUT --resume.
-std::string analyse_command(const std::string& shard_command, const std::string& out) {
-    std::istringstream in(shard_command);
-    std::string result;
-    for (std::string w; in >> w;) {
-        if (w == "--shard" || w == "--out") {
-            in >> w;  // and its value
-            continue;
-        }
-        if (w == "--resume" || w.rfind("--shard=", 0) == 0 || w.rfind("--out=", 0) == 0) continue;
-        result += (result.empty() ? "" : " ") + w;
+// The shards' command line turned into the one that analyses the merged dataset: without --shard, --out and
+// --resume, then --out OUT --resume; run from the folder the shards ran in when that is not this one, as their
+// relative paths (the script, a profile file) start there (review: printed unquoted, and from here).
+std::string analyse_command(const MergeSummary& merged, const std::filesystem::path& out) {
+    std::vector<std::string> words;
+    const auto shard_words = shell_split(merged.command_line);
+    for (std::size_t i = 0; i < shard_words.size(); ++i) {
+        const auto& w = shard_words[i];
+        if (w == "--shard" || w == "--out") ++i;  // and its value
+        else if (w != "--resume" && !w.starts_with("--shard=") && !w.starts_with("--out=")) words.push_back(w);
     }
-    return result + " --out " + out + " --resume";
+    std::error_code ec;
+    const bool elsewhere = !merged.working_dir.empty() && !std::filesystem::equivalent(merged.working_dir, ".", ec);
+    words.insert(words.end(), {"--out", elsewhere ? std::filesystem::absolute(out, ec).string() : out.string(), "--resume"});
+    return (elsewhere ? "cd " + shell_quote(merged.working_dir) + " && " : "") + shell_join(words);
 }
 
 int fail(const Error& e, int fallback) {
@@ -89,8 +90,7 @@ int run(const std::vector<std::string>& argv) {
         return fail(st.error(), kExitConfig);
     }
 
-    std::string command_line = "rollsense merge";
-    for (const auto& a : argv) command_line += " " + a;
+    const std::string command_line = "rollsense merge " + shell_join(argv);
     // features.csv and run-info.csv join the merged folder before it takes OUT's
     // name: a failure here leaves nothing behind either.
     const auto finish = [&](const std::filesystem::path& merged, const MergeSummary& summary) -> Status {
@@ -109,8 +109,11 @@ int run(const std::vector<std::string>& argv) {
     };
     auto merged = merge_shards(out, shards, finish);
     if (!merged) return fail(merged.error(), kExitConfig);
-    std::printf("merged %zu shards: %zu trials into %s (with features.csv)\nanalyse it as the unsharded run: %s\n",
-                merged->shards, merged->trials, out.c_str(), analyse_command(merged->command_line, out.string()).c_str());
+    // The script's own analysis, or the stock one (a script run with its analysis off has none to resume).
+    std::printf("merged %zu shards: %zu trials into %s (with features.csv)\nanalyse it as the unsharded run: %s\n"
+                "or with the stock analysis: rollsense report %s\n",
+                merged->shards, merged->trials, out.c_str(), analyse_command(*merged, out).c_str(),
+                shell_quote(out.string()).c_str());
     return kExitOk;
 }
 

@@ -9,6 +9,7 @@
 #include "cli/output_paths.hpp"
 #include "cli/paths.hpp"
 #include "rollsense/dataset.hpp"
+#include "rollsense/shell_words.hpp"
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/inputs.hpp"
@@ -126,8 +127,7 @@ int run(const std::vector<std::string>& argv) {
     in.rows = std::move(result.rows);
     in.evaluation = std::move(result.evaluation);
     in.settings = feature_settings_from_args(args);
-    in.command_line = "rollsense report";
-    for (const auto& a : argv) in.command_line += " " + a;
+    in.command_line = "rollsense report " + shell_join(argv);
     auto written = report::write_report(in);
     if (!written) {
         std::fprintf(stderr, "rollsense report: %s\n", written.error().describe().c_str());

@@ -20,6 +20,7 @@
 #include "rollsense/log.hpp"
 #include "rollsense/run_config.hpp"
 #include "rollsense/shard.hpp"
+#include "rollsense/shell_words.hpp"
 #include "runtime/session/session.hpp"
 
 namespace rollsense::cli {
@@ -226,8 +227,7 @@ int run(const std::vector<std::string>& argv) {
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
     o.digital_lines = hal::gpio_digital_lines();
-    o.command_line = "rollsense run";
-    for (const auto& a : argv) o.command_line += " " + a;
+    o.command_line = "rollsense run " + shell_join(argv);  // as a shell reads it back (review: paths with spaces)
     // The watchdog's way out (three Ctrl-C, a script stuck in one C call) ends the process inside the run.
     o.way_on = {"the trials saved stay on disk; a resume runs the same script again (after a script stuck in one "
                 "call, fix it and record into a new --out)\ncontinue with: " + resume_command(pos[0], o.out_dir, deciding) +

@@ -13,6 +13,7 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/dataset_files.hpp"
+#include "rollsense/shell_words.hpp"
 #include "runtime/profile/profile.hpp"
 
 namespace rollsense::cli {
@@ -116,16 +117,6 @@ RunConfig run_config_of(const fs::path& script, const std::string& profile, cons
     for (const auto& [key, value] : sets) last[key] = value;
     for (const auto& [key, value] : last) config.emplace_back("set." + key, value);
     return config;
-}
-
-std::string shell_quote(const std::string& text) {
-    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_-./=,:+@%").find(c) != std::string_view::npos;
-    });
-    if (plain) return text;
-    std::string out = "'";
-    for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
 }
 
 std::string resume_command(const std::string& script, const fs::path& out,

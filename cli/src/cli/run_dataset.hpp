@@ -30,9 +30,6 @@ RunConfig run_config_of(const std::filesystem::path& script, const std::string& 
                         const std::filesystem::path& profile_file, const std::filesystem::path& share_dir,
                         std::uint64_t seed, const SetOptions& sets);
 
-// `text` as one shell word: unchanged when it is plain, else in single quotes.
-std::string shell_quote(const std::string& text);
-
 // "rollsense run SCRIPT --out DIR --resume [--profile P] [--seed N] [--set K=V ...]",
 // each word quoted for the shell. `options` are the options that decide the
 // trials, as given ({"--profile", "etroll"}, {"--set", "runs=2"}, ...).

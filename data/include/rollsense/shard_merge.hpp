@@ -33,7 +33,8 @@ namespace rollsense {
 struct MergeSummary {
     std::size_t shards = 0;
     std::size_t trials = 0;
-    std::string command_line;  // that recorded shard 0 (its run-info.csv)
+    std::string command_line;  // that recorded shard 0 (its run-info.csv), words quoted for the shell
+    std::string working_dir;   // where it ran (empty for a shard recorded before run-info.csv had it)
 };
 
 // Called with the merged folder before it becomes `out` (it is still the

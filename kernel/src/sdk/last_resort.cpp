@@ -24,9 +24,7 @@ int add_last_resort(LastResortAction action, void* context) {
     return -1;
 }
 
-void remove_last_resort(int slot) {
-    if (slot >= 0 && slot < 16) g_slots[slot].action.store(nullptr);
-}
+void remove_last_resort(int slot) { if (slot >= 0 && slot < 16) g_slots[slot].action.store(nullptr); }
 
 int run_last_resort() noexcept {
     int ran = 0;

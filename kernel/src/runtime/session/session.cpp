@@ -224,11 +224,13 @@ void Session::last_resort(const std::string& why, ErrorCode code, double wall_st
 }
 
 void Session::write_run_info(const Status& s, double wall_start) {
+    std::error_code ec;  // the folder relative paths of command_line start from (empty: it was removed)
+    const std::string working_dir = fs::current_path(ec).string();
     std::vector<std::pair<std::string, std::string>> fields{
         {"date_utc", utc_now()}, {"command_line", options_.command_line},
         {"rollsense_version", ROLLSENSE_VERSION},
         {"profile", profile_.path.string()},
-        {"script", options_.script.string()},
+        {"script", options_.script.string()}, {"working_dir", working_dir},
         {"seed", std::to_string(options_.seed)},
         {"status", s.ok() ? "ok" : s.error().describe().substr(0, 1 << 16)},  // a script's error text has no bound
         {"trials_saved", std::to_string(recorder_->trials_saved())},
