@@ -326,6 +326,26 @@ end
     CHECK(kt::read_file(o.out_dir / "cleanup.txt") == "false");
 }
 
+// User review (sharded runs): Ctrl-C during rs.analyse printed a Lua traceback under the run's error; the error of a
+// cancel names its line, and the README promises the way on alone after it.
+TEST_CASE("Ctrl-C while the script computes ends it at its line, without a traceback", "[safety]") {
+    kt::TempDir dir;
+    auto o = kt::options_for(dir, "require('rollsense').write_output('started.txt', '')\nwhile true do end\n");
+    o.sandbox.max_slice_ms = 60'000;
+    rollsense::runtime::Session session(o);
+    std::thread interrupter([started = o.out_dir / "started.txt"] {  // once in the loop, however loaded the machine
+        while (!std::filesystem::exists(started)) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        std::raise(SIGINT);
+    });
+    const auto s = session.run();
+    interrupter.join();
+    INFO(s.status.message());
+    CHECK(s.status.code() == ErrorCode::cancelled);
+    CHECK_THAT(s.status.message(), Catch::Contains("script.lua:2:") && Catch::Contains("interrupted"));
+    CHECK_THAT(s.status.message(), !Catch::Contains("stack traceback"));
+}
+
 TEST_CASE("SIGHUP and SIGTERM end the run like Ctrl-C: cleanup runs, the hand is safe", "[safety]") {
     for (int sig : {SIGHUP, SIGTERM}) {
         INFO("signal " << sig);

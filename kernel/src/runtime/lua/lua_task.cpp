@@ -69,10 +69,7 @@ std::string LuaTask::where() const {
     return outer.empty() || outer == inner ? inner : inner + ", called from " + outer;
 }
 
-void LuaTask::request(Wait wait) {
-    waiting_for_ = wait.what;
-    pending_ = std::move(wait);
-}
+void LuaTask::request(Wait wait) { waiting_for_ = wait.what, pending_ = std::move(wait); }
 
 void LuaTask::hold_predicate(int ref) {
     release_predicate();
@@ -104,8 +101,9 @@ TaskStep LuaTask::resume(WaitOutcome last) {
     ErrorCode code = session_of(main)->take_raised_code(trace);
     if (sandbox_.cancelled()) code = sandbox_.cancel_code();
     if (code == ErrorCode::ok) code = ErrorCode::script_error;
-    // A refused --set is the command line's error: its text names the setting's declaration, no traceback.
-    return TaskStep::done(Status(code, code == ErrorCode::bad_setting ? trace.substr(0, trace.find("\nstack traceback:")) : trace));
+    // No traceback for a refused --set (it names its declaration) or a cancel (it names its line; README: Ctrl-C).
+    const bool bare = code == ErrorCode::bad_setting || code == ErrorCode::cancelled;
+    return TaskStep::done(Status(code, bare ? trace.substr(0, trace.find("\nstack traceback:")) : trace));
 }
 
 std::function<Result<bool>()> lua_predicate(Sandbox& sandbox, int ref, std::string called_at) {

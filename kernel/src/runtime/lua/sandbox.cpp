@@ -272,8 +272,8 @@ void Sandbox::hook(lua_State* L, lua_Debug*) {
         // Fire on every instruction from now on: a pcall that catches this
         // error runs at most one more instruction before it is raised again.
         lua_sethook(L, &Sandbox::hook, LUA_MASKCOUNT, 1);
-        luaL_error(L, "cancelled: %s", self.cancel_reason_.c_str());
-        return;
+        luaL_where(L, 0);  // the line it was running (luaL_error's level 1 is its caller: none in the main chunk)
+        lua_pushfstring(L, "%scancelled: %s", lua_tostring(L, -1), self.cancel_reason_.c_str()), lua_error(L);
     }
     const double ran = wall_ms() - self.slice_start_;
     if (ran > self.limits_.max_slice_ms) {  // the script's failure (cancel_code), not a cancel from outside
