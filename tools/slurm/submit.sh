@@ -15,12 +15,14 @@
 # with --dependency=afterok on it. Prints on stdout, for scripts:
 #   ROLLSENSE_SHARDS_JOB=<array job id>
 #   ROLLSENSE_MERGE_JOB=<merge job id>
+# Refused before anything is submitted (exit 2): --out, --shard or --resume in
+# the run options (each task sets them), a SCRIPT rollsense cannot read or parse.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 
 usage() {
-  sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2
-  exit 2
+  sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'
+  exit 0
 }
 
 n= out= rollsense= sbatch_options=()
@@ -50,11 +52,22 @@ if ((n == 1)); then
 fi
 script=$1
 shift
+# The shards' own options: each task sets them (a second --out would win over the task's: review).
+for a in "$@"; do
+  case $a in
+    --out|--out=*|--shard|--shard=*|--resume)
+      echo "submit.sh: ${a%%=*} in the run options: each shard's task sets it (OUT/shard-K, --shard K/N," \
+           "--resume when requeued); give the results folder as -o OUT before SCRIPT" >&2
+      exit 2 ;;
+  esac
+done
 if [[ -z $rollsense ]]; then
   rollsense=$(command -v rollsense || true)
   [[ -n $rollsense ]] || rollsense=$here/../../build/bin/rollsense
 fi
 [[ -x $rollsense ]] || { echo "submit.sh: no rollsense program at '$rollsense'; give --rollsense PATH" >&2; exit 2; }
+# A script that is missing or does not parse fails here, not in N queued tasks (`run SCRIPT --help` runs no trial).
+"$rollsense" run "$script" --help >/dev/null || { echo "submit.sh: $script: refused by rollsense (above); nothing submitted" >&2; exit 2; }
 command -v sbatch >/dev/null || { echo "submit.sh: sbatch not found: run this on a Slurm login node" >&2; exit 2; }
 
 # The jobs run on other nodes, in other folders: absolute paths only.
@@ -65,14 +78,20 @@ out=$(realpath "$out")
 
 export ROLLSENSE=$rollsense
 unset ROLLSENSE_SHARD_COUNT  # the array below is the whole 0-(N-1): shard.sbatch reads N from Slurm
+# ${a[@]+"${a[@]}"}: an empty array under set -u, which bash before 4.4 refuses as unbound.
 shards_job=$(sbatch --parsable --array="0-$((n - 1))" --output="$out/logs/%x-%A_%a.out" \
-  "${sbatch_options[@]}" "$here/shard.sbatch" "$out" "$script" "$@")
+  ${sbatch_options[@]+"${sbatch_options[@]}"} "$here/shard.sbatch" "$out" "$script" "$@")
 shards_job=${shards_job%%;*}  # "id;cluster" on a federation
-merge_job=$(sbatch --parsable --dependency="afterok:$shards_job" --kill-on-invalid-dep=yes \
-  --output="$out/logs/%x-%j.out" "${sbatch_options[@]}" "$here/merge.sbatch" "$out" "$n" "$script" "$@")
+echo "ROLLSENSE_SHARDS_JOB=$shards_job"
+if ! merge_job=$(sbatch --parsable --dependency="afterok:$shards_job" --kill-on-invalid-dep=yes \
+  --output="$out/logs/%x-%j.out" ${sbatch_options[@]+"${sbatch_options[@]}"} "$here/merge.sbatch" "$out" "$n" "$script" "$@"); then
+  echo "submit.sh: the shards run as job array $shards_job, but the merge job was not submitted (sbatch's error" \
+       "above); submit it by hand: sbatch --dependency=afterok:$shards_job $here/merge.sbatch $out $n $script $*" \
+       "(or stop the shards: scancel $shards_job)" >&2
+  exit 1
+fi
 merge_job=${merge_job%%;*}
 
 echo "submit.sh: $n shards as job array $shards_job (0-$((n - 1))), merge and analysis as job $merge_job;" \
      "results in $out/merged, logs in $out/logs" >&2
-echo "ROLLSENSE_SHARDS_JOB=$shards_job"
 echo "ROLLSENSE_MERGE_JOB=$merge_job"
