@@ -4,6 +4,10 @@
 // a script sees and may do in a shard.
 #include <catch2/catch.hpp>
 
+#include <regex>
+
+#include "rollsense/directory_lock.hpp"
+
 #include "shard_fixture.hpp"
 
 namespace fs = std::filesystem;
@@ -295,4 +299,42 @@ etroll.run_trial{ object = "S2", speed = 10, repetition = 46, mount = "S2-1", in
     const auto trial = fs::path("trials") / "S2-v10-r046.csv";
     CHECK(rt::read_file(dir / "3000" / trial) == rt::read_file(dir / "0" / trial));
     CHECK(rt::read_file(dir / "9000" / trial) == rt::read_file(dir / "0" / trial));
+}
+
+// User review (sharded runs): features, evaluate, train and report analysed a shard, a killed run and a folder being
+// recorded without a word (merge and rs.analyse refuse them); they still analyse them, and say what is missing.
+TEST_CASE("analysing a shard, a run that did not end, or a folder being recorded warns once, naming the way to all",
+          "[shard][analysis]") {
+    rt::TempDir dir;
+    const auto shard = dir / "shard", whole = dir / "whole";
+    REQUIRE(rt::record(shard, "--set runs=1 --set analyse=false --shard 1/2").status == 0);
+    REQUIRE(rt::record(whole, "--set runs=1 --set analyse=false").status == 0);
+    const auto warned = [&](const fs::path& dataset, const std::string& says) {
+        const std::string in = dataset.string();
+        for (const auto& command : std::vector<std::string>{"features " + in + " -o -", "evaluate " + in,
+                                                            "train " + in + " -o " + (dir / "m.rsm").string(),
+                                                            "report " + in + " --force -o " + (dir / "r.html").string()}) {
+            const auto r = rt::run_rollsense(command + " -q");
+            INFO(command << "\n" << r.output);
+            CHECK(r.status == 0);
+            CHECK(rt::count_of(r.output, "warning rollsense: ") == (says.empty() ? 0 : 1));
+            if (!says.empty()) CHECK(rt::count_of(r.output, says) == 1);
+            fs::remove(dir / "m.rsm"), fs::remove(dir / "r.html");
+        }
+    };
+    warned(whole, "");
+    warned(shard, shard.string() + " is shard 1/2 of a run and holds only its part of the trials: merge the shards "
+                                   "first for the whole run (rollsense merge OUT SHARD..., docs/cluster.md)");
+    {
+        const auto lock = rollsense::DirectoryLock::acquire(whole);  // as the run recording it holds it
+        REQUIRE(lock);
+        warned(whole, whole.string() + " is being recorded by a run now: only the trials saved so far are read");
+    }
+    const std::string info = rt::read_file(whole / "run-info.csv");
+    rt::write_file(whole / "run-info.csv", std::regex_replace(info, std::regex("\nstatus,ok\n"),
+                                                              "\nstatus,cancelled: interrupted by Ctrl-C\n"));
+    warned(whole, "the run that recorded " + whole.string() + " did not end ok (run-info.csv: status 'cancelled: "
+                  "interrupted by Ctrl-C'), so it may hold only part of its trials");
+    fs::remove(whole / "run-info.csv");  // as kill -9 leaves it: run-config.csv from its start, no run-info.csv
+    warned(whole, "the run that recorded " + whole.string() + " did not end (no run-info.csv: killed");
 }

@@ -9,6 +9,7 @@
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
 #include "cli/output_paths.hpp"
+#include "cli/partial_dataset.hpp"
 #include "cli/trial_warnings.hpp"
 #include "cli/paths.hpp"
 #include "rollsense/atomic_file.hpp"
@@ -323,6 +324,7 @@ int run(const std::vector<std::string>& argv) {
     Args args(argv);
     const LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--prefixes"}, {});
     setup_logging(args);
+    warn_if_partial(s.input);
     const auto out = output_option(args);
     const auto files = learn::evaluation_files(out);
     if (!out.empty())

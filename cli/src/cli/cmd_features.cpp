@@ -8,6 +8,7 @@
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
 #include "cli/output_paths.hpp"
+#include "cli/partial_dataset.hpp"
 #include "cli/trial_warnings.hpp"
 #include "rollsense/features.hpp"
 #include "analysis/learn/inputs.hpp"
@@ -135,6 +136,7 @@ int run(const std::vector<std::string>& argv) {
                      pos[0].c_str());
         return kExitConfig;
     }
+    warn_if_partial(pos[0]);
     auto ds = DatasetReader::open(pos[0]);
     if (!ds) {
         std::fprintf(stderr, "rollsense features: %s\n", ds.error().describe().c_str());

@@ -7,6 +7,7 @@
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
 #include "cli/output_paths.hpp"
+#include "cli/partial_dataset.hpp"
 #include "cli/paths.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/shell_words.hpp"
@@ -93,6 +94,7 @@ int run(const std::vector<std::string>& argv) {
     Args args(argv);
     LearnSetup s = learn_setup_from_args(args, {"--optimize", "--no-nested", "--force"}, {});
     setup_logging(args);
+    warn_if_partial(s.input);
     std::error_code ec;
     if (!std::filesystem::is_directory(s.input, ec)) {
         std::fprintf(stderr,

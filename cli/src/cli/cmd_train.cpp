@@ -6,6 +6,7 @@
 #include "cli/command.hpp"
 #include "cli/log_setup.hpp"
 #include "cli/output_paths.hpp"
+#include "cli/partial_dataset.hpp"
 #include "cli/paths.hpp"
 #include "analysis/learn/defaults.hpp"
 #include "analysis/learn/evaluate.hpp"
@@ -70,6 +71,7 @@ int run(const std::vector<std::string>& argv) {
     const LearnSetup s = learn_setup_from_args(args, {"--optimize"}, {"--repeats", "--series-time-axis"});
     require_optimize(args, {"--folds", "--seed"});
     setup_logging(args);
+    warn_if_partial(s.input);
     const std::string out = output_option(args);
     if (out.empty()) throw UsageError("-o MODEL is required: where to save the trained model");
     if (int rc = check_output_files("train", s.input, {out}); rc != kExitOk) return rc;
