@@ -72,10 +72,17 @@ Result<ShardDataset> open_shard(const fs::path& dir) {
     if (!lock) return lock.error();
     s.lock = std::move(lock).value();
     const fs::path run_info = dir / "run-info.csv";
+    // A shard's run writes run-info.csv as it starts, a whole run as it ends (review: a whole run killed before its
+    // end was told to resume and merge, and the merge then refused it as a whole run).
+    if (!fs::exists(run_info, ec) && fs::exists(dir / kRunConfigFile, ec))
+        return refused(dir.string() + " has run-config.csv but no run-info.csv: its run was killed before its end, and "
+                       "was a whole run, not a shard (a shard's run writes run-info.csv as it starts, naming its "
+                       "shard); resume it without --shard to complete it. A shard killed in its first instant looks "
+                       "the same: resume it with its --shard K/N and the same --out, then merge");
     if (!fs::exists(run_info, ec))
-        return refused(run_info.string() + " is missing: " + dir.string() + " is not the folder of a finished run " +
-                       "(a shard's run writes it when it ends; one killed before it could: run its command again with "
-                       "--resume and the same --out, then merge)");
+        return refused(run_info.string() + " is missing: " + dir.string() + " is not the folder of a run " +
+                       "(a shard's run writes it as it starts); give the folders 'rollsense run SCRIPT --shard K/N "
+                       "--out SHARD' recorded");
     auto info = csv::read_key_values(run_info);
     if (!info) return info.error();
     s.run_info = std::move(info).value();

@@ -248,11 +248,20 @@ TEST_CASE("rollsense merge refuses what is not a finished shard, and an output f
                 {(whole / "run-info.csv").string() + ": no 'shard' row: " + whole.string() +
                  " was recorded without --shard K/N"});
     }
-    // Review (bad input) item 8: the one refusal without the way on.
-    SECTION("a shard killed before it wrote its run-info.csv") {
+    // Review (bad input) item 8: the one refusal without the way on. Review (sharded runs): a whole run killed was
+    // told to resume and merge, and the merge then refused it as a whole run: both ways are said now.
+    SECTION("a whole run killed before its end, or a shard in its first instant") {
         fs::remove(s1 / "run-info.csv");
         refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
-                {(s1 / "run-info.csv").string() + " is missing", "run its command again with --resume and the same --out"});
+                {s1.string() + " has run-config.csv but no run-info.csv: its run was killed before its end, and was a "
+                               "whole run, not a shard", "resume it without --shard to complete it",
+                 "A shard killed in its first instant looks the same: resume it with its --shard K/N"});
+    }
+    SECTION("a folder that is not a run's") {
+        fs::remove(s1 / "run-info.csv");
+        fs::remove(s1 / "run-config.csv");
+        refused(merge(dir / "merged", {s0, s1, s2}), dir / "merged",
+                {(s1 / "run-info.csv").string() + " is missing: " + s1.string() + " is not the folder of a run"});
     }
     SECTION("a folder that does not exist") {
         refused(merge(dir / "merged", {s0, dir / "nowhere", s2}), dir / "merged",
