@@ -338,3 +338,16 @@ TEST_CASE("analysing a shard, a run that did not end, or a folder being recorded
     fs::remove(whole / "run-info.csv");  // as kill -9 leaves it: run-config.csv from its start, no run-info.csv
     warned(whole, "the run that recorded " + whole.string() + " did not end (no run-info.csv: killed");
 }
+
+// User review (sharded runs): --shard 120/150 of a 108-trial run recorded nothing and said only "done".
+TEST_CASE("a shard past the run's last trial records nothing and says why", "[shard]") {
+    rt::TempDir dir;
+    const auto r = rt::record(dir / "s", "--set runs=1 --set analyse=false --shard 30/40");  // 27 trials
+    INFO(r.output);
+    CHECK(r.status == 0);
+    CHECK(rt::count_of(r.output, "warning rollsense: shard 30/40 holds no trial of this run (it has fewer than 31 "
+                                 "trials, or the script records none): split it into fewer shards") == 1);
+    const auto ok = rt::record(dir / "t", "--set runs=1 --set analyse=false --shard 26/40");  // the 27th trial
+    CHECK(ok.status == 0);
+    CHECK(rt::count_of(ok.output, "holds no trial") == 0);
+}

@@ -273,6 +273,11 @@ int run(const std::vector<std::string>& argv) {
     const std::size_t already = std::max(summary.trials_skipped, listed - std::min(listed, summary.trials_saved));
     // The error first, once; then the summary, where the results are and the way on.
     if (!summary.status.ok()) log_error("rollsense", summary.status.error().describe());
+    // Review: --shard 120/150 of a 108-trial run recorded nothing, and said done.
+    if (summary.status.ok() && o.shard && summary.trials_saved + already == 0)
+        log_warning("rollsense", "shard " + o.shard->text() + " holds no trial of this run (it has fewer than " +
+                                     std::to_string(o.shard->index + 1) + " trials, or the script records none): "
+                                     "split it into fewer shards");
     std::fprintf(stderr, "%s: %zu trials saved, %zu already on disk; %.1f s robot time in %.2f s wall\n",
                  summary.status.ok() ? "done" : (summary.cancelled ? "cancelled" : "failed"), summary.trials_saved,
                  already, summary.run_time_s, summary.wall_time_s);
