@@ -137,6 +137,29 @@ TEST_CASE("rollsense features, evaluate and train on a recorded dataset", "[lear
     fs::remove_all(dir);
 }
 
+// User review (first day): evaluate DATASET partitioned with seed 1 while the run's own evaluation (and report) used
+// the run's seed, so a student checking a run's evaluation.txt got other figures; evaluate takes the run's seed now.
+TEST_CASE("evaluate partitions with the seed the dataset was recorded with, unless --seed says otherwise",
+          "[learn][cli]") {
+    const auto dir = make_dataset(7);
+    const auto seeds = [&](const std::string& input, const std::string& options) {
+        const auto out = dir / "seeds.json";
+        const auto r = rollsense_cli("evaluate " + input + " --repeats 2 --folds 3 --set learners=5 " + options +
+                                     " -o " + out.string());
+        INFO(r.output);
+        REQUIRE(r.status == 0);
+        std::ifstream in(out);
+        const auto j = rollsense::testing::JsonReader::parse(
+            std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+        fs::remove(out), fs::remove(dir / "seeds.txt");
+        return std::pair{j["folds"]["seeds"][0].num(), j["folds"]["seeds"][1].num()};
+    };
+    CHECK(seeds((dir / "dataset").string(), "") == std::pair{7.0, 8.0});
+    CHECK(seeds((dir / "dataset").string(), "--seed 3") == std::pair{3.0, 4.0});
+    REQUIRE(rollsense_cli("features " + (dir / "dataset").string() + " -o " + (dir / "f.csv").string()).status == 0);
+    CHECK(seeds((dir / "f.csv").string(), "") == std::pair{1.0, 2.0});  // a features table records no seed
+}
+
 TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][cli]") {
     auto r = rollsense_cli("features /nonexistent/dataset -o /tmp/x.csv");
     CHECK(r.status == 3);

@@ -25,12 +25,13 @@ inline std::vector<double> bump(std::size_t n, double amp, double centre, double
     return x;
 }
 
-// DIR/dataset (DIR unique to the process, emptied first); returns DIR.
-inline std::filesystem::path make_dataset() {
+// DIR/dataset (DIR unique to the process, emptied first), recorded with `seed` (0: none); returns DIR.
+inline std::filesystem::path make_dataset(std::uint64_t seed = 0) {
     const auto dir = std::filesystem::temp_directory_path() / ("rollsense-test-cli-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     DatasetInfo info;
     info.channels = {"ch1", "ch2", "ch3"};
+    info.seed = seed;
     auto w = DatasetWriter::open(dir / "dataset", info, DatasetOpenMode::create);
     REQUIRE(w.ok());
     const char* objects[] = {"C1", "P1", "S2"};

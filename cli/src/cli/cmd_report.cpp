@@ -120,9 +120,6 @@ int run(const std::vector<std::string>& argv) {
                      folder.string().c_str(), there.c_str(), (folder / "report-NAME.html").string().c_str());
         return kExitUsage;
     }
-    // The seed the run's rs.analyse evaluated with, unless --seed says otherwise.
-    if (args.option("--seed").empty())
-        if (auto ds = DatasetReader::open(s.input); ds && ds->info().seed != 0) s.options.seed = ds->info().seed;
     runtime::PluginRegistry registry(runtime::PluginRegistry::default_search_path(s.plugin_path));
     learn::PipelineResult result;
     if (int rc = run_learning_pipeline("report", args, s, registry, result, false); rc != kExitOk) return rc;

@@ -47,7 +47,8 @@ options:
   --set KEY=VALUE     classifier parameter, repeatable
   --optimize          choose the parameters by Bayesian optimisation
   --evaluations N     with --optimize: optimiser evaluations (30)
-  --folds K, --seed S with --optimize: partition of the optimiser's CV (5, 1)
+  --folds K, --seed S with --optimize: partition of the optimiser's CV (5; the
+                      seed the dataset was recorded with, else 1)
   --cv SCHEME, --group-by COLUMN, --block N
                       with --optimize: the optimiser's folds hold out whole
                       groups, as 'rollsense evaluate --cv' (one scheme:
