@@ -14,6 +14,7 @@
 #include "cli_dataset.hpp"
 #include "json_reader.hpp"
 #include "run_command.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace rollsense;
@@ -158,6 +159,38 @@ TEST_CASE("evaluate partitions with the seed the dataset was recorded with, unle
     CHECK(seeds((dir / "dataset").string(), "--seed 3") == std::pair{3.0, 4.0});
     REQUIRE(rollsense_cli("features " + (dir / "dataset").string() + " -o " + (dir / "f.csv").string()).status == 0);
     CHECK(seeds((dir / "f.csv").string(), "") == std::pair{1.0, 2.0});  // a features table records no seed
+}
+
+// User review (first day): only the fixed names were protected, so `evaluate -o RUN/report-again.html` replaced a
+// report with a text and `train -o RUN/evaluation-again.json` an evaluation with a model; a result is known by its
+// content now, under any name.
+TEST_CASE("-o refuses to replace a result of another kind under any name, and replaces one of its own kind",
+          "[learn][cli]") {
+    const auto dir = make_dataset();
+    const std::string ds = (dir / "dataset").string();
+    const auto named = [&](const char* name) { return (dir / name).string(); };
+    REQUIRE(rollsense_cli("features " + ds + " -o " + named("table.txt")).status == 0);
+    REQUIRE(rollsense_cli("evaluate " + ds + " --repeats 1 --folds 3 -o " + named("ev-a.txt")).status == 0);
+    REQUIRE(rollsense_cli("train " + ds + " -o " + named("m.bin")).status == 0);
+    const auto table = rollsense::testing::read_file(dir / "table.txt"), evaluation = rollsense::testing::read_file(dir / "ev-a.json");
+    for (const auto& [command, says] :
+         std::vector<std::pair<std::string, std::string>>{
+             {"train " + ds + " -o " + named("table.txt"), "the features table that `rollsense features` wrote there"},
+             {"train " + ds + " -o " + named("ev-a.json"), "the evaluation that `rollsense evaluate` wrote there"},
+             {"features " + ds + " -o " + named("m.bin"), "the trained model that `rollsense train` wrote there"},
+             {"evaluate " + ds + " --repeats 1 --folds 3 -o " + named("table.txt"), "the features table"}}) {
+        const auto r = rollsense_cli(command);
+        INFO(command << "\n" << r.output);
+        CHECK(r.status == 2);
+        CHECK_THAT(r.output, Catch::Contains("would replace, with another kind of file, " + says));
+    }
+    CHECK(rollsense::testing::read_file(dir / "table.txt") == table);
+    CHECK(rollsense::testing::read_file(dir / "ev-a.json") == evaluation);
+    // Its own kind is replaced, as before; any other file too (it is no result of ours).
+    CHECK(rollsense_cli("evaluate " + ds + " --repeats 1 --folds 3 -o " + named("ev-a.txt")).status == 0);
+    CHECK(rollsense_cli("train " + ds + " -o " + named("m.bin")).status == 0);
+    { std::ofstream(dir / "notes.txt") << "my notes\n"; }
+    CHECK(rollsense_cli("train " + ds + " -o " + named("notes.txt")).status == 0);
 }
 
 TEST_CASE("learning commands: exit codes and messages for bad input", "[learn][cli]") {

@@ -1,6 +1,8 @@
 #include "cli/output_paths.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -25,6 +27,26 @@ constexpr RunResult kRunResults[] = {
     {"report.html", "the report", {"report", nullptr}},
 };
 
+// A result under another name (report-NAME.html, evaluation-NAME.json, as the docs suggest) known by its first bytes,
+// as each command writes them (review: `evaluate -o RUN/report-again.html` replaced a report with a text); null for
+// anything else.
+const RunResult* result_by_content(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::string head(256, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    const auto named = [](const char* name) {
+        return &*std::find_if(std::begin(kRunResults), std::end(kRunResults),
+                              [&](const RunResult& r) { return std::string_view(r.file) == name; });
+    };
+    if (head.starts_with("<!DOCTYPE html") && head.find("rollsense") != std::string::npos) return named("report.html");
+    if (head.find("\"format\": \"rollsense-evaluation\"") != std::string::npos) return named("evaluation.json");
+    if (head.starts_with("trials ") && head.find(", clean ") < head.find('\n')) return named("evaluation.txt");
+    if (head.starts_with("rollsense-")) return named("model.rsm");
+    if (head.starts_with("trial_id,object,")) return named("features.csv");
+    return nullptr;
+}
+
 // Empty when `command` may write `file`; else why not: a result that would land in another dataset's folder than the
 // input's, where it would pass for that dataset's own (review: `train D -o W/model.rsm`; predict then judged W's
 // trials against D's training range), or an existing result another command wrote.
@@ -48,7 +70,11 @@ std::string replaces_other_result(const char* command, const std::filesystem::pa
         return "-o " + file.string() + " would replace, with another kind of file, " + r.what + " (by its name: `rollsense " +
                r.writers[0] + "` writes it); give -o another name, or delete it first if it is unwanted";
     }
-    return {};
+    if (!fs::is_regular_file(file, ec)) return {};
+    const RunResult* r = result_by_content(file);
+    if (!r || std::ranges::any_of(r->writers, [&](const char* w) { return w && std::string_view(w) == command; })) return {};
+    return "-o " + file.string() + " would replace, with another kind of file, " + r->what + " that `rollsense " +
+           r->writers[0] + "` wrote there (by its content); give -o another name, or delete it first if it is unwanted";
 }
 }  // namespace
 
