@@ -83,6 +83,17 @@ TEST_CASE("predict classifies every trial of a dataset with the trained model") 
     CHECK(r.output.find("C1-v10-r001") != std::string::npos);
     // Trained on these very trials and checked against them: no warning.
     CHECK(r.output.find("warning") == std::string::npos);
+    // The runner-up's score as the class's, three decimals, and none when no other class scored (first-day review:
+    // "C2 0.4", and "C1 0" naming an arbitrary class).
+    std::istringstream lines(r.output);
+    std::string line;
+    std::getline(lines, line);  // the header
+    while (std::getline(lines, line)) {
+        if (line.find("no decision: ") != std::string::npos) continue;
+        INFO(line);
+        CHECK(std::regex_search(line, std::regex(R"( \d\.\d{3}  ([A-Z]\w* \d\.\d{3}|-)$)")));
+        CHECK_FALSE(std::regex_search(line, std::regex(R"( 0\.000$)")));
+    }
     CHECK(r.output.find("not checked") == std::string::npos);
 
     const auto j = run_rollsense("predict --json " + shell_quoted(run / "trained.rsm") + " " + shell_quoted(run) + " 2>/dev/null");

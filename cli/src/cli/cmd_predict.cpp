@@ -348,9 +348,13 @@ void print_text(const std::vector<Outcome>& outcomes, const std::vector<std::str
             for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
             std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return o.scores[a] > o.scores[b]; });
             const std::size_t top = order.empty() ? 0 : order[0];
-            std::string runner;
-            if (order.size() > 1 && order[1] < classes.size())
-                runner = classes[order[1]] + " " + csv::format_number(std::round(o.scores[order[1]] * 1000) / 1000);
+            // As the score, three decimals; none when no other class scored (review: "C1 0", an arbitrary class).
+            std::string runner = "-";
+            if (order.size() > 1 && order[1] < classes.size() && o.scores[order[1]] > 0) {
+                char score[32];
+                std::snprintf(score, sizeof score, " %.3f", o.scores[order[1]]);
+                runner = classes[order[1]] + score;
+            }
             std::printf("%-22s %-10s %-10s %6.3f  %s\n", o.trial_id.c_str(), o.object.c_str(), o.cls.c_str(),
                         top < o.scores.size() ? o.scores[top] : 0.0, runner.c_str());
         }

@@ -82,8 +82,8 @@ std::string prefix_section(const learn::PrefixCurves& pc) {
             "three valid peaks; MiniRocket: refused by the series rule) is \u201cno decision\u201d and counts as "
             "wrong.</p>\n";
     body += "<figure>\n" + chart(pc, false, "fig-prefix-fraction") +
-            "<figcaption>Accuracy against the share of the roll on the contact's clock; thick: all speeds, thin dashed: per "
-            "speed.</figcaption>\n</figure>\n";
+            "<figcaption>Accuracy against the share of the roll on the contact's clock; thick: all speeds; thin: each "
+            "speed, its own dash pattern (the legend names them).</figcaption>\n</figure>\n";
     body += "<figure>\n" + chart(pc, true, "fig-prefix-seconds") +
             "<figcaption>Accuracy against seconds of rolling after the clock's zero, per classifier and speed.</figcaption>\n</figure>\n";
     body += "<table class=\"numbers\" id=\"prefix-table\"><thead><tr><th>classifier</th><th>speed</th>";
