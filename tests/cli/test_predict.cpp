@@ -187,6 +187,21 @@ TEST_CASE("predict's errors name the model, the plugin and the way out") {
     CHECK(missing.status == 3);
     CHECK(missing.output.find("none.rsm: no such model file") != std::string::npos);
 
+    // The features table or a trial file given as MODEL is named as such (first-day review: "give --classifier").
+    for (const auto& table : std::vector<fs::path>{run / "features.csv", run / "trials" / "C1-v10-r001.csv"}) {
+        const auto swapped = run_rollsense("predict " + shell_quoted(table) + " " + shell_quoted(run));
+        INFO(swapped.output);
+        CHECK(swapped.status == 3);
+        CHECK(count_of(swapped.output, table.string() + ":1: a CSV table, not a model: give the model first") == 1);
+        CHECK(swapped.output.find("--classifier") == std::string::npos);
+    }
+    // Without --training, the way to the check is said (first-day review).
+    fs::copy_file(run / "trained.rsm", dir / "alone.rsm");
+    const auto alone = run_rollsense("predict " + shell_quoted(dir / "alone.rsm") + " " + shell_quoted(run));
+    CHECK(alone.status == 0);
+    CHECK(count_of(alone.output, "not checked against the training data") == 1);
+    CHECK(count_of(alone.output, "give --training DIR, the output folder of the run the model was trained on") == 1);
+
     write_file(dir / "odd.rsm", "something else\n");
     const auto odd = run_rollsense("predict " + shell_quoted(dir / "odd.rsm") + " " + shell_quoted(run));
     CHECK(odd.status == 3);
@@ -214,7 +229,7 @@ TEST_CASE("predict's errors name the model, the plugin and the way out") {
     fs::copy_file(run / "trained.rsm", dir / "stock" / "model.rsm");
     const auto folder = run_rollsense("predict " + shell_quoted(dir / "stock") + " " + shell_quoted(run));
     INFO(folder.output);
-    CHECK(folder.status == 3);
+    CHECK(folder.status == 2);  // the arguments swapped: the command line's mistake (first-day review: 3)
     CHECK(folder.output.find("stock is a folder, not a model file; did you mean " + (dir / "stock" / "model.rsm").string() +
                              "?") != std::string::npos);
     CHECK(folder.output.find("--classifier") == std::string::npos);

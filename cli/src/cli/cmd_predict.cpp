@@ -132,6 +132,10 @@ Result<ModelHeader> read_model_header(const fs::path& model) {
 // "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names.
 Result<std::string> plugin_from_magic(const ModelHeader& h, const fs::path& model) {
     const std::string prefix = "rollsense-";
+    // A features table or a trial file given first is no model at all (first-day review: told to name a classifier).
+    if (h.magic.starts_with("trial_id,") || h.magic.starts_with("time,"))
+        return Error{ErrorCode::parse_error, model.string() + ":1: a CSV table, not a model: give the model first "
+                                                              "(rollsense predict MODEL INPUT; rollsense train makes one)"};
     if (h.magic.rfind(prefix, 0) != 0 || h.magic.size() == prefix.size())
         return Error{ErrorCode::parse_error, model.string() + ":1: the file does not name its classifier (expected "
                                                               "'rollsense-<plugin> <version>'); give --classifier NAME"};
@@ -404,7 +408,8 @@ int run(const std::vector<std::string>& argv) {
     };
 
     auto header = read_model_header(model);
-    if (!header) return fail(header.error(), kExitConfig);
+    // A folder given as MODEL (the arguments swapped) is the command line's mistake, 2 (first-day review: 3).
+    if (!header) return fail(header.error(), header.error().code == ErrorCode::invalid_argument ? kExitUsage : kExitConfig);
     std::string plugin = args.option("--classifier");
     const bool inferred = plugin.empty();
     if (inferred) {
@@ -449,9 +454,12 @@ int run(const std::vector<std::string>& argv) {
         training.dir = training_dir;
         training.missing.push_back("it holds another dataset (" + *other + ")");
     }
-    if (!training.missing.empty())
-        std::fprintf(stderr, "rollsense predict: not checked against the training data, in %s: %s\n",
-                     training_dir.c_str(), join(training.missing, "; ").c_str());
+    if (!training.missing.empty())  // the way to the check (first-day review: none was said)
+        std::fprintf(stderr, "rollsense predict: not checked against the training data, in %s: %s%s\n",
+                     training_dir.c_str(), join(training.missing, "; ").c_str(),
+                     named_training.empty() ? "; give --training DIR, the output folder of the run the model was "
+                                              "trained on, to check the trials against its range"
+                                            : "");
 
     std::vector<Outcome> outcomes;
     if ((*clf)->input() == ClassifierInput::series) {
