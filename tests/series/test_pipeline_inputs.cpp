@@ -8,6 +8,7 @@
 #include <set>
 
 #include "json_reader.hpp"
+#include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/series/series_table.hpp"
@@ -134,6 +135,14 @@ TEST_CASE("trials=all gives a series classifier every trial its rule accepts, th
                          return r.trial_id == id && !r.clean;
                      }) != rows().end();
           }) == static_cast<std::ptrdiff_t>(paper_refused_used));
+    // Their count is no clean count (the paper's rule refuses some): the text says "used" (first-day review).
+    const std::string text = format_evaluation(*ev);
+    CHECK_THAT(text, Catch::Contains("trials " + std::to_string(rows().size()) + ", used " + std::to_string(ev->clean) +
+                                     ", classes ") &&
+                         !Catch::Contains(", clean " + std::to_string(ev->clean)));
+    auto clean = evaluate_prepared(rows(), stock_run_dir(), {rocket()}, small(), InputOptions{});
+    REQUIRE(clean.ok());
+    CHECK_THAT(format_evaluation(*clean), Catch::Contains(", clean " + std::to_string(clean->clean) + ", classes "));
 
     // A feature classifier has no features for the peak rule's refused trials.
     auto mixed = evaluate_prepared(rows(), stock_run_dir(), {trees(), rocket()}, small(), all);

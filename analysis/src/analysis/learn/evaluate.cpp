@@ -513,15 +513,23 @@ std::string format_evaluation(const Evaluation& ev) {
     return (caveat.empty() ? std::string() : "NOTE: " + caveat + "\n\n") + format_evaluation_body(ev);
 }
 
+const char* used_trials_word(const Evaluation& evaluation) {
+    return evaluation.selection == "series_accepted" ? "used" : "clean";
+}
+
 namespace {
 // Everything after the caveat.
 std::string format_evaluation_body(const Evaluation& ev) {
-    if (ev.classifiers.size() == 1)
-        return format_report(ev.primary()) + selection_line(ev) +
-               (ev.prefixes ? format_prefix_curves(*ev.prefixes) : std::string());
+    if (ev.classifiers.size() == 1) {
+        std::string report = format_report(ev.primary());  // its first line, "trials N, clean M, ...", with the word
+        if (const auto at = report.find(", clean "); at < report.find('\n'))
+            report.replace(at + 2, 5, used_trials_word(ev));
+        return report + selection_line(ev) + (ev.prefixes ? format_prefix_curves(*ev.prefixes) : std::string());
+    }
     std::string out;
     char buf[256];
-    std::snprintf(buf, sizeof buf, "trials %zu, clean %zu, classes %zu\n\n", ev.trials, ev.clean, ev.classes.size());
+    std::snprintf(buf, sizeof buf, "trials %zu, %s %zu, classes %zu\n\n", ev.trials, used_trials_word(ev), ev.clean,
+                  ev.classes.size());
     out += buf;
     std::size_t width = 10;
     for (const auto& c : ev.classifiers) width = std::max(width, c.name.size());

@@ -221,6 +221,10 @@ std::string time_axis_caveat(const Evaluation& evaluation);
 // Human-readable report: every figure labelled with how it was obtained.
 // `with_timing` = false leaves out the final "evaluation took" line.
 std::string format_report(const EvaluationReport& report, bool with_timing = true);
+// What the count of trials used is called: "clean" (the paper's rule), or "used" when the evaluation took trials the
+// paper's rule refuses (--trials all), whose count is no clean count (review: "clean 1246" beside the paper
+// analyses' "clean 1176 of 1350").
+const char* used_trials_word(const Evaluation& evaluation);
 // evaluation.txt: one classifier exactly as format_report(); several: each
 // one's report under its name, then the paired comparison.
 std::string format_evaluation(const Evaluation& evaluation);

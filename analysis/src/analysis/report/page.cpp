@@ -101,7 +101,8 @@ Result<std::string> render_report(const ReportInputs& in) {
                                                                : in.dataset_dir.filename().string();
     body += "<header>\n<h1>Object identification report: " + escape_xml(name) + "</h1>\n";
     body += "<p class=\"lead\">Dataset <code>" + escape_xml(in.dataset_dir.string()) + "</code>, " +
-            std::to_string(ev.trials) + " trials, " + std::to_string(ev.clean) + " clean. Figures and analyses of " +
+            std::to_string(ev.trials) + " trials, " + std::to_string(ev.clean) + " " + learn::used_trials_word(in.evaluation) +
+            ". Figures and analyses of " +
             "the E-TRoll paper computed for this data.</p>\n";
     body += "<p class=\"headline\" id=\"headline\">Accuracy " + mean_sd(b.mean, b.sd) + " (" + escape_xml(ev.name) + ", " + std::to_string(b.repeats) +
             " \u00d7 " + std::to_string(b.folds) + "-fold CV), 95\u00a0% interval " + fixed(100.0 * b.wilson.low, 1) +
