@@ -580,10 +580,9 @@ TEST_CASE("a port lost mid-run: read and write name the way out, the release doe
     INFO(log.all());
     REQUIRE(log.lines().size() == 1);
     CHECK_THAT(log.lines()[0], Catch::StartsWith("warning ") && Catch::Contains("joint 'winch' (servo 4).") &&
-                                   Catch::Contains("failed too: the port is gone, as the device's fault says") &&
+                                   Catch::Contains("failed too, the port being gone (" + device) &&
                                    !Catch::Contains("Both were sent once more") && !Catch::Contains("(hardware fault)"));
     CHECK(occurrences(log.lines()[0], way_out) == 0);
-    CHECK(occurrences(log.lines()[0], device) == 0);
 }
 
 TEST_CASE("transient faults are absorbed by the bounded retries") {

@@ -334,7 +334,8 @@ TEST_CASE("Ctrl-C while the script computes ends it at its line, without a trace
     o.sandbox.max_slice_ms = 60'000;
     rollsense::runtime::Session session(o);
     std::thread interrupter([started = o.out_dir / "started.txt"] {  // once in the loop, however loaded the machine
-        while (!std::filesystem::exists(started)) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        for (int i = 0; i < 6000 && !std::filesystem::exists(started); ++i)  // at most a minute: never a hang
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
         std::raise(SIGINT);
     });

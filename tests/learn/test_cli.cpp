@@ -186,6 +186,13 @@ TEST_CASE("-o refuses to replace a result of another kind under any name, and re
     }
     CHECK(rollsense::testing::read_file(dir / "table.txt") == table);
     CHECK(rollsense::testing::read_file(dir / "ev-a.json") == evaluation);
+    // An evaluation text of --trials all ("used") after a caveat (diff review: only ", clean " on line 1 was known).
+    const std::string caveat = "NOTE: " + std::string(300, 'x') + "\n\ntrials 36, used 35, classes 3\n\npreset, ...\n";
+    { std::ofstream(dir / "ev-all.txt") << caveat; }
+    const auto all = rollsense_cli("features " + ds + " -o " + named("ev-all.txt"));
+    CHECK(all.status == 2);
+    CHECK_THAT(all.output, Catch::Contains("would replace, with another kind of file, the evaluation"));
+    CHECK(rollsense::testing::read_file(dir / "ev-all.txt") == caveat);
     // Its own kind is replaced, as before; any other file too (it is no result of ours).
     CHECK(rollsense_cli("evaluate " + ds + " --repeats 1 --folds 3 -o " + named("ev-a.txt")).status == 0);
     CHECK(rollsense_cli("train " + ds + " -o " + named("m.bin")).status == 0);

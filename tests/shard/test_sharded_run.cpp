@@ -334,7 +334,7 @@ TEST_CASE("analysing a shard, a run that did not end, or a folder being recorded
     rt::write_file(whole / "run-info.csv", std::regex_replace(info, std::regex("\nstatus,ok\n"),
                                                               "\nstatus,cancelled: interrupted by Ctrl-C\n"));
     warned(whole, "the run that recorded " + whole.string() + " did not end ok (run-info.csv: status 'cancelled: "
-                  "interrupted by Ctrl-C'), so it may hold only part of its trials");
+                  "interrupted by Ctrl-C'): if it stopped before its last trial it holds only part of them");
     fs::remove(whole / "run-info.csv");  // as kill -9 leaves it: run-config.csv from its start, no run-info.csv
     warned(whole, "the run that recorded " + whole.string() + " did not end (no run-info.csv: killed");
 }

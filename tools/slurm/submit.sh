@@ -83,11 +83,12 @@ shards_job=$(sbatch --parsable --array="0-$((n - 1))" --output="$out/logs/%x-%A_
   ${sbatch_options[@]+"${sbatch_options[@]}"} "$here/shard.sbatch" "$out" "$script" "$@")
 shards_job=${shards_job%%;*}  # "id;cluster" on a federation
 echo "ROLLSENSE_SHARDS_JOB=$shards_job"
-if ! merge_job=$(sbatch --parsable --dependency="afterok:$shards_job" --kill-on-invalid-dep=yes \
-  --output="$out/logs/%x-%j.out" ${sbatch_options[@]+"${sbatch_options[@]}"} "$here/merge.sbatch" "$out" "$n" "$script" "$@"); then
+merge=(sbatch --parsable --dependency="afterok:$shards_job" --kill-on-invalid-dep=yes --output="$out/logs/%x-%j.out"
+       ${sbatch_options[@]+"${sbatch_options[@]}"} "$here/merge.sbatch" "$out" "$n" "$script" "$@")
+if ! merge_job=$("${merge[@]}"); then
   echo "submit.sh: the shards run as job array $shards_job, but the merge job was not submitted (sbatch's error" \
-       "above); submit it by hand: sbatch --dependency=afterok:$shards_job $here/merge.sbatch $out $n $script $*" \
-       "(or stop the shards: scancel $shards_job)" >&2
+       "above); submit it by hand: ROLLSENSE=$(printf '%q' "$rollsense") $(printf '%q ' "${merge[@]}")" \
+       "(or stop the shards: scancel $shards_job)" | sed 's/--parsable //' >&2
   exit 1
 fi
 merge_job=${merge_job%%;*}

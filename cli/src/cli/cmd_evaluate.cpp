@@ -274,8 +274,8 @@ options:
   --repeats R         repetitions of the CV with different partitions (10)
   --seed S            partition and optimiser seed (default: the seed the
                       dataset was recorded with, so that the run's own
-                      figures come out; 1 for a features CSV or a dataset
-                      without one)
+                      figures come out; 1 for a features CSV, a dataset
+                      without one, or one recorded with --seed 0)
   --cv LIST           also cross-validate with whole groups held out, beside
                       random k-fold (always run): grouped (needs --group-by),
                       blocked (needs --block), comma-separated; figures in the

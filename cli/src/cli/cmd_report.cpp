@@ -58,7 +58,8 @@ options:
   --folds K           k of the k-fold CV (5)
   --repeats R         repetitions of the CV with different partitions (10)
   --seed S            partition and optimiser seed (default: the seed the
-                      dataset was recorded with; 1 for a dataset without one)
+                      dataset was recorded with; 1 for a dataset without one
+                      or recorded with --seed 0)
   --cv LIST, --group-by COLUMN, --block N
                       grouped and blocked CV beside random k-fold, shown in
                       the accuracy table (as 'rollsense evaluate --help' says;

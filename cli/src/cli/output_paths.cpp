@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <string_view>
 
@@ -32,7 +33,7 @@ constexpr RunResult kRunResults[] = {
 // anything else.
 const RunResult* result_by_content(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
-    std::string head(256, '\0');
+    std::string head(4096, '\0');  // an evaluation text may open with a caveat (NOTE: ...) before its counts
     in.read(head.data(), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<std::size_t>(in.gcount()));
     const auto named = [](const char* name) {
@@ -41,7 +42,8 @@ const RunResult* result_by_content(const std::filesystem::path& file) {
     };
     if (head.starts_with("<!DOCTYPE html") && head.find("rollsense") != std::string::npos) return named("report.html");
     if (head.find("\"format\": \"rollsense-evaluation\"") != std::string::npos) return named("evaluation.json");
-    if (head.starts_with("trials ") && head.find(", clean ") < head.find('\n')) return named("evaluation.txt");
+    static const std::regex evaluation_text(R"((^|\n)trials \d+, (clean|used) \d+, classes \d+\n)");  // after a NOTE
+    if (std::regex_search(head, evaluation_text)) return named("evaluation.txt");
     if (head.starts_with("rollsense-")) return named("model.rsm");
     if (head.starts_with("trial_id,object,")) return named("features.csv");
     return nullptr;

@@ -1,5 +1,6 @@
 #include "cli/partial_dataset.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "rollsense/csv.hpp"
@@ -37,11 +38,15 @@ void warn_if_partial(const std::filesystem::path& dataset) {
     if (!shard.empty())
         log_warning("rollsense", dir + " is shard " + shard + " of a run and holds only its part of the trials: merge the "
                                    "shards first for the whole run (rollsense merge OUT SHARD..., docs/cluster.md)");
-    else if (!status.empty() && status != "ok")
-        log_warning("rollsense", "the run that recorded " + dir + " did not end ok (run-info.csv: status '" +
-                                 status.substr(0, 160) + (status.size() > 160 ? "...'" : "'") +
-                                 "), so it may hold only part of its trials: resume it to complete them (its "
-                                 "command_line in run-info.csv with --resume)");
+    else if (!status.empty() && status != "ok") {
+        // Its first line, bounded (a script's error may carry a traceback); the run may have failed after its last
+        // trial (its analysis, its cleanup), so what is missing is not known here (diff review).
+        std::string said = status.substr(0, std::min<std::size_t>(status.find('\n'), 160));
+        if (said.size() < status.size()) said += " ...";
+        log_warning("rollsense", "the run that recorded " + dir + " did not end ok (run-info.csv: status '" + said +
+                                 "'): if it stopped before its last trial it holds only part of them; resume it to "
+                                 "complete them (its command_line in run-info.csv with --resume)");
+    }
 }
 
 }  // namespace rollsense::cli

@@ -15,7 +15,8 @@ std::string shell_quote(std::string_view text);
 std::string shell_join(const std::vector<std::string>& words);
 
 // The words of a command line as shell_join writes it: single quotes, double quotes and backslashes are read as a
-// shell reads them; no expansion. An unquoted line (as run-info.csv recorded it before quoting) splits at spaces.
+// shell reads them; no expansion. An unquoted line (as run-info.csv recorded it before quoting) splits at spaces
+// unless it holds a quote or a backslash, which are then read as quoting.
 std::vector<std::string> shell_split(std::string_view line);
 
 }  // namespace rollsense

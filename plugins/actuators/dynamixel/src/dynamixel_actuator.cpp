@@ -315,7 +315,6 @@ DynamixelActuator::Release DynamixelActuator::release_servos() {
     if (!off.empty()) {
         if (config_.bus_watchdog_ms > 0) out.resend = bus_->sync_write(addr::bus_watchdog, 1, off);
         if (auto st = bus_->sync_write(addr::torque_enable, 1, off); out.resend.ok()) out.resend = std::move(st);
-        if (!out.resend.ok() && bus_->port_failed()) out.resend = port_failure(std::move(out.resend));
     }
     return out;
 }
@@ -323,9 +322,9 @@ DynamixelActuator::Release DynamixelActuator::release_servos() {
 Status DynamixelActuator::not_confirmed(const Release& release, bool with_reasons) const {
     const auto& servos = release.servos;
     if (servos.empty()) return {};
-    // A dead port: every servo's error is the same port error, said once, by the resend's; and not at all when the
-    // device's fault was reported already (!with_reasons): that fault was the port's, printed with its way out (user
-    // review: the emulator killed mid-run printed the port's error three times).
+    // A dead port: every servo's error is the same port error, said once, by the resend's; after the device's fault
+    // (!with_reasons), whose error is the run's, with its way out, the port's error alone (user review: the emulator
+    // killed mid-run printed the port's error and way out three times).
     const bool port_dead = !release.resend.ok();
     std::string list;
     for (const auto& [i, why] : servos)
@@ -338,9 +337,9 @@ Status DynamixelActuator::not_confirmed(const Release& release, bool with_reason
     const std::string resend =
         !port_dead     ? ". Both were sent once more without asking for a reply (SYNC_WRITE); " + check
         : with_reasons ? ". Sending both once more without asking for a reply (SYNC_WRITE) failed too: " +
-                             release.resend.message() + "; then " + check
-                       : ". Sending both once more without asking for a reply (SYNC_WRITE) failed too: the port is "
-                         "gone, as the device's fault says; once it is back, " + check;
+                             port_failure(release.resend).message() + "; then " + check
+                       : ". Sending both once more without asking for a reply (SYNC_WRITE) failed too, the port being "
+                         "gone (" + release.resend.message() + "); once it is back, " + check;
     return {servos.front().second.code(), "not confirmed released (torque off, Bus Watchdog 0): " + list + resend};
 }
 
