@@ -164,7 +164,7 @@ TEST_CASE("evaluate partitions with the seed the dataset was recorded with, unle
 // User review (first day): only the fixed names were protected, so `evaluate -o RUN/report-again.html` replaced a
 // report with a text and `train -o RUN/evaluation-again.json` an evaluation with a model; a result is known by its
 // content now, under any name.
-TEST_CASE("-o refuses to replace a result of another kind under any name, and replaces one of its own kind",
+TEST_CASE("an -o refuses to replace a result of another kind under any name, and replaces one of its own kind",
           "[learn][cli]") {
     const auto dir = make_dataset();
     const std::string ds = (dir / "dataset").string();
