@@ -6,6 +6,7 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/directory_lock.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/run_config.hpp"
 
 namespace rollsense::cli {
 
@@ -22,7 +23,7 @@ void warn_if_partial(const std::filesystem::path& dataset) {
         return;
     }
     // run-config.csv is written as a run starts, run-info.csv as it ends: a killed run leaves the first alone.
-    if (!std::filesystem::exists(dataset / "run-info.csv", ec) && std::filesystem::exists(dataset / "run-config.csv", ec)) {
+    if (!std::filesystem::exists(dataset / "run-info.csv", ec) && std::filesystem::exists(dataset / kRunConfigFile, ec)) {
         log_warning("rollsense", "the run that recorded " + dir + " did not end (no run-info.csv: killed, or its "
                                  "machine stopped), so it may hold only part of its trials: resume it to complete them "
                                  "(its command with --resume)");
