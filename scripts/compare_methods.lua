@@ -29,7 +29,8 @@ rs.settings{
              help = "roll speeds in Dynamixel profile-velocity units (when recording)" },
   repeats = { default = 10, kind = "integer", min = 1, help = "repetitions of the k-fold cross-validation" },
   prefix_repeats = { default = 1, kind = "integer", min = 1, help = "repetitions of the accuracy-before-the-end curves" },
-  series_amplitude = { default = "", kind = "string", help = "the series rule's amplitude mode (empty: its default)" },
+  series_amplitude = { default = "global_scale", kind = "string", choices = { "global_scale", "z_per_channel" },
+                       help = "the series rule's amplitude mode (docs/series-preparation.md)" },
 }
 
 local function list(text)
@@ -80,7 +81,7 @@ end
 local common = {
   folds = 5,
   repeats = rs.setting("repeats"),
-  series_amplitude = rs.setting("series_amplitude") ~= "" and rs.setting("series_amplitude") or nil,
+  series_amplitude = rs.setting("series_amplitude"),
 }
 local function with(extra)
   local t = {}

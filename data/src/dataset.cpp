@@ -10,6 +10,7 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset_files.hpp"
 #include "rollsense/log.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/shard.hpp"
 #include "rollsense/trial_id.hpp"
 
@@ -290,12 +291,12 @@ Result<std::optional<TornLine>> find_torn_line(const fs::path& file) {
 // the highest there, from 1), so every run of the dataset keeps its record.
 Status keep_earlier_run_info(const fs::path& dir) {
     std::error_code ec;
-    if (!fs::exists(dir / "run-info.csv", ec)) return {};
+    if (!fs::exists(dir / kRunInfoFile, ec)) return {};
     std::size_t last = 0;
     for (const auto& entry : fs::directory_iterator(dir, ec))
         last = std::max(last, earlier_run_number(entry.path().filename().string()));
     if (ec) return {ErrorCode::io_error, dir.string() + ": cannot list: " + ec.message()};
-    return rename_durable(dir / "run-info.csv", dir / earlier_run_info_name(last + 1));
+    return rename_durable(dir / kRunInfoFile, dir / earlier_run_info_name(last + 1));
 }
 
 // Resuming: cut a torn last line off the manifest (the trial it listed is
@@ -367,8 +368,10 @@ Result<DatasetReader> DatasetReader::open(const fs::path& dir, MissingTrialFile 
     DatasetReader r;
     r.dir_ = dir;
     std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-        return Error{ErrorCode::not_found, dir.string() + ": no such dataset folder"};
+    if (!fs::is_directory(dir, ec))  // user review: a features CSV given as a dataset was "no such dataset folder"
+        return Error{ErrorCode::not_found, dir.string() + (fs::exists(dir, ec) ? ": a file, not a dataset folder (give "
+                                                                                  "the folder a run recorded)"
+                                                                                : ": no such dataset folder")};
     // A manifest rollsense wrote (beside its dataset-info.csv) whose last line
     // lacks its line end was cut by a crash while a batch was being listed: that
     // trial may be incomplete, so the dataset is refused until --resume drops it.
@@ -783,7 +786,7 @@ Status DatasetWriter::restore_order() {
 }
 
 Status DatasetWriter::write_run_info(const std::vector<std::pair<std::string, std::string>>& entries) {
-    return write_file_atomic(dir_ / "run-info.csv", csv::format_key_values(entries));
+    return write_file_atomic(dir_ / kRunInfoFile, csv::format_key_values(entries));
 }
 
 }  // namespace rollsense

@@ -7,7 +7,7 @@ namespace rollsense {
 namespace fs = std::filesystem;
 
 bool is_dataset_file(std::string_view name) {
-    for (const char* own : {"manifest.csv", "dataset-info.csv", "run-info.csv", "trials", kRunConfigFile,
+    for (const char* own : {"manifest.csv", "dataset-info.csv", kRunInfoFile, "trials", kRunConfigFile,
                             kShardPlanFile, kShardsFile})
         if (name == own) return true;
     return earlier_run_number(name) > 0;

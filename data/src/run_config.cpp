@@ -17,6 +17,11 @@ std::string format_run_config(const RunConfig& config) {
 
 Result<RunConfig> read_run_config(const fs::path& dir) { return csv::read_key_values(dir / kRunConfigFile); }
 
+bool run_killed_before_end(const fs::path& dir) {
+    std::error_code ec;
+    return fs::exists(dir / kRunConfigFile, ec) && !fs::exists(dir / kRunInfoFile, ec);
+}
+
 bool is_read_file_key(std::string_view key) { return key.starts_with("module.") || key.starts_with("include."); }
 
 bool lists_read_files(const RunConfig& config) {

@@ -1,6 +1,7 @@
 #include "rollsense/shard.hpp"
 
 #include "rollsense/csv.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/shell_words.hpp"
 
 namespace rollsense {
@@ -59,7 +60,7 @@ std::string ShardPlan::csv() const {
 
 std::string resume_command(const std::filesystem::path& dir) {
     std::string shard;
-    if (auto info = csv::read_key_values(dir / "run-info.csv"))
+    if (auto info = csv::read_key_values(dir / kRunInfoFile))
         for (const auto& [key, value] : *info)
             if (key == "shard") shard = " --shard " + value;
     return "rollsense run SCRIPT" + shard + " --out " + shell_quote(dir.string()) + " --resume";

@@ -71,10 +71,10 @@ Result<ShardDataset> open_shard(const fs::path& dir) {
     auto lock = DirectoryLock::acquire_to_read(dir);
     if (!lock) return lock.error();
     s.lock = std::move(lock).value();
-    const fs::path run_info = dir / "run-info.csv";
-    // A shard's run writes run-info.csv as it starts, a whole run as it ends (review: a whole run killed before its
-    // end was told to resume and merge, and the merge then refused it as a whole run).
-    if (!fs::exists(run_info, ec) && fs::exists(dir / kRunConfigFile, ec))
+    const fs::path run_info = dir / kRunInfoFile;
+    // Review: a whole run killed before its end was told to resume and merge, and the merge then refused it as a
+    // whole run.
+    if (run_killed_before_end(dir))
         return refused(dir.string() + " has run-config.csv but no run-info.csv: its run was killed before its end, and "
                        "was a whole run, not a shard (a shard's run writes run-info.csv as it starts, naming its "
                        "shard); resume it without --shard to complete it. A shard killed in its first instant looks "

@@ -76,7 +76,7 @@ assert(full_model.fraction == 1, "the last prefix model is the full-roll one")
 for _, speed in ipairs(speeds) do
   if not trained.nominal[speed] then
     error(string.format("identify_early: speed %s is not in the training recording %s (no prefix model has seen it)",
-      speed, train))
+      speed, train), 0)
   end
 end
 
@@ -180,9 +180,11 @@ rs.write_output("identify-early.csv", table.concat(csv, "\n") .. "\n")
 
 local function line(label, t)
   local early, full = t.early_ok / t.n, t.full_ok / t.n
-  return string.format("%-9s %4d rolls  early %5.1f %%  full %5.1f %%  kept %5.1f %% of the full-roll accuracy" ..
+  -- Nothing right on full rolls: no share of it can be kept (review: "kept 0.0 %").
+  local kept = full > 0 and string.format("%5.1f %%", 100 * early / full) or "    n/a"
+  return string.format("%-9s %4d rolls  early %5.1f %%  full %5.1f %%  kept %s of the full-roll accuracy" ..
     "  roll time %5.1f %% of the full roll's (%.2f s vs %.2f s)  stopped early %d", label, t.n, 100 * early,
-    100 * full, full > 0 and 100 * early / full or 0, 100 * t.early_s / t.full_s, t.early_s / t.n,
+    100 * full, kept, 100 * t.early_s / t.full_s, t.early_s / t.n,
     t.full_s / t.n, t.stopped)
 end
 print(string.format("early identification: threshold %.2f, k %d, from %.0f %% of the roll, %s prefix models " ..

@@ -243,7 +243,7 @@ TEST_CASE("in a script that declares its settings, reading an undeclared one is 
     write_file(dir / "bad.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 5, knd = 'integer' } }\n");
     const auto bad = run_rollsense("run " + shell_quoted(dir / "bad.lua") + " --profile mock --out " + shell_quoted(dir / "c"));
     INFO(bad.output);
-    CHECK(bad.output.find("rs.settings: runs: unknown option 'knd' (options: default, kind, min, max, help)") != std::string::npos);
+    CHECK(bad.output.find("rs.settings: runs: unknown option 'knd' (options: default, kind, min, max, help, choices)") != std::string::npos);
     // Review (user journeys) item 9: a default that does not fit was blamed on a --set nobody gave.
     write_file(dir / "unfit.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 'ten', kind = 'integer' } }\n");
     const auto unfit = run_rollsense("run " + shell_quoted(dir / "unfit.lua") + " --profile mock --out " + shell_quoted(dir / "d"));
@@ -786,4 +786,32 @@ TEST_CASE("run SCRIPT --help: a pcall around the call where reading stops does n
     CHECK(r.output.find("declared before " + (dir / "dodge.lua").string() + ":3 (rs.trial)") != std::string::npos);
     CHECK(r.output.find("speed=10") != std::string::npos);
     CHECK(r.output.find("late=") == std::string::npos);
+}
+
+// User review: compare_methods.lua took any series_amplitude word, and the analysis refused it after every trial.
+TEST_CASE("a string setting's choices are listed by --help, and another word is refused before the first trial") {
+    TempDir dir("rollsense-settings-choices");
+    const auto help = run_rollsense("run " + script("compare_methods.lua") + " --help");
+    INFO(help.output);
+    CHECK_THAT(help.output, Catch::Contains("series_amplitude=global_scale") &&
+                                Catch::Contains("string, one of: global_scale, z_per_channel"));
+    const auto bad = run_rollsense("run " + script("compare_methods.lua") + " --set series_amplitude=bogus --set runs=1 " +
+                                   "--no-progress --out " + shell_quoted(dir / "out"));
+    INFO(bad.output);
+    CHECK(bad.status == 2);
+    CHECK_THAT(bad.output, Catch::Contains("'series_amplitude' is 'bogus', expected one of: global_scale, z_per_channel") &&
+                               Catch::Contains("compare_methods.lua:"));
+    CHECK_FALSE(fs::exists(dir / "out"));  // nothing recorded
+    // choices belong to a string setting, as a list of words.
+    for (const char* declaration : {"{ default = 1, choices = { 'a' } }", "{ kind = 'string', choices = { 1, 2 } }",
+                                    "{ kind = 'string', choices = 'a' }", "{ kind = 'string', choices = {} }"}) {
+        INFO(declaration);
+        write_file(dir / "choices.lua", std::string("local rs = require 'rollsense'\nrs.settings{ mode = ") + declaration +
+                                            " }\n");
+        const auto r = run_rollsense("run " + shell_quoted(dir / "choices.lua") + " --no-progress --out " +
+                                     shell_quoted(dir / "c"));
+        INFO(r.output);
+        CHECK(r.status == 1);
+        CHECK_THAT(r.output, Catch::Contains("rs.settings: mode: choices must be a list of strings"));
+    }
 }

@@ -3,6 +3,8 @@
 // a listed trial whose file is cut short.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include "rollsense/dataset.hpp"
 #include "rollsense/run_config.hpp"
 #include "temp_dir.hpp"
@@ -150,4 +152,15 @@ TEST_CASE("a resumed dataset recorded before the module rows keeps none, one tha
         REQUIRE(written.ok());
         CHECK(*written == (listed_before ? now : old_config));
     }
+}
+
+TEST_CASE("a run killed before its end is known by run-config.csv without run-info.csv", "[run_config]") {
+    TempDir dir;
+    const auto touch = [&](const char* name) { std::ofstream(dir.path() / name) << "key,value\n"; };
+    CHECK_FALSE(run_killed_before_end(dir.path()));  // no run's folder at all
+    touch(kRunConfigFile);                           // written as the run starts
+    CHECK(run_killed_before_end(dir.path()));
+    touch(kRunInfoFile);  // written as a whole run ends (a shard's run: as it starts)
+    CHECK_FALSE(run_killed_before_end(dir.path()));
+    CHECK_FALSE(run_killed_before_end(dir.path() / "no-such-folder"));
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "json_reader.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
 
@@ -113,6 +114,15 @@ end
                              "report-small.html"})
         CHECK(std::filesystem::exists(second / file));
     CHECK_THAT(run.output, Catch::Contains("predict with --training " + first.string()));
+    // Another dataset is partitioned with the seed it was recorded with (4), as `rollsense evaluate DIR` does (user
+    // review: with this run's, 5, the same dataset gave other figures); this run's own with its own.
+    const auto first_seed = [&](const char* file) {
+        std::ifstream in(second / file);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        return rollsense::testing::JsonReader::parse(text)["folds"]["seeds"][std::size_t{0}].num();
+    };
+    CHECK(first_seed("evaluation-first_run.json") == 4);
+    CHECK(first_seed("evaluation.json") == 5);
 
     // Diff review: another folder named "first run" wrote its outputs over the first's, untagged (the same tag).
     const auto again = dir.path() / "elsewhere" / "first run";

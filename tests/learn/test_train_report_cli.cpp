@@ -77,6 +77,13 @@ TEST_CASE("train, report and one repetition on a run analysed with minirocket", 
     r = run_rollsense("train " + run.string() + " --classifier minirocket --optimize -o " + model.string());
     CHECK(r.status == 2);
     CHECK_THAT(r.output, Catch::Contains("feature classifiers only") && !Catch::Contains("clean "));
+    // So is evaluating it with --optimize beside one that can be tuned (user review: the bagged trees' tuning ran
+    // 98 s first, then the run failed with exit 1, the classifier named twice).
+    r = run_rollsense("evaluate " + run.string() + " --classifier bagged_trees,minirocket --optimize --repeats 1");
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains("classifier 'minirocket' declares no hyperparameters to tune") &&
+                             !Catch::Contains("'minirocket': classifier 'minirocket'") && !Catch::Contains("clean "));
 
     // C: the run's evaluation is not replaced without --force; nothing is lost.
     const std::string before_txt = file_text(run / "evaluation.txt");

@@ -2,6 +2,8 @@
 // kind of malformed dataset, and the message the replay gives for it.
 #include <catch2/catch.hpp>
 
+#include <fstream>
+
 #include "replay_fixture.hpp"
 
 using namespace rollsense;
@@ -30,6 +32,10 @@ TEST_CASE("malformed datasets: missing files", "[replay][malformed]") {
         auto msg = replay_error(dir);
         CHECK(msg == "cannot replay dataset '" + (dir / "ds").string() + "': " + (dir / "ds").string() +
                          ": no such dataset folder");
+    }
+    SECTION("a file where the dataset folder should be") {  // user review: a features CSV was "no such folder"
+        std::ofstream(dir / "ds") << "trial_id,object\n";
+        CHECK_THAT(replay_error(dir), Catch::EndsWith(": a file, not a dataset folder (give the folder a run recorded)"));
     }
     SECTION("a relative path names the working directory it was taken from") {
         auto params = rt::replay_params("no/such/dataset");

@@ -11,6 +11,7 @@
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/pipeline.hpp"
+#include "analysis/report/report.hpp"
 #include "analysis/series/series_table.hpp"
 #include "rollsense/bagged_trees/bagged_trees.hpp"
 #include "rollsense/minirocket/minirocket.hpp"
@@ -143,6 +144,21 @@ TEST_CASE("trials=all gives a series classifier every trial its rule accepts, th
     auto clean = evaluate_prepared(rows(), stock_run_dir(), {rocket()}, small(), InputOptions{});
     REQUIRE(clean.ok());
     CHECK_THAT(format_evaluation(*clean), Catch::Contains(", clean " + std::to_string(clean->clean) + ", classes "));
+    // So does the page, which says which rule chose them (user review: "trials / clean 270 / 250" under
+    // "clean 234 of 270", the series rule never named, rows with more trials evaluated than clean).
+    report::ReportInputs in;
+    in.dataset_dir = stock_run_dir();
+    in.rows = rows();
+    in.evaluation = *ev;
+    const auto page = report::render_report(in);
+    REQUIRE(page.ok());
+    CHECK_THAT(*page, Catch::Contains("trials / used") && !Catch::Contains("trials / clean") &&
+                          Catch::Contains("id=\"trial-selection\">trials: every trial the series rule accepts") &&
+                          Catch::Contains("a row may have more trials evaluated than clean"));
+    in.evaluation = *clean;
+    const auto clean_page = report::render_report(in);
+    REQUIRE(clean_page.ok());
+    CHECK_THAT(*clean_page, Catch::Contains("trials / clean") && !Catch::Contains("more trials evaluated than clean"));
 
     // A feature classifier has no features for the peak rule's refused trials.
     auto mixed = evaluate_prepared(rows(), stock_run_dir(), {trees(), rocket()}, small(), all);

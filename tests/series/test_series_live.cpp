@@ -32,6 +32,11 @@ local clf_z = rs.classifier{ model = z.model, classifier = "minirocket" }
 local early = rs.prefix_models{ dataset = z.model:match("(.*)/"), classifier = "minirocket:num_features=168",
                                 fractions = { 1 }, name = "zp", series_amplitude = "z_per_channel" }
 local clf_p = rs.classifier{ model = early.models[1].path, classifier = "minirocket" }
+-- User review: two fractions of one whole percent saved one model over the other, both paths returned.
+local ok_f, err_f = pcall(rs.prefix_models, { dataset = z.model:match("(.*)/"), classifier = "minirocket",
+                                              fractions = { 0.5, 0.12, 0.124 } })
+assert(not ok_f and tostring(err_f):find("fractions[2] (0.12) and fractions[3] (0.124) would both be saved as " ..
+                                         "NAME-f012.rsm", 1, true), tostring(err_f))
 -- Review (user journeys) item 9: a feature model ignored a mistyped option.
 local trees = rs.analyse{ classifiers = { "bagged_trees" }, folds = 2, repeats = 1, model = "trees.rsm", tag = "trees" }
 local clf_t = rs.classifier{ model = trees.model, classifier = "bagged_trees" }

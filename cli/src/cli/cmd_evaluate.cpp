@@ -221,7 +221,8 @@ int prepare(const char* command, const Args& args, const LearnSetup& s, runtime:
     }
     classifier = prepared->front();
     for (const Status& st : {learn::check_input_holds_trials(s.input, *prepared, false),
-                             learn::check_input_options(*prepared, inputs), learn::check_final_fit(classifier, s.options)})
+                             learn::check_input_options(*prepared, inputs), learn::check_final_fit(classifier, s.options),
+                             learn::check_tunable(*prepared, s.options)})
         if (!st) {
             std::fprintf(stderr, "rollsense %s: %s\n", command, st.error().describe().c_str());
             return kExitUsage;

@@ -8,6 +8,7 @@
 #include "rollsense/atomic_file.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/features.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/csv.hpp"
 #include "rollsense/shard_merge.hpp"
 #include "rollsense/shell_words.hpp"
@@ -105,7 +106,7 @@ int run(const std::vector<std::string>& argv) {
                                       {"status", "ok"},
                                       {"shards", std::to_string(summary.shards)},
                                       {"trials", std::to_string(summary.trials)}};
-        return write_file_atomic(merged / "run-info.csv", csv::format_key_values(run_info));
+        return write_file_atomic(merged / kRunInfoFile, csv::format_key_values(run_info));
     };
     auto merged = merge_shards(out, shards, finish);
     if (!merged) return fail(merged.error(), kExitConfig);

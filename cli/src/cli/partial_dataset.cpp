@@ -22,14 +22,13 @@ void warn_if_partial(const std::filesystem::path& dataset) {
                                    "it again once the run has ended)");
         return;
     }
-    // run-config.csv is written as a run starts, run-info.csv as it ends: a killed run leaves the first alone.
-    if (!std::filesystem::exists(dataset / "run-info.csv", ec) && std::filesystem::exists(dataset / kRunConfigFile, ec)) {
+    if (run_killed_before_end(dataset)) {
         log_warning("rollsense", "the run that recorded " + dir + " did not end (no run-info.csv: killed, or its "
                                  "machine stopped), so it may hold only part of its trials: resume it to complete them "
                                  "(its command with --resume)");
         return;
     }
-    auto info = csv::read_key_values(dataset / "run-info.csv");
+    auto info = csv::read_key_values(dataset / kRunInfoFile);
     if (!info) return;  // recorded before run-info.csv, or unreadable: the readers say what they need
     std::string shard, status;
     for (const auto& [key, value] : *info) {

@@ -13,6 +13,7 @@
 #include "rollsense/csv.hpp"
 #include "rollsense/dataset.hpp"
 #include "rollsense/dataset_files.hpp"
+#include "rollsense/run_config.hpp"
 #include "rollsense/shell_words.hpp"
 #include "runtime/profile/profile.hpp"
 
@@ -143,8 +144,8 @@ namespace {
 Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shard) {
     std::error_code ec;
     std::optional<std::string> recorded;  // "K/N"; empty: a whole run; none: not known
-    if (fs::exists(dir / "run-info.csv", ec)) {
-        auto info = csv::read_key_values(dir / "run-info.csv");
+    if (fs::exists(dir / kRunInfoFile, ec)) {
+        auto info = csv::read_key_values(dir / kRunInfoFile);
         if (!info)  // the dataset's error (3, or 5), not the command line's; provenance only, so it can be moved aside
             return Error{info.error().code, "cannot resume " + dir.string() + ": its run-info.csv names the shard it "
                                             "holds and cannot be read (" + info.error().message + "); move it aside "
@@ -155,9 +156,8 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
     }
     if (fs::exists(dir / kShardPlanFile, ec) && (!recorded || recorded->empty()))
         recorded = "K/N";  // a shard's plan without its record: which shard is not known
-    // A shard writes its run-info.csv when it starts, a whole run when it ends: a run's folder (run-config.csv)
-    // without one is a whole run killed before its end (review: it was resumed as a shard, mixing the two).
-    if (!recorded && fs::exists(dir / kRunConfigFile, ec)) recorded = "";
+    // Review: a whole run killed before its end was resumed as a shard, mixing the two.
+    if (!recorded && run_killed_before_end(dir)) recorded = "";
     const std::string asked = shard ? shard->text() : std::string();
     // A shard's plan without the run-info.csv that names the shard: any --shard is taken at its word.
     if (!recorded || *recorded == asked || (*recorded == "K/N" && !asked.empty())) return {};
@@ -170,7 +170,7 @@ Status check_resumed_shard(const fs::path& dir, const std::optional<Shard>& shar
                                                  "resume it without --shard"};
     const std::string holds = "cannot resume " + dir.string() + (asked.empty() ? "" : " as --shard " + asked) +
                               ": it holds shard " + *recorded + " of a run (" +
-                              (dir / (*recorded == "K/N" ? kShardPlanFile : "run-info.csv")).string() + ")";
+                              (dir / (*recorded == "K/N" ? kShardPlanFile : kRunInfoFile)).string() + ")";
     if (*recorded == "K/N")
         return {ErrorCode::invalid_argument, holds + ", whose run-info.csv (naming which shard) is missing; resume it with "
                                                      "the --shard it was recorded with" + merge};

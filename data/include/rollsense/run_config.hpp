@@ -30,6 +30,14 @@ namespace rollsense {
 using RunConfig = std::vector<std::pair<std::string, std::string>>;
 
 inline constexpr const char* kRunConfigFile = "run-config.csv";
+// <dir>/run-info.csv, how a run went (command line, status, times, its shard): a whole run writes it as it ends, a
+// shard's run as it starts. docs/dataset-format.md documents it.
+inline constexpr const char* kRunInfoFile = "run-info.csv";
+
+// Whether the run that recorded `dir` was killed before its end (or its machine stopped): its run-config.csv,
+// written as a run starts, without the run-info.csv a whole run writes as it ends. A shard killed in its first
+// instant, before writing its run-info.csv, looks the same.
+bool run_killed_before_end(const std::filesystem::path& dir);
 
 std::string format_run_config(const RunConfig& config);
 // A row naming a file the run read ("module.NAME_fnv1a", "include.NAME_fnv1a"), which a dataset recorded before

@@ -62,6 +62,9 @@ Result<BayesOptResult> bayes_optimize(const SearchSpace& space, const Objective&
 // it may be empty: nothing to tune).
 Result<SearchSpace> declared_search_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
                                           std::size_t cols, const SearchSpace& given = {});
+// The shape a space is asked for before the data is read (the stock run's 1,164 clean trials of 13 features): its
+// ranges may depend on the shape, the parameters it names should not.
+inline constexpr std::size_t kProbeRows = 1164, kProbeCols = 13;
 // The same, for tuning: an empty space is an error naming `classifier`.
 Result<SearchSpace> tuning_space(const ClassifierFactory& factory, const ParamSet& params, std::size_t rows,
                                  std::size_t cols, const SearchSpace& given, const std::string& classifier);

@@ -69,7 +69,7 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
                                       const std::vector<std::size_t>& row_of,
                                       const std::vector<std::string>* group_ptr, const FoldPlan& plan,
                                       const std::vector<SchemePlan>& schemes, const ClassifierRequest& request,
-                                      const EvaluationOptions& options, bool several) {
+                                      const EvaluationOptions& options, bool several, const char* trials_word) {
     const auto& factory = request.factory;
     EvaluationReport rep;
     rep.name = request.name;
@@ -88,7 +88,7 @@ Result<EvaluationReport> evaluate_one(const std::vector<features::FeatureRow>& r
 
     say(options, "cross-validating the preset" + (several ? " of " + request.name : std::string()) + ": " +
                      std::to_string(plan.repeats()) + " x " + std::to_string(plan.folds) + "-fold on " +
-                     std::to_string(table.rows) + " clean trials");
+                     std::to_string(table.rows) + " " + trials_word + " trials");
     auto base = repeated_cv(table, factory, request.params, plan);
     if (!base) return base.error();
     rep.baseline = std::move(base).value();
@@ -241,7 +241,7 @@ Result<Evaluation> evaluate_tables(const std::vector<features::FeatureRow>& rows
     for (const auto& request : classifiers) {
         const auto one_started = std::chrono::steady_clock::now();
         auto one = evaluate_one(rows, input.tables[request.table], row_of, group_ptr, ev.plan, ev.schemes, request, options,
-                                classifiers.size() > 1);
+                                classifiers.size() > 1, used_trials_word(ev));
         if (!one) return in_classifier(one.error(), request.name);
         one->input = input.kinds[request.table];
         one->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - one_started).count();
@@ -472,9 +472,6 @@ SubsetScore paper_refused_first_repeat(const Evaluation& ev, const EvaluationRep
     return s;
 }
 
-namespace {
-// With a series classifier, which trials were used (features alone: the
-// paper's clean trials, as the report always said).
 std::string selection_line(const Evaluation& ev) {
     if (ev.input.find("series") == std::string::npos) return {};
     char buf[256];
@@ -495,7 +492,6 @@ std::string selection_line(const Evaluation& ev) {
     }
     return out;
 }
-}  // namespace
 
 std::string time_axis_caveat(const Evaluation& ev) {
     if (ev.series_time_axis.empty() || ev.series_time_axis == "contact") return {};

@@ -225,6 +225,9 @@ std::string format_report(const EvaluationReport& report, bool with_timing = tru
 // paper's rule refuses (--trials all), whose count is no clean count (review: "clean 1246" beside the paper
 // analyses' "clean 1176 of 1350").
 const char* used_trials_word(const Evaluation& evaluation);
+// With a series classifier, which trials were used, and how each classifier did on those the paper's peak rule
+// refuses (lines of text, each ending in '\n'); empty for features alone (the paper's clean trials, as always said).
+std::string selection_line(const Evaluation& evaluation);
 // evaluation.txt: one classifier exactly as format_report(); several: each
 // one's report under its name, then the paired comparison.
 std::string format_evaluation(const Evaluation& evaluation);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "rollsense/atomic_file.hpp"
+#include "analysis/learn/bayes_opt.hpp"
 #include "analysis/learn/checked_classifier.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/inputs.hpp"
@@ -320,6 +321,14 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
     return evaluate_prepared_staged(rows, dataset_dir, classifiers, options, inputs, failed);
 }
 
+Status check_tunable(const std::vector<PreparedClassifier>& classifiers, const EvaluationOptions& options) {
+    if (!options.optimize) return {};
+    for (const auto& c : classifiers)  // user review: the others' tuning ran 98 s before one with nothing to tune failed
+        if (auto space = tuning_space(c.factory, c.spec.params, kProbeRows, kProbeCols, options.space, c.spec.name); !space)
+            return space.error();
+    return {};
+}
+
 Status check_final_fit(const PreparedClassifier& classifier, const EvaluationOptions& options) {
     if (auto st = check_final_tuning(options); !st) return st;
     if (classifier.input == ClassifierInput::series && options.optimize)
@@ -379,6 +388,7 @@ Result<PipelineResult> run_pipeline(runtime::PluginRegistry& registry, const Pip
     if (auto st = check_input_holds_trials(request.input, out.classifiers, request.prefixes.has_value()); !st)
         return fail(PipelineStage::request, st.error());
     if (auto st = check_input_options(out.classifiers, request.inputs); !st) return fail(PipelineStage::request, st.error());
+    if (auto st = check_tunable(out.classifiers, request.options); !st) return fail(PipelineStage::classifiers, st.error());
     for (auto& c : out.classifiers) c.factory = stoppable(std::move(c.factory), request.options.stop);
     auto rows = load_feature_rows(request.input, request.features, 0, request.options.stop, request.recorded);
     if (!rows) return fail(PipelineStage::rows, rows.error());

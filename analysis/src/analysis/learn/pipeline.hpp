@@ -117,6 +117,10 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
                                      const std::vector<PreparedClassifier>& classifiers,
                                      const EvaluationOptions& options, const InputOptions& input = {});
 
+// With options.optimize, that every classifier declares something to tune (tuning_space), known before any work
+// (invalid_argument naming the classifier; a plugin's wrong space: plugin_error).
+Status check_tunable(const std::vector<PreparedClassifier>& classifiers, const EvaluationOptions& options);
+
 // Whether fit_final_prepared can fit `classifier` with `options`, known
 // before any work (tuning is implemented for feature classifiers only).
 Status check_final_fit(const PreparedClassifier& classifier, const EvaluationOptions& options);

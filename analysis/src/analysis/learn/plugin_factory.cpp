@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "analysis/learn/bayes_opt.hpp"
 #include "analysis/learn/checked_classifier.hpp"
 
 namespace rollsense::learn {
@@ -58,10 +59,9 @@ Status check_classifier_declarations(runtime::PluginRegistry& registry, const st
     if (!factory) return factory.error();
     auto probe = (*factory)(ParamSet{});  // configured with its defaults, as the docs promise (user review: not said)
     if (!probe) return Status(probe.error()).with_context("configured with its defaults");
-    // The stock run's shape (1164 trials of 13 features): a space's ranges may depend on the shape, the names it
-    // gives should not (and a space that does is still checked whenever tuning asks for it).
+    // A space that depends on the shape is still checked whenever tuning asks for it.
     try {
-        (*probe)->search_space(1164, 13);
+        (*probe)->search_space(kProbeRows, kProbeCols);
     } catch (const StatusError& e) {
         return e.status();
     }

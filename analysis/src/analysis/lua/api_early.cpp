@@ -5,6 +5,7 @@
 // clf:identify{open_end = true} on the recording so far.
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "rollsense/log.hpp"
 #include "analysis/lua/slice_guard.hpp"
@@ -18,6 +19,13 @@ namespace {
 
 void check(lua_State* L, const Status& s) {
     if (!s.ok()) raise_status(L, s);
+}
+
+// A model's file is named by its fraction in whole percent: "-f030.rsm".
+std::string model_file_suffix(double fraction) {
+    char file[64];
+    std::snprintf(file, sizeof file, "-f%03d.rsm", static_cast<int>(std::lround(100.0 * fraction)));
+    return file;
 }
 
 std::vector<double> fractions_from(lua_State* L, int opts) {
@@ -38,6 +46,17 @@ std::vector<double> fractions_from(lua_State* L, int opts) {
         luaL_error(L, "rs.prefix_models: fractions must be a list of numbers in (0, 1], e.g. {0.3, 0.6, 1}");
     }
     lua_pop(L, 1);
+    // User review: {0.12, 0.124} saved one model over the other, and returned both paths.
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (model_file_suffix(out[i]) == model_file_suffix(out[j])) {
+                char message[256];  // luaL_error has no %g
+                std::snprintf(message, sizeof message,
+                              "rs.prefix_models: fractions[%zu] (%g) and fractions[%zu] (%g) would both be saved as "
+                              "NAME%s (models are named by whole percent): give each fraction once, at least 0.01 apart",
+                              j + 1, out[j], i + 1, out[i], model_file_suffix(out[i]).c_str());
+                luaL_error(L, "%s", message);
+            }
     return out;
 }
 
@@ -92,8 +111,7 @@ int l_prefix_models(lua_State* L) {
     lua_createtable(L, static_cast<int>(trained->models.size()), 0);
     for (std::size_t i = 0; i < trained->models.size(); ++i) {
         const auto& m = trained->models[i];
-        char file[64];
-        std::snprintf(file, sizeof file, "-f%03d.rsm", static_cast<int>(std::lround(100.0 * m.fraction)));
+        const std::string file = model_file_suffix(m.fraction);
         lua_newtable(L);
         lua_pushnumber(L, m.fraction);
         lua_setfield(L, -2, "fraction");

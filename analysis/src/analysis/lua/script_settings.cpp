@@ -46,7 +46,9 @@ std::string kind_text(const Declaration& d) {
         case ListKind::numbers: return "numbers (comma-separated)" + range_text(d.spec);
         case ListKind::none: break;
     }
-    return std::string(to_string(d.spec.type)) + range_text(d.spec);
+    std::string choices;
+    for (const auto& c : d.spec.choices) choices += (choices.empty() ? ", one of: " : ", ") + c;
+    return std::string(to_string(d.spec.type)) + range_text(d.spec) + choices;
 }
 
 void set_kind(lua_State* L, Declaration& d, const std::string& kind) {
@@ -74,7 +76,7 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
         if (!lua_istable(L, -1))
             luaL_error(L, "rs.settings: %s must be a table { default = ..., kind = ..., help = ... }", d.key.c_str());
         const std::string call = "rs.settings: " + d.key;
-        runtime::lua_api::check_options(L, -1, call.c_str(), {"default", "kind", "min", "max", "help"});
+        runtime::lua_api::check_options(L, -1, call.c_str(), {"default", "kind", "min", "max", "help", "choices"});
         const int entry = lua_absindex(L, -1);
         lua_getfield(L, entry, "default");
         if (!lua_isnil(L, -1)) {
@@ -104,6 +106,22 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
                 luaL_error(L, "rs.settings: %s: min and max must be finite numbers (leave one out for no bound)",
                            d.key.c_str());
         lua_pop(L, 2);
+        // choices: the words a string takes (user review: a mode word was checked only by the analysis, after every
+        // trial was recorded).
+        lua_getfield(L, entry, "choices");
+        if (!lua_isnil(L, -1)) {
+            const bool plain_string = d.spec.type == ParamType::string && d.list == ListKind::none;
+            const auto n = lua_istable(L, -1) ? static_cast<lua_Integer>(lua_rawlen(L, -1)) : 0;
+            for (lua_Integer i = 1; plain_string && i <= n; ++i) {
+                lua_rawgeti(L, -1, i);
+                if (lua_type(L, -1) == LUA_TSTRING) d.spec.choices.emplace_back(lua_tostring(L, -1));
+                lua_pop(L, 1);
+            }
+            if (d.spec.choices.empty() || d.spec.choices.size() != static_cast<std::size_t>(n))
+                luaL_error(L, "rs.settings: %s: choices must be a list of strings, e.g. choices = {\"fast\", \"slow\"}, "
+                              "of a setting of kind 'string'", d.key.c_str());
+        }
+        lua_pop(L, 1);
         d.spec.doc = runtime::lua_api::opt_field_string(L, entry, "help", "");
         if (d.fallback) {
             auto ok = check_value(d, *d.fallback, nullptr, true);

@@ -118,9 +118,13 @@ Result<std::string> render_report(const ReportInputs& in) {
             "href=\"#sec-features\">Features</a></li><li><a href=\"#sec-tuning\">Tuning</a></li><li><a "
             "href=\"#sec-provenance\">Provenance</a></li></ol></nav>\n";
 
-    body += section("sec-accuracy", "Accuracy", accuracy_table(ev, ev.name) +
+    // Review: with --trials all, the page never said that the series rule chose the trials.
+    const std::string selection = learn::selection_line(in.evaluation);
+    body += section("sec-accuracy", "Accuracy", accuracy_table(ev, ev.name, learn::used_trials_word(in.evaluation)) +
                                                     "<p class=\"note\">" + escape_xml(learn::summarize_rejections(in.rows)) +
-                                                    "</p>\n" + unreadable_trials(in.rows));
+                                                    "</p>\n" +
+                                                    (selection.empty() ? "" : "<p class=\"note\" id=\"trial-selection\">" + escape_xml(selection) + "</p>\n") +
+                                                    unreadable_trials(in.rows));
     if (several)
         body += section("sec-compare", "Classifiers compared on the same folds",
                         comparison_section(in.evaluation, in.catalogue) +
@@ -141,7 +145,12 @@ Result<std::string> render_report(const ReportInputs& in) {
                         breakdown_table(split.by_object, "object", &b.confusion) +
                         "<p class=\"note\">\u201cfirst CV\u201d: the out-of-fold predictions of the first "
                         "repetition (one k-fold CV, as the paper ran). TPR: pooled over all repetitions, as in the "
-                        "confusion matrix.</p>\n");
+                        "confusion matrix." +
+                        std::string(in.evaluation.selection == "series_accepted"
+                                        ? " Clean: the paper's peak rule; the first CV took every trial the series "
+                                          "rule accepts, so a row may have more trials evaluated than clean."
+                                        : "") +
+                        "</p>\n");
 
     body += section("sec-paper", "The paper's analyses, side by side", paper_comparison_table(ev.analysis, {identification_time(*dataset)}) +
                         "<p class=\"note\">This data: the first repetition's out-of-fold predictions. Paper: Table "

@@ -3,11 +3,12 @@
 #include <ctime>
 
 #include "rollsense/csv.hpp"
+#include "rollsense/run_config.hpp"
 
 namespace rollsense::report {
 
 Result<KeyValues> read_run_info(const std::filesystem::path& dataset_dir) {
-    return csv::read_key_values(dataset_dir / "run-info.csv");
+    return csv::read_key_values(dataset_dir / kRunInfoFile);
 }
 
 std::string utc_timestamp() {

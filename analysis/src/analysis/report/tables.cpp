@@ -62,11 +62,12 @@ std::string format_param(const ParamValue& value) {
         value);
 }
 
-std::string accuracy_table(const learn::EvaluationReport& r, const std::string& classifier) {
+std::string accuracy_table(const learn::EvaluationReport& r, const std::string& classifier,
+                           const std::string& trials_word) {
     const auto& b = r.baseline;
     std::string h = "<table class=\"numbers\" id=\"accuracy\"><tbody>\n";
     h += "<tr>" + th("classifier") + td(classifier) + "</tr>\n";
-    h += "<tr>" + th("trials / clean") + td(std::to_string(r.trials) + " / " + std::to_string(r.clean), true) + "</tr>\n";
+    h += "<tr>" + th("trials / " + trials_word) + td(std::to_string(r.trials) + " / " + std::to_string(r.clean), true) + "</tr>\n";
     h += "<tr>" + th("protocol") +
          td(std::to_string(b.repeats) + " \u00d7 stratified " + std::to_string(b.folds) + "-fold CV, preset parameters") +
          "</tr>\n";

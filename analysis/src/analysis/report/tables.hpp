@@ -11,8 +11,10 @@
 
 namespace rollsense::report {
 
-// Accuracy of the preset: mean ± sd over repetitions, pooled Wilson interval.
-std::string accuracy_table(const learn::EvaluationReport& report, const std::string& classifier);
+// Accuracy of the preset: mean ± sd over repetitions, pooled Wilson interval. `trials_word`: what the trials used are
+// called (learn::used_trials_word).
+std::string accuracy_table(const learn::EvaluationReport& report, const std::string& classifier,
+                           const std::string& trials_word);
 std::string breakdown_table(const std::vector<BreakdownRow>& rows, const std::string& what,
                             const learn::ConfusionMatrix* pooled);
 // method.md §6: each of the paper's analyses for this data, beside the paper's
