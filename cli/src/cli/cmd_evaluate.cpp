@@ -108,8 +108,7 @@ LearnSetup learn_setup_from_args(const Args& args, const std::vector<std::string
     o.seed = static_cast<std::uint64_t>(integer_option(args, "--seed", static_cast<int>(o.seed), 0));
     // The seed the run's rs.analyse evaluated with, unless --seed says otherwise: evaluate DATASET gives the run's own
     // figures (review: evaluate said 75.9 % of a run whose evaluation.txt and report said 76.2 %).
-    if (std::error_code ec; args.option("--seed").empty() && std::filesystem::is_directory(s.input, ec))
-        if (auto ds = DatasetReader::open(s.input); ds && ds->info().seed != 0) o.seed = ds->info().seed;
+    if (args.option("--seed").empty()) o.seed = learn::recorded_partition_seed(s.input, o.seed);
     o.optimize = args.flag("--optimize");
     o.nested = !args.flag("--no-nested");
     o.bayes.evaluations = integer_option(args, "--evaluations", o.bayes.evaluations, 1);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "rollsense/atomic_file.hpp"
+#include "rollsense/dataset.hpp"
 #include "analysis/learn/bayes_opt.hpp"
 #include "analysis/learn/checked_classifier.hpp"
 #include "analysis/learn/evaluation_json.hpp"
@@ -319,6 +320,13 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
                                      const EvaluationOptions& options, const InputOptions& inputs) {
     PipelineStage failed;
     return evaluate_prepared_staged(rows, dataset_dir, classifiers, options, inputs, failed);
+}
+
+std::uint64_t recorded_partition_seed(const std::filesystem::path& input, std::uint64_t fallback) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(input, ec)) return fallback;
+    auto dataset = DatasetReader::open(input);
+    return dataset && dataset->info().seed != 0 ? dataset->info().seed : fallback;
 }
 
 Status check_tunable(const std::vector<PreparedClassifier>& classifiers, const EvaluationOptions& options) {

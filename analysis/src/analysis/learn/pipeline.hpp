@@ -15,6 +15,7 @@
 //   outputs      evaluation.txt and evaluation.json from the one Evaluation
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -116,6 +117,11 @@ Result<Evaluation> evaluate_prepared(const std::vector<features::FeatureRow>& ro
                                      const std::filesystem::path& dataset_dir,
                                      const std::vector<PreparedClassifier>& classifiers,
                                      const EvaluationOptions& options, const InputOptions& input = {});
+
+// The seed a dataset is partitioned with when none is given: the seed it was recorded with (dataset-info.csv), the one
+// its run's rs.analyse used, so that `evaluate DIR`, `report DIR` and rs.analyse{dataset = DIR} give the run's own
+// figures; `fallback` for a features table and for a dataset recorded without a seed or with 0 (which also means none).
+std::uint64_t recorded_partition_seed(const std::filesystem::path& input, std::uint64_t fallback);
 
 // With options.optimize, that every classifier declares something to tune (tuning_space), known before any work
 // (invalid_argument naming the classifier; a plugin's wrong space: plugin_error).

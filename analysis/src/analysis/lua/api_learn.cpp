@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 
-#include "rollsense/dataset.hpp"
 #include "rollsense/features.hpp"
 #include "rollsense/features/recorded.hpp"
 #include "rollsense/log.hpp"
@@ -193,11 +192,9 @@ int l_analyse(lua_State* L) {
     learn::EvaluationOptions& eo = request.options;
     eo.folds = static_cast<int>(opt_field_number(L, opts, "folds", 5));
     eo.repeats = static_cast<int>(opt_field_number(L, opts, "repeats", 10));
-    eo.seed = s.options().seed;
-    // A dataset recorded earlier: the seed it was recorded with, as `rollsense evaluate DIR` and `report DIR` take it
-    // (user review: the same dataset gave other figures here); 0 also means "none", as there.
-    if (!dataset.empty())
-        if (auto earlier = DatasetReader::open(dataset_dir); earlier && earlier->info().seed != 0) eo.seed = earlier->info().seed;
+    // A dataset recorded earlier: the seed it was recorded with, as `rollsense evaluate DIR` takes it (user review:
+    // the same dataset gave other figures here).
+    eo.seed = dataset.empty() ? s.options().seed : learn::recorded_partition_seed(dataset_dir, s.options().seed);
     eo.params = params_from(L, opts);
     eo.optimize = opt_field_bool(L, opts, "optimize", false);
     eo.nested = opt_field_bool(L, opts, "nested", eo.optimize);

@@ -110,14 +110,15 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
         // trial was recorded).
         lua_getfield(L, entry, "choices");
         if (!lua_isnil(L, -1)) {
-            const bool plain_string = d.spec.type == ParamType::string && d.list == ListKind::none;
-            const auto n = lua_istable(L, -1) ? static_cast<lua_Integer>(lua_rawlen(L, -1)) : 0;
-            for (lua_Integer i = 1; plain_string && i <= n; ++i) {
+            bool valid = d.spec.type == ParamType::string && d.list == ListKind::none && lua_istable(L, -1) &&
+                         lua_rawlen(L, -1) > 0;
+            for (lua_Integer i = 1; valid && i <= static_cast<lua_Integer>(lua_rawlen(L, -1)); ++i) {
                 lua_rawgeti(L, -1, i);
-                if (lua_type(L, -1) == LUA_TSTRING) d.spec.choices.emplace_back(lua_tostring(L, -1));
+                valid = lua_type(L, -1) == LUA_TSTRING;
+                if (valid) d.spec.choices.emplace_back(lua_tostring(L, -1));
                 lua_pop(L, 1);
             }
-            if (d.spec.choices.empty() || d.spec.choices.size() != static_cast<std::size_t>(n))
+            if (!valid)
                 luaL_error(L, "rs.settings: %s: choices must be a list of strings, e.g. choices = {\"fast\", \"slow\"}, "
                               "of a setting of kind 'string'", d.key.c_str());
         }
