@@ -155,7 +155,13 @@ TEST_CASE("trials=all gives a series classifier every trial its rule accepts, th
     CHECK_THAT(*page, Catch::Contains("trials / used") && !Catch::Contains("trials / clean") &&
                           Catch::Contains("id=\"trial-selection\">trials: every trial the series rule accepts") &&
                           Catch::Contains("a row may have more trials evaluated than clean"));
+    // And the terminal's summary, whose first line counts the clean trials: the next says which were used.
+    CHECK_THAT(report::text_summary(in),
+               Catch::Contains("\n  trials: every trial the series rule accepts, the paper's refused ones included (" +
+                               std::to_string(ev->clean) + " used, "));
     in.evaluation = *clean;
+    CHECK_THAT(report::text_summary(in), Catch::Contains("\n  trials: the paper's clean trials that the series rule "
+                                                         "also accepts (" + std::to_string(clean->clean) + " used, "));
     const auto clean_page = report::render_report(in);
     REQUIRE(clean_page.ok());
     CHECK_THAT(*clean_page, Catch::Contains("trials / clean") && !Catch::Contains("more trials evaluated than clean"));

@@ -38,6 +38,13 @@ std::string text_summary(const ReportInputs& in) {
     std::snprintf(buf, sizeof buf, "Identification of %s\n", in.dataset_dir.string().c_str());
     out += buf;
     out += "  " + learn::summarize_rejections(in.rows) + "\n";
+    // A series classifier's trials need not be the clean ones: which were used, and how it did on the refused ones.
+    const std::string selection = learn::selection_line(in.evaluation);
+    for (std::size_t at = 0; at < selection.size();) {
+        const auto end = std::min(selection.find('\n', at), selection.size() - 1);
+        out += "  " + selection.substr(at, end - at + 1);
+        at = end + 1;
+    }
     if (const auto caveat = learn::time_axis_caveat(in.evaluation); !caveat.empty()) out += "  NOTE: " + caveat + "\n";
     std::snprintf(buf, sizeof buf,
                   "  accuracy %s%s (%s, %d x %d-fold CV), 95 %% interval %.1f-%.1f %%; paper 90.5 %%\n",
