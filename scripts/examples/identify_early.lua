@@ -62,7 +62,7 @@ rs.on_cleanup(etroll.park)
 
 -- 1. The prefix models, and what their fractions are fractions of: the
 -- nominal roll in the contact's clock units (trained.units).
-local trained = rs.prefix_models{ dataset = train, classifier = classifier }
+local trained = rs.prefix_models{ dataset = train, classifier = classifier, speeds = speeds }
 local models = {}
 for _, m in ipairs(trained.models) do
   if m.path then
@@ -73,12 +73,6 @@ for _, m in ipairs(trained.models) do
 end
 local full_model = models[#models]
 assert(full_model.fraction == 1, "the last prefix model is the full-roll one")
-for _, speed in ipairs(speeds) do
-  if not trained.nominal[speed] then
-    error(string.format("identify_early: speed %s is not in the training recording %s (no prefix model has seen it)",
-      speed, train), 0)
-  end
-end
 
 -- The model of the largest trained fraction `progress` has reached (nil below the first).
 local function model_for(progress)

@@ -50,3 +50,21 @@ TEST_CASE("identify_early.lua stops rolls early and reports time and accuracy", 
     CHECK(rows == 6);
     CHECK(stopped >= 1);
 }
+
+// User review: a speed the training recording lacks was found only after every prefix model was trained (seconds).
+TEST_CASE("identify_early.lua refuses a speed its training recording lacks before training any model",
+          "[series][lua][early][errors]") {
+    rollsense::testing::TempDir dir("rollsense-early-speed");
+    const auto out = dir.path() / "run";
+    const std::string train = rollsense::testing::stock_run_dir().string();
+    const auto run = rollsense::testing::run_rollsense(
+        "run " + std::string(ROLLSENSE_SOURCE_DIR) + "/scripts/examples/identify_early.lua --profile sim --seed 23 " +
+        "--set train=" + train + " --set speeds=10,25 --out " + out.string());
+    INFO(run.output);
+    CHECK(run.status != 0);
+    CHECK_THAT(run.output, Catch::Contains("rs.prefix_models: speed 25 is not among the trials of " + train +
+                                           " (its speeds: 10, 15, 20)") &&
+                               Catch::Contains("record that speed, or leave it out"));
+    CHECK_FALSE(std::filesystem::exists(out / "prefix-f010.rsm"));
+    CHECK_FALSE(std::filesystem::exists(out / "prefix-f100.rsm"));
+}

@@ -5,8 +5,10 @@
 // clf:identify{open_end = true} on the recording so far.
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <string>
 
+#include "rollsense/dataset.hpp"
 #include "rollsense/log.hpp"
 #include "analysis/lua/slice_guard.hpp"
 #include "analysis/learn/pipeline.hpp"
@@ -60,7 +62,34 @@ std::vector<double> fractions_from(lua_State* L, int opts) {
     return out;
 }
 
-// rs.prefix_models{ dataset = DIR, classifier = "minirocket", fractions = {0.1, ..., 1}, name = "prefix" }
+// speeds = {10, "15", ...}: the speeds the models will be used at. Each must be among DIR's trials, checked before any
+// training (user review: identify_early.lua found a speed the recording lacks only after training every model).
+void check_speeds(lua_State* L, int opts, const std::string& dataset) {
+    lua_getfield(L, opts, "speeds");
+    if (lua_isnil(L, -1)) return lua_pop(L, 1);
+    if (!lua_istable(L, -1)) luaL_error(L, "rs.prefix_models: speeds must be a list of speed labels, e.g. {10, 15, 20}");
+    auto read = DatasetReader::open(dataset);
+    check(L, read.status());
+    std::set<std::string> recorded;
+    for (const auto& t : read->trials()) recorded.insert(t.info.speed);
+    for (lua_Integer i = 1; i <= static_cast<lua_Integer>(lua_rawlen(L, -1)); ++i) {
+        lua_rawgeti(L, -1, i);
+        if (lua_type(L, -1) != LUA_TSTRING && !lua_isinteger(L, -1))
+            luaL_error(L, "rs.prefix_models: speeds[%d] is %s, not a speed label (a whole number or a string)",
+                       static_cast<int>(i), shown_value(L, -1));
+        const std::string speed = lua_tostring(L, -1);
+        lua_pop(L, 1);
+        if (recorded.count(speed)) continue;
+        std::string known;
+        for (const auto& r : recorded) known += (known.empty() ? "" : ", ") + r;
+        luaL_error(L, "rs.prefix_models: speed %s is not among the trials of %s (its speeds: %s), so no prefix model "
+                   "would have seen it: record that speed, or leave it out", speed.c_str(), dataset.c_str(),
+                   known.c_str());
+    }
+    lua_pop(L, 1);
+}
+
+// rs.prefix_models{ dataset = DIR, classifier = "minirocket", fractions = {0.1, ..., 1}, name = "prefix", speeds = }
 //   → { units = U,   (the nominal roll in clock units: what the fractions are fractions of)
 //       nominal = { ["10"] = {samples=, seconds=}, ... },   (per speed, after the clock's zero, for reading)
 //       models = { {fraction=, path=, trained=, refused=}, ... } }   (models saved as --out/NAME-f030.rsm;
@@ -68,7 +97,7 @@ std::vector<double> fractions_from(lua_State* L, int opts) {
 int l_prefix_models(lua_State* L) {
     Session& s = Session::of(L);
     luaL_checktype(L, 1, LUA_TTABLE);
-    check_options(L, 1, "rs.prefix_models", {"dataset", "classifier", "fractions", "name", "series_amplitude"});
+    check_options(L, 1, "rs.prefix_models", {"dataset", "classifier", "fractions", "name", "series_amplitude", "speeds"});
     if (s.output_dir().empty()) return luaL_error(L, "rs.prefix_models saves models: run with --out DIR");
     const std::string dataset = opt_field_string(L, 1, "dataset", "");
     if (dataset.empty())
@@ -76,6 +105,7 @@ int l_prefix_models(lua_State* L) {
     const std::string name = opt_field_string(L, 1, "name", "prefix");
     check(L, Session::check_output_name(name + "-f100.rsm", "rs.prefix_models: name"));
     const std::vector<double> fractions = fractions_from(L, 1);
+    check_speeds(L, 1, dataset);
 
     auto specs = learn::parse_classifier_list(opt_field_string(L, 1, "classifier", "minirocket"));
     check(L, specs.status());
