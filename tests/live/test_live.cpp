@@ -501,8 +501,10 @@ TEST_CASE("rollsense view DATASET serves the dataset's page until its time is up
     const rollsense::testing::TempDir tmp("rollsense-live-cli");
     write_one_trial_dataset(tmp.path() / "ds");
     const auto log = tmp.path() / "view.txt";
-    const std::string command = std::string(ROLLSENSE_BIN_DIR) + "/rollsense view " + (tmp.path() / "ds").string() +
-                                " --port 0 --for 30 2>" + log.string();
+    // exec: with a redirection dash forks the view, and the SIGTERM below ended only the shell; the view then held
+    // ctest's output pipe open for all of its 30 s.
+    const std::string command = "exec " + std::string(ROLLSENSE_BIN_DIR) + "/rollsense view " +
+                                (tmp.path() / "ds").string() + " --port 0 --for 30 2>" + log.string();
     const pid_t pid = ::fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
@@ -524,7 +526,7 @@ TEST_CASE("rollsense view DATASET serves the dataset's page until its time is up
         CHECK(status_of(http_get(port, "/manifest.csv")) == 404);
         CHECK(status_of(http_get(port, "/dataset/trial/C1-v10-r001.json", "POST")) == 405);
     }
-    ::kill(pid, SIGTERM);  // ends the view (sh passes it on: exec'd, or the view's group)
+    ::kill(pid, SIGTERM);  // ends the view, which the shell exec'd
     int status = 0;
     ::waitpid(pid, &status, 0);
     REQUIRE(port != 0);
