@@ -815,3 +815,38 @@ TEST_CASE("a string setting's choices are listed by --help, and another word is 
         CHECK_THAT(r.output, Catch::Contains("rs.settings: mode: choices must be a list of strings"));
     }
 }
+
+// Cluster review: tools/slurm/submit.sh could not check a --set before queueing N shards, each of which then failed on
+// it. `run SCRIPT --check` checks what the run checks before its first trial, and runs nothing.
+TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first trial, and runs nothing") {
+    TempDir dir("rollsense-settings-check");
+    const auto out = dir / "out";
+    for (const Case c : {Case{"runz=2", "--set runz: no such setting. Settings here: analyse, etroll.clamp_current"},
+                         Case{"etroll.clamp_curent=150", "--set etroll.clamp_curent: no such setting"},
+                         Case{"objects=C1,X9", "'X9' is not an object of"},
+                         Case{"runs=two", "'runs' must be an integer"},
+                         Case{"speeds=10,0", "'0' is not a number >= 1"},
+                         Case{"joints.sensing_finger.max=-100", "--set joints.sensing_finger.max=-100: "}}) {
+        INFO(c.set);
+        const auto r = run_rollsense("run " + kPaper + " --check --set " + shell_quoted(c.set) + " --out " +
+                                     shell_quoted(out));
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(count_of(r.output, c.says) == 1);
+        CHECK_FALSE(fs::exists(out));
+    }
+    const auto required = run_rollsense("run " + script("examples/identify_early.lua") + " --check");
+    INFO(required.output);
+    CHECK(required.status == 2);
+    CHECK_THAT(required.output, Catch::Contains("setting 'train' is required: pass --set train=VALUE"));
+    const auto profile = run_rollsense("run " + kPaper + " --check --profile " + shell_quoted(dir / "none.lua"));
+    INFO(profile.output);
+    CHECK(profile.status == 3);
+
+    const auto good = run_rollsense("run " + kPaper + " --check --set runs=2 --set objects=C1,P2 --set "
+                                    "etroll.clamp_current=150 --out " + shell_quoted(out));
+    INFO(good.output);
+    CHECK(good.status == 0);
+    CHECK_THAT(good.output, Catch::Contains("settings checked with the --set given, profile 'sim' loads; no trial"));
+    CHECK_FALSE(fs::exists(out));
+}

@@ -4,8 +4,8 @@
 # which rollsense run refuses (one shard is the whole run).
 #
 # So are, without Slurm too, the shards' own options among the run options and
-# a script rollsense cannot read or parse (review: all were submitted, and
-# failed in every queued task); --help is no error.
+# a script rollsense cannot read or parse, and a --set it refuses (review: all
+# were submitted, and failed in every queued task); --help is no error.
 #
 #   bash tests/slurm/test_submit_usage.sh SOURCE_DIR ROLLSENSE
 set -euo pipefail
@@ -39,6 +39,9 @@ expect_refusal 4 "$stock" "submit.sh: --resume in the run options" --resume
 expect_refusal 4 "$work/nosuch.lua" "no such script"
 printf 'local rs = require "rollsense"\nfunction(\n' >"$work/broken.lua"
 expect_refusal 4 "$work/broken.lua" "submit.sh: $work/broken.lua: refused by rollsense (above); nothing submitted"
+# A mistyped --set, and a value the script refuses (rollsense run --check).
+expect_refusal 4 "$stock" "--set runz: no such setting" --set runz=2
+expect_refusal 4 "$stock" "'X9' is not an object of" --set objects=C1,X9
 bash "$src/tools/slurm/submit.sh" --help >"$work/stdout" || fail "--help: exit $?"
 grep -qF "tools/slurm/submit.sh -n N -o OUT" "$work/stdout" || fail "--help printed no usage: $(cat "$work/stdout")"
-echo "submit.sh refuses -n 1, 0 and x, the shards' options, a missing or broken script; --help is no error"
+echo "submit.sh refuses -n 1, 0 and x, the shards' options, a missing or broken script, a refused --set; --help is no error"

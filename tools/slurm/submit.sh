@@ -16,7 +16,9 @@
 #   ROLLSENSE_SHARDS_JOB=<array job id>
 #   ROLLSENSE_MERGE_JOB=<merge job id>
 # Refused before anything is submitted (exit 2): --out, --shard or --resume in
-# the run options (each task sets them), a SCRIPT rollsense cannot read or parse.
+# the run options (each task sets them), a SCRIPT rollsense cannot read or parse,
+# and run options it refuses (`rollsense run SCRIPT --check`: a --set the script
+# or the profile refuses, a profile that does not load).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 
@@ -66,8 +68,10 @@ if [[ -z $rollsense ]]; then
   [[ -n $rollsense ]] || rollsense=$here/../../build/bin/rollsense
 fi
 [[ -x $rollsense ]] || { echo "submit.sh: no rollsense program at '$rollsense'; give --rollsense PATH" >&2; exit 2; }
-# A script that is missing or does not parse fails here, not in N queued tasks (`run SCRIPT --help` runs no trial).
-"$rollsense" run "$script" --help >/dev/null || { echo "submit.sh: $script: refused by rollsense (above); nothing submitted" >&2; exit 2; }
+# A script that is missing or does not parse, or a --set it refuses, fails here, not in N queued tasks
+# (`run SCRIPT --check` runs no trial).
+"$rollsense" run "$script" --check "$@" >/dev/null ||
+  { echo "submit.sh: $script: refused by rollsense (above); nothing submitted" >&2; exit 2; }
 command -v sbatch >/dev/null || { echo "submit.sh: sbatch not found: run this on a Slurm login node" >&2; exit 2; }
 
 # The jobs run on other nodes, in other folders: absolute paths only.

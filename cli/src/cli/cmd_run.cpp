@@ -10,6 +10,7 @@
 #include "cli/paths.hpp"
 #include "cli/progress_bar.hpp"
 #include "cli/recorded_seed.hpp"
+#include "cli/run_check.hpp"
 #include "cli/run_dataset.hpp"
 #include "live/live_view.hpp"
 #include "analysis/lua/script_settings.hpp"
@@ -32,6 +33,7 @@ constexpr const char* kAfterTheEnd = "the script ran to its end and its trials a
 
 const char* kHelp = R"(usage: rollsense run SCRIPT [options]
        rollsense run SCRIPT --help      the settings SCRIPT declares (runs no trial)
+       rollsense run SCRIPT --check [options]   check the settings, run nothing
 
 Run a Lua roll procedure on a robot profile. With the default `sim` profile
 the hand, the objects and the barometers are simulated on a virtual clock (the
@@ -52,6 +54,11 @@ options:
                         for a shard's dataset without its --shard K/N (a
                         refused folder is left as it was). The earlier run's
                         run-info.csv is kept as run-info.N.csv
+  --check               check what the run checks before its first trial
+                        (the script's declared settings against --set, the
+                        profile with its overrides), then stop: no folder, no
+                        device, no trial; plugins' parameters are checked
+                        only when a run starts its devices
   --seed N              run seed, 0 to 2^63-1 (per-trial seeds derive from it);
                         default: 1, or, replaying a dataset, the seed it was
                         recorded with
@@ -164,9 +171,9 @@ int run(const std::vector<std::string>& argv) {
                                              "--live-bind"};
     auto pos = args.positionals(valued);
     if (args.wants_help()) return print_script_help(pos, args);
-    args.reject_unknown({"--profile", "--out", "--resume", "--seed", "--shard", "--set", "--plugin-path", "--time-limit",
-                         "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress", "-v",
-                         "--verbose", "-q", "--quiet", "--live", "--live-bind"});
+    args.reject_unknown({"--profile", "--out", "--resume", "--check", "--seed", "--shard", "--set", "--plugin-path",
+                         "--time-limit", "--slice-limit-ms", "--memory-limit-mb", "--commit-every", "--no-progress",
+                         "-v", "--verbose", "-q", "--quiet", "--live", "--live-bind"});
     if (pos.size() != 1) throw UsageError("expects one SCRIPT (see --help)");
     setup_logging(args);
 
@@ -184,6 +191,12 @@ int run(const std::vector<std::string>& argv) {
         auto parsed = parse_shard(shard, "--shard");
         if (!parsed) throw UsageError(parsed.error().message);
         o.shard = *parsed;
+    }
+    if (args.flag("--check")) {  // nothing below: no folder, no device, no trial
+        for (const auto& kv : args.options("--set"))
+            if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());
+        o.sandbox = sandbox_limits_of(args);
+        return check_run_settings(o, pos[0]);
     }
     if (auto st = check_out_folder(o.out_dir, o.resume, o.shard); !st) {
         if (st.code() == ErrorCode::invalid_argument) throw UsageError(st.message());

@@ -28,18 +28,6 @@ using script_settings::Declaration;
     raise_status(L, Status{ErrorCode::bad_setting, message});
 }
 
-// The catalogue the run's objects come from: a device's 'catalogue'
-// parameter (the sim sensor's), else the stock one.
-std::filesystem::path catalogue_path(const Session& s) {
-    for (const auto& device : s.profile().devices)
-        if (auto it = device.params.find("catalogue"); it != device.params.end())
-            if (auto* text = std::get_if<std::string>(&it->second)) {
-                std::filesystem::path p(*text);
-                return p.is_relative() ? s.options().share_dir / p : p;
-            }
-    return s.options().share_dir / kStockCatalogue;
-}
-
 std::string known_settings(const Settings& st) {
     std::string names;
     for (const auto& [k, v] : st.declared()) names += (names.empty() ? "" : ", ") + k;
@@ -66,7 +54,7 @@ int l_settings(lua_State* L) {
     for (const auto& d : declarations)
         if ((d.list == script_settings::ListKind::object || d.list == script_settings::ListKind::objects) &&
             !catalogue) {
-            auto loaded = ObjectCatalogue::load(catalogue_path(s));
+            auto loaded = ObjectCatalogue::load(script_settings::catalogue_path(s.profile(), s.options().share_dir));
             if (!loaded) raise_status(L, Status{loaded.error()}.with_context("rs.settings: kind 'objects'"));
             catalogue = std::move(*loaded);
         }
@@ -81,9 +69,7 @@ int l_settings(lua_State* L) {
                               ok.error().message + "; edit the default in the script");
         const auto given = st.values().find(d.key);
         if (given == st.values().end()) {
-            if (!d.fallback)
-                refuse_set(L, "setting '" + d.key + "' is required: pass --set " + d.key + "=VALUE" +
-                              (d.spec.doc.empty() ? "" : " (" + d.spec.doc + ")"));
+            if (!d.fallback) refuse_set(L, script_settings::required_setting(d));
             st.declare(d.key, *d.fallback);
             continue;
         }
@@ -97,9 +83,7 @@ int l_settings(lua_State* L) {
     for (const auto& [key, value] : st.values()) {
         if (is_profile_path(key) || st.used(key) || st.declared().count(key)) continue;
         if (module && setting_namespace(key) != ns) continue;
-        refuse_set(L, "--set " + key + ": no such setting. Settings here: " + known_settings(st) +
-                      "; a profile entry is overridden by its path, e.g. devices.NAME.params.KEY "
-                      "(rollsense run SCRIPT --help lists them; docs/scripting.md, Settings)");
+        refuse_set(L, script_settings::no_such_setting(key, known_settings(st)));
     }
     return 0;
 }

@@ -184,6 +184,51 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
     return checked->values().at(d.key);
 }
 
+Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
+                   const ObjectCatalogue* catalogue) {
+    std::string known;
+    for (const auto& d : declared) {
+        known += (known.empty() ? "" : ", ") + d.key;
+        const auto value = given.values().find(d.key);
+        if (value == given.values().end()) {
+            if (!d.fallback) return {ErrorCode::bad_setting, required_setting(d)};
+            continue;
+        }
+        if (auto ok = check_value(d, value->second, catalogue); !ok) return {ErrorCode::bad_setting, ok.error().message};
+    }
+    for (const auto& [key, value] : given.values()) {
+        const bool declaring = std::any_of(declared.begin(), declared.end(), [&](const Declaration& d) {
+            return runtime::setting_namespace(d.key) == runtime::setting_namespace(key);
+        });
+        const bool is_declared =
+            std::any_of(declared.begin(), declared.end(), [&](const Declaration& d) { return d.key == key; });
+        if (declaring && !is_declared && !runtime::is_profile_path(key))
+            return {ErrorCode::bad_setting, no_such_setting(key, known)};
+    }
+    return {};
+}
+
+std::string required_setting(const Declaration& d) {
+    return "setting '" + d.key + "' is required: pass --set " + d.key + "=VALUE" +
+           (d.spec.doc.empty() ? "" : " (" + d.spec.doc + ")");
+}
+
+std::string no_such_setting(const std::string& key, const std::string& known) {
+    return "--set " + key + ": no such setting. Settings here: " + known +
+           "; a profile entry is overridden by its path, e.g. devices.NAME.params.KEY "
+           "(rollsense run SCRIPT --help lists them; docs/scripting.md, Settings)";
+}
+
+std::filesystem::path catalogue_path(const runtime::Profile& profile, const std::filesystem::path& share_dir) {
+    for (const auto& device : profile.devices)
+        if (auto it = device.params.find("catalogue"); it != device.params.end())
+            if (auto* text = std::get_if<std::string>(&it->second)) {
+                std::filesystem::path p(*text);
+                return p.is_relative() ? share_dir / p : p;
+            }
+    return share_dir / kStockCatalogue;
+}
+
 std::string describe(const std::vector<Declaration>& declarations) {
     std::size_t width = 0;
     std::vector<std::string> heads;

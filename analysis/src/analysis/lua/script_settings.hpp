@@ -26,6 +26,7 @@
 #include "rollsense/object_catalogue.hpp"
 #include "rollsense/params.hpp"
 #include "runtime/lua/sandbox.hpp"
+#include "runtime/profile/profile.hpp"
 
 namespace rollsense::script_settings {
 
@@ -52,6 +53,21 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
 // declaration needs it.
 Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue,
                                bool is_default = false);  // the declaration's default, not a --set
+
+// The --set values of `given` checked as a run checks them before its first trial (rs.settings): each declared
+// setting's value, a required one that is missing, and every key of a namespace that declares settings against what
+// it declares (profile entries are the profile's). For `rollsense run SCRIPT --check`, which runs no trial.
+Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
+                   const ObjectCatalogue* catalogue);
+
+// "setting 'KEY' is required: pass --set KEY=VALUE (its help)".
+std::string required_setting(const Declaration& d);
+
+// "--set KEY: no such setting. Settings here: ..." with the way out; `known`: the declared keys, comma-separated.
+std::string no_such_setting(const std::string& key, const std::string& known);
+
+// The catalogue a run's objects come from: a device's 'catalogue' parameter (the sim sensor's), else the stock one.
+std::filesystem::path catalogue_path(const runtime::Profile& profile, const std::filesystem::path& share_dir);
 
 // One line per setting: "  runs=50   integer >= 1: repetitions of ...".
 std::string describe(const std::vector<Declaration>& declarations);

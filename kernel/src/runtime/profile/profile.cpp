@@ -412,6 +412,15 @@ Status apply_dotted_settings(lua_State* L, const Settings& settings, const std::
 
 }  // namespace
 
+Status profile_refusal(const Status& s, const Settings& settings) {
+    if (s.code() != ErrorCode::invalid_argument) return s;
+    for (const auto& [key, value] : settings.values())
+        if (is_profile_path(key) && (s.message().find("'" + key.substr(key.rfind('.') + 1) + "'") != std::string::npos ||
+                                     s.message().find(key) != std::string::npos))
+            return Status{ErrorCode::bad_setting, "--set " + key + "=" + format_param_value(value) + ": " + s.message()};
+    return Status{ErrorCode::bad_profile, s.message()};
+}
+
 Result<Profile> load_profile(const std::string& name_or_path, const fs::path& share_dir, const Settings& settings) {
     return load_profile(name_or_path, share_dir, settings, SandboxLimits{});
 }

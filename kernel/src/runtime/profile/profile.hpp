@@ -115,6 +115,10 @@ bool is_profile_path(const std::string& key);
 // <share>/profiles/<name>.lua for a name; a path (with '/', or ending in .lua) as given.
 std::filesystem::path resolve_profile_path(const std::string& name_or_path, const std::filesystem::path& share_dir);
 
+// A profile whose content is wrong is a bad input file (exit 3), like one that does not parse; wrong by a --set of it
+// (the message names its key, or its leaf quoted: 'kernel_fwhm'), a bad command line (exit 2). Other errors as they are.
+Status profile_refusal(const Status& s, const Settings& settings);
+
 struct SandboxLimits;
 // A profile is Lua: it runs under the scripts' memory cap and no-wait limit (`limits`; defaults when not given), so a
 // looping or allocating profile ends with an error naming it.

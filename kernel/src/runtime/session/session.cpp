@@ -84,25 +84,15 @@ Session& Session::of(lua_State* L) { return *session_of(L); }
 
 Status Session::prepare() {
     if (prepared_) return {};
-    // A profile whose content is wrong is a bad input file (exit 3), like one that does not parse; wrong by a
-    // --set of it (the message names its key, or its leaf quoted: 'kernel_fwhm'), a bad command line (exit 2).
-    auto bad_profile = [this](const Status& s) {
-        if (s.code() != ErrorCode::invalid_argument) return s;
-        for (const auto& [key, value] : options_.settings.values())
-            if (is_profile_path(key) && (s.message().find("'" + key.substr(key.rfind('.') + 1) + "'") != std::string::npos ||
-                                         s.message().find(key) != std::string::npos))
-                return Status{ErrorCode::bad_setting, "--set " + key + "=" + format_param_value(value) + ": " + s.message()};
-        return Status{ErrorCode::bad_profile, s.message()};
-    };
     auto profile = load_profile(options_.profile, options_.share_dir, options_.settings, options_.sandbox);
-    if (!profile) return bad_profile(profile.status());
+    if (!profile) return profile_refusal(profile.status(), options_.settings);
     profile_ = std::move(*profile);
 
     auto search = options_.plugin_path;
     search.insert(search.end(), profile_.plugin_path.begin(), profile_.plugin_path.end());
     registry_ = std::make_unique<PluginRegistry>(PluginRegistry::default_search_path(search));
     auto robot = Robot::create(profile_, *registry_, options_.share_dir);
-    if (!robot) return bad_profile(robot.status());
+    if (!robot) return profile_refusal(robot.status(), options_.settings);
     robot_ = std::move(*robot);
 
     clock_ = make_clock(profile_.virtual_clock);

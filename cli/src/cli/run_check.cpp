@@ -1,0 +1,40 @@
+#include "cli/run_check.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+
+#include "analysis/lua/script_settings.hpp"
+#include "cli/command.hpp"
+#include "rollsense/object_catalogue.hpp"
+
+namespace rollsense::cli {
+
+int check_run_settings(const runtime::SessionOptions& o, const std::string& script_arg) {
+    std::string stopped_at;
+    auto declared = script_settings::declared_by(o.script, o.share_dir, o.sandbox, &stopped_at);
+    if (!declared) throw StatusError(Status{declared.error()});
+    const runtime::Settings settings = o.settings;  // a copy: loading the profile marks the keys it reads
+    auto profile = runtime::load_profile(o.profile, o.share_dir, settings, o.sandbox);
+    if (!profile) throw StatusError(runtime::profile_refusal(profile.status(), o.settings));
+    std::optional<ObjectCatalogue> catalogue;
+    if (std::any_of(declared->begin(), declared->end(), [](const auto& d) {
+            return d.list == script_settings::ListKind::object || d.list == script_settings::ListKind::objects;
+        })) {
+        auto loaded = ObjectCatalogue::load(script_settings::catalogue_path(*profile, o.share_dir));
+        if (!loaded) throw StatusError(Status{loaded.error()});
+        catalogue = std::move(*loaded);
+    }
+    if (auto s = script_settings::check_given(*declared, o.settings, catalogue ? &*catalogue : nullptr); !s.ok())
+        throw StatusError(s);
+    if (declared->empty())
+        std::printf("%s declares no settings%s: its --set keys are checked only when it runs; profile '%s' loads\n",
+                    script_arg.c_str(), stopped_at.empty() ? "" : (" before " + stopped_at).c_str(),
+                    o.profile.c_str());
+    else
+        std::printf("%s: %zu settings checked with the --set given, profile '%s' loads; no trial was run\n",
+                    script_arg.c_str(), declared->size(), o.profile.c_str());
+    return kExitOk;
+}
+
+}  // namespace rollsense::cli

@@ -1,0 +1,18 @@
+// `rollsense run SCRIPT --check`: what a run checks before its first trial, without running one: the script's
+// declared settings against --set, and the profile with its overrides. For a batch system (tools/slurm/submit.sh),
+// where a mistyped --set would fail every queued shard. Plugins are not loaded: their parameters are checked when a
+// run starts its devices.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "runtime/session/session.hpp"
+
+namespace rollsense::cli {
+
+// 0 with a line saying what was checked, or a StatusError naming the refused setting (bad_setting: exit 2) or the
+// script or profile that does not load. `script_arg` is the SCRIPT as given, for messages.
+int check_run_settings(const runtime::SessionOptions& options, const std::string& script_arg);
+
+}  // namespace rollsense::cli
