@@ -1,6 +1,6 @@
 // A series model end to end inside a run: rs.analyse with minirocket first
 // trains and saves it (on the trials the input step selects), and
-// rs.classifier{...}:identify() prepares a fresh recording with the same
+// rs.classifier{...}:identify() (the plugin the model file names) prepares a fresh recording with the same
 // series rule and names the object. A model trained with series_amplitude =
 // "z_per_channel" records it in its file: identify() applies it unasked, and
 // refuses an amplitude that contradicts it.
@@ -24,7 +24,11 @@ for _, object in ipairs{ "C1", "P1", "H2" } do
 end
 local result = rs.analyse{ classifiers = { "minirocket" }, folds = 2, repeats = 1, trials = "all",
                            params = { num_features = 168 }, model = "rocket.rsm", tag = "rocket" }
-local clf = rs.classifier{ model = result.model, classifier = "minirocket" }
+-- No classifier given: the plugin the model's first line names (plugin review: the stock default, bagged_trees,
+-- was asked to read it and refused it).
+local clf = rs.classifier{ model = result.model }
+local ok_m, err_m = pcall(rs.classifier, { model = result.model:match("(.*)/") .. "/features.csv" })
+assert(not ok_m and tostring(err_m):find("features.csv:1: a CSV table, not a model", 1, true), tostring(err_m))
 local z = rs.analyse{ classifiers = { "minirocket" }, folds = 2, repeats = 1, trials = "all",
                       params = { num_features = 168 }, model = "z.rsm", tag = "z", series_amplitude = "z_per_channel" }
 local clf_z = rs.classifier{ model = z.model, classifier = "minirocket" }

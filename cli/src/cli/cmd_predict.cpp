@@ -16,6 +16,7 @@
 #include "cli/log_setup.hpp"
 #include "cli/paths.hpp"
 #include "analysis/learn/json_writer.hpp"
+#include "analysis/learn/model_header.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 #include "analysis/series/model_rule.hpp"
 #include "analysis/series/series_table.hpp"
@@ -89,61 +90,6 @@ struct TrainingDescription {
     std::vector<std::string> missing;  // what could not be found, for the note on stderr
 };
 
-// The model file's own header: its first word and any "channel NAME" /
-// "series_length N" lines (series models record their input).
-struct ModelHeader {
-    std::string magic;
-    std::vector<std::string> channels;
-    std::size_t series_length = 0;
-};
-
-Result<ModelHeader> read_model_header(const fs::path& model) {
-    std::error_code ec;
-    if (!fs::exists(model, ec))
-        return Error{ErrorCode::not_found, model.string() + ": no such model file (write one with 'rollsense train ... "
-                                                            "-o MODEL' or a stock run's rs.analyse)"};
-    if (fs::is_directory(model, ec)) {
-        const bool stock = fs::exists(model / "model.rsm", ec);
-        return Error{ErrorCode::invalid_argument,
-                     model.string() + " is a folder, not a model file" +
-                         (stock ? "; did you mean " + (model / "model.rsm").string() + "?"
-                                : " (MODEL is the file 'rollsense train -o' or a stock run wrote, e.g. DIR/model.rsm)")};
-    }
-    if (fs::is_regular_file(model, ec) && fs::file_size(model, ec) == 0 && !ec)
-        return Error{ErrorCode::parse_error, model.string() + ": the model file is empty (an interrupted write?); "
-                                                              "train it again with 'rollsense train ... -o MODEL'"};
-    std::ifstream in(model, std::ios::binary);
-    if (!in) return Error{ErrorCode::io_error, model.string() + ": cannot be opened for reading (check permissions)"};
-    ModelHeader h;
-    std::string line;
-    std::getline(in, line);
-    h.magic = line.substr(0, line.find(' '));
-    // The header is short; stop before the numeric body of a large model.
-    for (int n = 0; n < 10000 && std::getline(in, line); ++n) {
-        if (line.rfind("channel ", 0) == 0) h.channels.push_back(line.substr(8));
-        if (line.rfind("series_length ", 0) == 0) {
-            auto v = csv::parse_unsigned(line.substr(14), 1u << 24, "series_length");
-            if (v) h.series_length = static_cast<std::size_t>(*v);
-        }
-    }
-    return h;
-}
-
-// "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names.
-Result<std::string> plugin_from_magic(const ModelHeader& h, const fs::path& model) {
-    const std::string prefix = "rollsense-";
-    // A features table or a trial file given first is no model at all (first-day review: told to name a classifier).
-    if (h.magic.starts_with("trial_id,") || h.magic.starts_with("time,"))
-        return Error{ErrorCode::parse_error, model.string() + ":1: a CSV table, not a model: give the model first "
-                                                              "(rollsense predict MODEL INPUT; rollsense train makes one)"};
-    if (h.magic.rfind(prefix, 0) != 0 || h.magic.size() == prefix.size())
-        return Error{ErrorCode::parse_error, model.string() + ":1: the file does not name its classifier (expected "
-                                                              "'rollsense-<plugin> <version>'); give --classifier NAME"};
-    std::string name = h.magic.substr(prefix.size());
-    std::replace(name.begin(), name.end(), '-', '_');
-    return name;
-}
-
 TrainingDescription describe_training(const fs::path& dir) {
     TrainingDescription t;
     t.dir = dir;
@@ -205,7 +151,7 @@ std::optional<std::string> other_classes(const TrainingDescription& t, const std
 
 // Warnings that hold for every trial of the input: channels and sample rate.
 std::vector<std::string> dataset_warnings(const DatasetInfo& input, const TrainingDescription& t,
-                                          const ModelHeader& h) {
+                                          const learn::ModelHeader& h) {
     std::vector<std::string> w;
     const std::vector<std::string>* trained = t.info ? &t.info->channels : (h.channels.empty() ? nullptr : &h.channels);
     if (trained && *trained != input.channels)
@@ -311,7 +257,7 @@ Result<std::vector<Outcome>> predict_features(const Classifier& clf, const Input
 // The series rule of training, from the model file; one written before the
 // file recorded it is prepared by the default rule with its length, and
 // predict says so.
-Result<std::vector<Outcome>> predict_series(const Classifier& clf, const Input& in, const ModelHeader& h,
+Result<std::vector<Outcome>> predict_series(const Classifier& clf, const Input& in, const learn::ModelHeader& h,
                                             const fs::path& model) {
     auto rule = series::model_rule(clf, model.string());
     if (!rule) return rule.error();
@@ -407,13 +353,13 @@ int run(const std::vector<std::string>& argv) {
         return exit_code_for(e.code, fallback);
     };
 
-    auto header = read_model_header(model);
+    auto header = learn::read_model_header(model);
     // A folder given as MODEL (the arguments swapped) is the command line's mistake, 2 (first-day review: 3).
     if (!header) return fail(header.error(), header.error().code == ErrorCode::invalid_argument ? kExitUsage : kExitConfig);
     std::string plugin = args.option("--classifier");
     const bool inferred = plugin.empty();
     if (inferred) {
-        auto named = plugin_from_magic(*header, model);
+        auto named = learn::plugin_named_by(*header, model, "give --classifier NAME");
         if (!named) return fail(named.error(), kExitConfig);
         plugin = *named;
     }

@@ -16,6 +16,7 @@
 #include "analysis/learn/evaluate.hpp"
 #include "analysis/learn/evaluation_json.hpp"
 #include "analysis/learn/inputs.hpp"
+#include "analysis/learn/model_header.hpp"
 #include "analysis/learn/pipeline.hpp"
 #include "analysis/learn/plugin_factory.hpp"
 #include "analysis/lua/prediction_observer.hpp"
@@ -375,7 +376,7 @@ int l_classifier_gc(lua_State* L) {
     return 0;
 }
 
-// rs.classifier{ model = PATH, classifier = <share/analysis/defaults.csv> } → a loaded model
+// rs.classifier{ model = PATH, classifier = <the plugin the model file names> } → a loaded model
 int l_classifier(lua_State* L) {
     Session& s = Session::of(L);
     SliceGuard guard{s.sandbox(), L};
@@ -383,9 +384,23 @@ int l_classifier(lua_State* L) {
     check_options(L, 1, "rs.classifier", {"model", "classifier"});
     const std::string model = opt_field_string(L, 1, "model", "");
     if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
-    auto chosen = learn::classifier_or_default(opt_field_string(L, 1, "classifier", ""), s.options().share_dir);
-    check(L, chosen.status());
-    auto factory = learn::plugin_classifier_factory(s.registry(), *chosen);
+    // As `rollsense predict`: the model's first line names its plugin (plugin review: a plugin's model was read as
+    // a bagged-trees one, the stock default, and refused).
+    std::string chosen = opt_field_string(L, 1, "classifier", "");
+    const bool inferred = chosen.empty();
+    if (inferred) {
+        auto header = learn::read_model_header(model);
+        check(L, header.status());
+        auto named = learn::plugin_named_by(*header, model, "give classifier = NAME");
+        check(L, named.status());
+        chosen = *named;
+    }
+    auto factory = learn::plugin_classifier_factory(s.registry(), chosen);
+    if (!factory && inferred) {
+        Error e = factory.error();
+        e.message += " (the plugin named by " + model + "'s first line; give classifier = NAME)";
+        raise_status(L, Status(e));
+    }
     check(L, factory.status());
     auto clf = (*factory)(ParamSet{});
     check(L, clf.status());

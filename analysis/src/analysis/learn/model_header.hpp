@@ -1,0 +1,28 @@
+// A saved model file's header, read without a plugin: its first word names the classifier plugin that wrote it
+// ("rollsense-bagged-trees 1"), and a series model records its input ("channel NAME", "series_length N" lines).
+// `rollsense predict MODEL` and rs.classifier{model=} find the plugin by it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rollsense/status.hpp"
+
+namespace rollsense::learn {
+
+struct ModelHeader {
+    std::string magic;                  // the first line's first word
+    std::vector<std::string> channels;  // "channel NAME" lines
+    std::size_t series_length = 0;      // "series_length N"
+};
+
+// The header of `model`, or an error naming the file and the way out (missing, a folder, empty, unreadable).
+Result<ModelHeader> read_model_header(const std::filesystem::path& model);
+
+// "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names, or an error saying it names none and
+// `way_out` (how the caller's user names the plugin instead: "give --classifier NAME").
+Result<std::string> plugin_named_by(const ModelHeader& header, const std::filesystem::path& model,
+                                    const std::string& way_out);
+
+}  // namespace rollsense::learn
