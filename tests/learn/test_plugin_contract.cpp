@@ -214,4 +214,20 @@ TEST_CASE("plugins --check refuses a search space wider than the schema, and a c
     CHECK(r.status == 3);
     CHECK(count_of(r.output, "FAILED: configured with its defaults: classifier plugin 'test_throwing_configure': "
                              "threw an exception in configure: no licence file found") == 1);
+
+    // Plugin review: a plugin that refuses its own defaults was the command line's mistake (exit 2) in evaluate.
+    const auto data = rollsense::testing::make_dataset();
+    r = rollsense_cli("evaluate " + (data / "dataset").string() + " --folds 3 --repeats 1" + plugins +
+                      "refusing-configure --classifier test_refusing_configure -o " + (data / "eval.txt").string());
+    INFO(r.output);
+    CHECK(r.status == 3);
+    CHECK(count_of(r.output, "smoothing 1 is not supported (configured with its own defaults, no parameter given: "
+                             "the plugin's schema() or on_configure is wrong)") == 1);
+    // A parameter given that it refuses stays the command line's.
+    r = rollsense_cli("evaluate " + (data / "dataset").string() + " --folds 3 --repeats 1" + plugins +
+                      "refusing-configure --classifier test_refusing_configure:smoothing=1 -o " +
+                      (data / "eval.txt").string());
+    INFO(r.output);
+    CHECK(r.status == 2);
+    fs::remove_all(data);
 }

@@ -4,7 +4,8 @@
 //   STRAY_MISTAKE_stray_search: search_space() names a parameter ('depth') schema() does not declare (renamed, say);
 //   STRAY_MISTAKE_wide_search: search_space() searches 'smoothing' up to 50, which schema() caps at 10;
 //   STRAY_MISTAKE_crooked_search: search_space() searches its integer 'neighbours' on a real scale;
-//   STRAY_MISTAKE_throwing_configure: configuring it (with its defaults too) throws.
+//   STRAY_MISTAKE_throwing_configure: configuring it (with its defaults too) throws;
+//   STRAY_MISTAKE_refusing_configure: on_configure refuses its own defaults (an error status).
 // Otherwise an honest classifier: the training set's class frequencies, smoothed.
 #include <algorithm>
 #include <fstream>
@@ -28,6 +29,9 @@ public:
     Status on_configure(const ParamSet& p, const PluginContext&) override {
 #ifdef STRAY_MISTAKE_throwing_configure
         throw std::runtime_error("no licence file found");
+#endif
+#ifdef STRAY_MISTAKE_refusing_configure
+        if (p.get_number("smoothing") == 1.0) return {ErrorCode::invalid_argument, "smoothing 1 is not supported"};
 #endif
         smoothing_ = p.get_number("smoothing");
         return {};

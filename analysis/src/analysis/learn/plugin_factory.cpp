@@ -47,7 +47,14 @@ Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& reg
         auto handle = registry.create_classifier(plugin, context.instance);
         if (!handle) return handle.error();
         std::shared_ptr<runtime::ClassifierHandle> owner(std::move(handle).value());
-        if (auto s = owner->configure(*params, context); !s) return s;
+        if (auto s = owner->configure(*params, context); !s) {
+            // Its own defaults refused: the plugin's fault (exit 3), not the command line's (plugin review: exit 2).
+            if (raw.values().empty())
+                return Status{ErrorCode::plugin_error, s.message() + " (configured with its own defaults, no parameter "
+                                                                     "given: the plugin's schema() or on_configure is "
+                                                                     "wrong)"};
+            return s;
+        }
         if (auto s = owner->activate(); !s) return s;
         // Written outside this repository: what it predicts is checked before use.
         return checked_classifier(ClassifierPtr(owner, &owner->plugin()), "classifier plugin '" + plugin + "'", schema);
