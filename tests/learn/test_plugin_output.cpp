@@ -38,7 +38,7 @@ TEST_CASE("a classifier plugin's wrong scores or label stop evaluate, train's us
     const struct {
         const char* mode;
         const char* says;
-    } cases[] = {{"1", "returned a score that is not a finite number (nan) for class 1 of 3"},
+    } cases[] = {{"1", "returned a score that is not a finite number (nan) for class 'C1' (1 of 3)"},
                  {"2", "returned 2 scores for 3 classes; a prediction has one score per class, in class order"},
                  {"3", "predicted label 99 outside its 3 classes"},
                  {"4", "named its label "}};  // review of the change: predict prints the plugin's class name

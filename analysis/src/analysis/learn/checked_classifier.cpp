@@ -36,8 +36,8 @@ Status check_prediction(const Prediction& p, const std::vector<std::string>& cla
     for (std::size_t c = 0; c < classes; ++c) {
         if (!std::isfinite(p.scores[c]))
             return {ErrorCode::plugin_error, who + " returned a score that is not a finite number (" +
-                                                 std::to_string(p.scores[c]) + ") for class " + std::to_string(c + 1) +
-                                                 " of " + n};
+                                                 std::to_string(p.scores[c]) + ") for class '" + class_names[c] +
+                                                 "' (" + std::to_string(c + 1) + " of " + n + ")"};
         if (p.scores[c] < 0.0)
             return {ErrorCode::plugin_error, who + " returned a negative score (" + format_number(p.scores[c]) +
                                                  ") for class '" + class_names[c] +
