@@ -7,7 +7,7 @@
 
 namespace rollsense::testing {
 
-#if defined(__SANITIZE_ADDRESS__) || defined(ROLLSENSE_UNDER_ADDRESS_SANITIZER)
+#if defined(__SANITIZE_ADDRESS__)
 inline constexpr bool kCanLimitAddressSpace = false;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
