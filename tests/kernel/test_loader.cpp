@@ -175,6 +175,18 @@ TEST_CASE("a second plugin with the same name is reported as shadowed, overridde
     CHECK_FALSE(by_file["librollsense_b.so"]->overridden);
     CHECK_THAT(by_file["librollsense_copy.so"]->failure, Catch::EndsWith(", earlier in the search path"));
     CHECK(by_file["librollsense_copy.so"]->overridden);
+
+    // Used, the plugin says once which of the two in one folder runs (plugin review: a stale build ran silently);
+    // the copy a later folder holds is the search order at work, not said.
+    rollsense::testing::LogCapture log;
+    REQUIRE(reg.find("example_bump", PluginKind::sensor).ok());
+    REQUIRE(reg.find("example_bump", PluginKind::sensor).ok());
+    INFO(log.all());
+    REQUIRE(log.lines().size() == 1);
+    CHECK_THAT(log.lines().front(), Catch::StartsWith("warning plugins: " + (dir / "librollsense_b.so").string() +
+                                                      " is not used: shadowed: a plugin named 'example_bump'") &&
+                                        Catch::Contains("Plugin 'example_bump' comes from " +
+                                                        (dir / "librollsense_a.so").string() + " instead"));
 }
 
 // Review (s8 item 2): a damaged copy earlier in the search path (e.g. a rebuild cut short in a

@@ -159,12 +159,13 @@ Result<std::shared_ptr<const LoadedLibrary>> PluginRegistry::find(const std::str
                 return Error{ErrorCode::not_found, "plugin '" + name + "' at " + c.path.string() + " is " +
                                                        article(c.library->manifest().kind) + " plugin, not " +
                                                        article(kind)};
-            // A file of this one's name earlier in the search path was meant to be used, but failed to load.
-            // Said by the first find() (later ones, e.g. a classifier per worker thread, only read `warned`).
-            for (auto* d = candidates_.data(); d != &c; ++d)
-                if (!d->library && !d->warned && d->path.filename() == c.path.filename()) {
-                    d->warned = true;
-                    log_warning("plugins", d->path.string() + " is not used: " + d->failure + ". Plugin '" + name +
+            // Said once (first find()): a file of this one's name earlier in the search path that failed to load, and
+            // another file of the same folder naming the same plugin (a stale build; plugin review: used silently).
+            for (auto& d : candidates_)
+                if (!d.library && !d.warned && ((&d < &c && d.path.filename() == c.path.filename()) ||
+                                                (!d.overridden && d.failure.starts_with("shadowed: a plugin named '" + name + "'")))) {
+                    d.warned = true;
+                    log_warning("plugins", d.path.string() + " is not used: " + d.failure + ". Plugin '" + name +
                                                "' comes from " + c.path.string() + " instead (see `rollsense plugins`)");
                 }
             return c.library;
