@@ -45,8 +45,13 @@ function(rollsense_test_flags target)
   # of the whole build's compile time, and no result changes (SSE arithmetic, -ffp-contract=off from rollsense::sdk).
   target_compile_options(${target} PRIVATE -Og)
   if(ROLLSENSE_TESTS_UNINSTRUMENTED)
+    if(NOT CMAKE_CXX_FLAGS MATCHES "-fsanitize=[^ ]*address")
+      message(FATAL_ERROR "ROLLSENSE_TESTS_UNINSTRUMENTED is for an AddressSanitizer build (tools/sanitize.sh): "
+                          "CMAKE_CXX_FLAGS has no -fsanitize=address")
+    endif()
     # Instrumentation made each test file take 60 % longer to compile; the libraries and plugins they load keep
-    # theirs, and the sanitizer runtime is still linked. __SANITIZE_ADDRESS__ stays defined, as it is where the code
+    # theirs, and the sanitizer runtime is still linked (what a test file compiles itself, header-inline and template
+    # code included, is not checked). __SANITIZE_ADDRESS__ stays defined, as it is where the code
     # is instrumented: headers decide layouts by it (Eigen's aligned allocation: a matrix allocated by a test and
     # freed in the library read outside its block), and the tests that behave differently under AddressSanitizer
     # read it.

@@ -835,6 +835,31 @@ TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first
         CHECK(count_of(r.output, c.says) == 1);
         CHECK_FALSE(fs::exists(out));
     }
+    // Diff review: a key the script's own rs.settings refuses though no module declares its namespace, and the
+    // run's other options, which --check had returned before reading.
+    const std::pair<std::string, std::string> options[] = {
+        {"--set etrol.clamp_current=150", "--set etrol.clamp_current: no such setting"},
+        {"--time-limit -5", "--time-limit expects a number from 0"},
+        {"--live-bind 1.2.3.4", "--live-bind needs --live"},
+        {"--plugin-path " + shell_quoted(dir / "none"), "no such folder"}};
+    for (const auto& [option, says] : options) {
+        INFO(option);
+        const auto r = run_rollsense("run " + kPaper + " --check " + option);
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(count_of(r.output, says) == 1);
+    }
+    // Settings a profile reads are its own (diff review: --check refused a replay's dataset=, the run took it).
+    const auto replay = run_rollsense("run " + kPaper + " --check --profile replay --set dataset=" + shell_quoted(dir.path()));
+    INFO(replay.output);
+    CHECK(replay.status == 0);
+    // A setting declared twice is the script's mistake, as in the run (exit 1).
+    write_file(dir / "twice.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 1, kind = 'integer' } }\n"
+                                  "rs.settings{ runs = { default = 2, kind = 'integer' } }\n");
+    const auto twice = run_rollsense("run " + shell_quoted(dir / "twice.lua") + " --check");
+    INFO(twice.output);
+    CHECK(twice.status == 1);
+    CHECK(count_of(twice.output, "rs.settings: runs is declared twice") == 1);
     const auto required = run_rollsense("run " + script("examples/identify_early.lua") + " --check");
     INFO(required.output);
     CHECK(required.status == 2);

@@ -221,8 +221,8 @@ TEST_CASE("plugins --check refuses a search space wider than the schema, and a c
                       "refusing-configure --classifier test_refusing_configure -o " + (data / "eval.txt").string());
     INFO(r.output);
     CHECK(r.status == 3);
-    CHECK(count_of(r.output, "smoothing 1 is not supported (configured with its own defaults, no parameter given: "
-                             "the plugin's schema() or on_configure is wrong)") == 1);
+    CHECK(count_of(r.output, "smoothing 1 is not supported (no parameter was given: the plugin refuses its own "
+                             "defaults)") == 1);
     // A parameter given that it refuses stays the command line's.
     r = rollsense_cli("evaluate " + (data / "dataset").string() + " --folds 3 --repeats 1" + plugins +
                       "refusing-configure --classifier test_refusing_configure:smoothing=1 -o " +

@@ -359,7 +359,7 @@ int run(const std::vector<std::string>& argv) {
     std::string plugin = args.option("--classifier");
     const bool inferred = plugin.empty();
     if (inferred) {
-        auto named = learn::plugin_named_by(*header, model, "give --classifier NAME");
+        auto named = learn::plugin_named_by(*header, model);
         if (!named) return fail(named.error(), kExitConfig);
         plugin = *named;
     }
@@ -367,7 +367,7 @@ int run(const std::vector<std::string>& argv) {
     auto factory = learn::plugin_classifier_factory(registry, plugin);
     if (!factory) {
         Error e = factory.error();
-        if (inferred) e.message += " (the plugin named by " + model.string() + "'s first line; give --classifier NAME)";
+        if (inferred) e.message += learn::named_by_note(model, "give --classifier NAME");
         return fail(e, kExitConfig);
     }
     auto clf = (*factory)(ParamSet{});

@@ -192,13 +192,8 @@ int run(const std::vector<std::string>& argv) {
         if (!parsed) throw UsageError(parsed.error().message);
         o.shard = *parsed;
     }
-    if (args.flag("--check")) {  // nothing below: no folder, no device, no trial
-        for (const auto& kv : args.options("--set"))
-            if (auto s = o.settings.add(kv); !s.ok()) throw UsageError(s.message());
-        o.sandbox = sandbox_limits_of(args);
-        return check_run_settings(o, pos[0]);
-    }
-    if (auto st = check_out_folder(o.out_dir, o.resume, o.shard); !st) {
+    const bool check_only = args.flag("--check");  // every option parsed as for a run; no folder, no device, no trial
+    if (auto st = check_only ? Status{} : check_out_folder(o.out_dir, o.resume, o.shard); !st) {
         if (st.code() == ErrorCode::invalid_argument) throw UsageError(st.message());
         std::fprintf(stderr, "rollsense run: %s\n", st.error().describe().c_str());  // a damaged dataset: 3, or 5
         return exit_code_for(st.code(), kExitConfig);
@@ -219,6 +214,13 @@ int run(const std::vector<std::string>& argv) {
         deciding.emplace_back("--plugin-path", p);
     }
     o.sandbox = sandbox_limits_of(args);
+    // Ranges: a zero or negative budget would silently switch a protection off.
+    o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
+    o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
+    if (check_only) {
+        live_options_of(argv, args);  // refused here as in a run
+        return check_run_settings(o, pos[0]);
+    }
     // Before run-config.csv: it records the seed the run uses (review: a replay's said 1, and its resume was refused).
     if (args.option("--seed").empty())
         if (auto recorded = recorded_seed(o)) {
@@ -236,9 +238,6 @@ int run(const std::vector<std::string>& argv) {
             std::fprintf(stderr, "rollsense run: %s\n", s.error().describe().c_str());
             return exit_code_for(s.code(), kExitConfig);
         }
-    // Ranges: a zero or negative budget would silently switch a protection off.
-    o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
-    o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
     o.digital_lines = hal::gpio_digital_lines();
     o.command_line = "rollsense run " + shell_join(argv);  // as a shell reads it back (review: paths with spaces)
     // The watchdog's way out (three Ctrl-C, a script stuck in one C call) ends the process inside the run.

@@ -14,7 +14,7 @@ int check_run_settings(const runtime::SessionOptions& o, const std::string& scri
     std::string stopped_at;
     auto declared = script_settings::declared_by(o.script, o.share_dir, o.sandbox, &stopped_at);
     if (!declared) throw StatusError(Status{declared.error()});
-    const runtime::Settings settings = o.settings;  // a copy: loading the profile marks the keys it reads
+    const runtime::Settings settings = o.settings;  // the keys the profile reads are marked in it: its own
     auto profile = runtime::load_profile(o.profile, o.share_dir, settings, o.sandbox);
     if (!profile) throw StatusError(runtime::profile_refusal(profile.status(), o.settings));
     std::optional<ObjectCatalogue> catalogue;
@@ -25,7 +25,7 @@ int check_run_settings(const runtime::SessionOptions& o, const std::string& scri
         if (!loaded) throw StatusError(Status{loaded.error()});
         catalogue = std::move(*loaded);
     }
-    if (auto s = script_settings::check_given(*declared, o.settings, catalogue ? &*catalogue : nullptr); !s.ok())
+    if (auto s = script_settings::check_given(*declared, settings, catalogue ? &*catalogue : nullptr); !s.ok())
         throw StatusError(s);
     if (declared->empty())
         std::printf("%s declares no settings%s: its --set keys are checked only when it runs; profile '%s' loads\n",

@@ -41,18 +41,22 @@ Result<ModelHeader> read_model_header(const fs::path& model) {
     return h;
 }
 
-Result<std::string> plugin_named_by(const ModelHeader& h, const fs::path& model, const std::string& way_out) {
+Result<std::string> plugin_named_by(const ModelHeader& h, const fs::path& model) {
     const std::string prefix = "rollsense-";
     // A features table or a trial file given first is no model at all (first-day review: told to name a classifier).
     if (h.magic.starts_with("trial_id,") || h.magic.starts_with("time,"))
         return Error{ErrorCode::parse_error, model.string() + ":1: a CSV table, not a model: give the model first "
-                                                              "(rollsense train and rs.analyse save one)"};
+                                                              "(rollsense predict MODEL INPUT; rollsense train makes one)"};
     if (h.magic.rfind(prefix, 0) != 0 || h.magic.size() == prefix.size())
         return Error{ErrorCode::parse_error, model.string() + ":1: the file does not name its classifier (expected "
-                                                              "'rollsense-<plugin> <version>'); " + way_out};
+                                                              "'rollsense-<plugin> <version>'); give --classifier NAME"};
     std::string name = h.magic.substr(prefix.size());
     std::replace(name.begin(), name.end(), '-', '_');
     return name;
+}
+
+std::string named_by_note(const fs::path& model, const std::string& way_out) {
+    return " (the plugin named by " + model.string() + "'s first line; " + way_out + ")";
 }
 
 }  // namespace rollsense::learn

@@ -1,6 +1,6 @@
 // A saved model file's header, read without a plugin: its first word names the classifier plugin that wrote it
 // ("rollsense-bagged-trees 1"), and a series model records its input ("channel NAME", "series_length N" lines).
-// `rollsense predict MODEL` and rs.classifier{model=} find the plugin by it.
+// `rollsense predict MODEL` and rs.classifier{model=} find the plugin by it (the latter only where it names one).
 #pragma once
 
 #include <filesystem>
@@ -20,9 +20,12 @@ struct ModelHeader {
 // The header of `model`, or an error naming the file and the way out (missing, a folder, empty, unreadable).
 Result<ModelHeader> read_model_header(const std::filesystem::path& model);
 
-// "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names, or an error saying it names none and
-// `way_out` (how the caller's user names the plugin instead: "give --classifier NAME").
-Result<std::string> plugin_named_by(const ModelHeader& header, const std::filesystem::path& model,
-                                    const std::string& way_out);
+// "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names, or an error saying it names none, in
+// `rollsense predict`'s words.
+Result<std::string> plugin_named_by(const ModelHeader& header, const std::filesystem::path& model);
+
+// Said after an error about the plugin a model file named: where the name came from, and `way_out` (how to name
+// another: "give --classifier NAME").
+std::string named_by_note(const std::filesystem::path& model, const std::string& way_out);
 
 }  // namespace rollsense::learn

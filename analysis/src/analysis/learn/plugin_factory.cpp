@@ -48,11 +48,11 @@ Result<ClassifierFactory> plugin_classifier_factory(runtime::PluginRegistry& reg
         if (!handle) return handle.error();
         std::shared_ptr<runtime::ClassifierHandle> owner(std::move(handle).value());
         if (auto s = owner->configure(*params, context); !s) {
-            // Its own defaults refused: the plugin's fault (exit 3), not the command line's (plugin review: exit 2).
-            if (raw.values().empty())
-                return Status{ErrorCode::plugin_error, s.message() + " (configured with its own defaults, no parameter "
-                                                                     "given: the plugin's schema() or on_configure is "
-                                                                     "wrong)"};
+            // Its own defaults refused as a bad argument: the plugin's fault (exit 3), not the command line's (plugin
+            // review: exit 2). Other failures (a missing file, a device) keep their own code.
+            if (raw.values().empty() && s.code() == ErrorCode::invalid_argument)
+                return Status{ErrorCode::plugin_error, s.message() + " (no parameter was given: the plugin refuses its "
+                                                                     "own defaults)"};
             return s;
         }
         if (auto s = owner->activate(); !s) return s;

@@ -384,21 +384,20 @@ int l_classifier(lua_State* L) {
     check_options(L, 1, "rs.classifier", {"model", "classifier"});
     const std::string model = opt_field_string(L, 1, "model", "");
     if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
-    // As `rollsense predict`: the model's first line names its plugin (plugin review: a plugin's model was read as
-    // a bagged-trees one, the stock default, and refused).
-    std::string chosen = opt_field_string(L, 1, "classifier", "");
-    const bool inferred = chosen.empty();
-    if (inferred) {
-        auto header = learn::read_model_header(model);
-        check(L, header.status());
-        auto named = learn::plugin_named_by(*header, model, "give classifier = NAME");
-        check(L, named.status());
-        chosen = *named;
-    }
-    auto factory = learn::plugin_classifier_factory(s.registry(), chosen);
-    if (!factory && inferred) {
+    // As `rollsense predict`: the plugin the model's first line names (plugin review: a plugin's model was read as a
+    // bagged-trees one, the stock default, and refused). A file that names none is left to the default plugin's
+    // load, which says what is wrong with it, as before.
+    const std::string given = opt_field_string(L, 1, "classifier", "");
+    std::string named;  // the plugin the file names, when no classifier is given
+    if (given.empty())
+        if (auto header = learn::read_model_header(model))
+            if (auto plugin = learn::plugin_named_by(*header, model)) named = *plugin;
+    auto chosen = learn::classifier_or_default(given.empty() ? named : given, s.options().share_dir);
+    check(L, chosen.status());
+    auto factory = learn::plugin_classifier_factory(s.registry(), *chosen);
+    if (!factory && !named.empty()) {
         Error e = factory.error();
-        e.message += " (the plugin named by " + model + "'s first line; give classifier = NAME)";
+        e.message += learn::named_by_note(model, "give classifier = NAME");
         raise_status(L, Status(e));
     }
     check(L, factory.status());

@@ -8,6 +8,7 @@
 // extension, beside rs.analyse: the object catalogue is not the kernel's
 // business.
 #include <optional>
+#include <set>
 
 #include "analysis/lua/script_settings.hpp"
 #include "runtime/lua/api_internal.hpp"
@@ -64,9 +65,7 @@ int l_settings(lua_State* L) {
         // overrides it: the script's mistake, refused before any trial (user review: it failed mid-run at the
         // unknown object, and offered a --resume that the fix, an edit of the script, makes impossible).
         if (d.fallback && catalogue && d.list != script_settings::ListKind::none)
-            if (auto ok = script_settings::check_value(d, *d.fallback, &*catalogue, true); !ok)
-                refuse(L, "rs.settings: " + d.key + ": the default does not fit the declaration: " +
-                              ok.error().message + "; edit the default in the script");
+            if (auto ok = script_settings::check_default(d, *catalogue); !ok.ok()) refuse(L, ok.message());
         const auto given = st.values().find(d.key);
         if (given == st.values().end()) {
             if (!d.fallback) refuse_set(L, script_settings::required_setting(d));
@@ -80,11 +79,10 @@ int l_settings(lua_State* L) {
     }
     // Every --set must mean something: in a module's call, those of its
     // namespace; in the script's, all (its modules have declared by now).
-    for (const auto& [key, value] : st.values()) {
-        if (is_profile_path(key) || st.used(key) || st.declared().count(key)) continue;
-        if (module && setting_namespace(key) != ns) continue;
-        refuse_set(L, script_settings::no_such_setting(key, known_settings(st)));
-    }
+    std::set<std::string> declared;
+    for (const auto& [key, value] : st.declared()) declared.insert(key);
+    if (const auto stray = script_settings::unaccounted_key(st, declared, module ? &ns : nullptr))
+        refuse_set(L, script_settings::no_such_setting(*stray, known_settings(st)));
     return 0;
 }
 

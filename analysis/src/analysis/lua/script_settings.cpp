@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "rollsense/csv.hpp"
 #include "runtime/lua/api_internal.hpp"
@@ -186,9 +187,14 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
 
 Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
                    const ObjectCatalogue* catalogue) {
+    std::set<std::string> keys, namespaces;
     std::string known;
     for (const auto& d : declared) {
+        if (!keys.insert(d.key).second) return {ErrorCode::invalid_argument, "rs.settings: " + d.key + " is declared twice"};
+        namespaces.insert(runtime::setting_namespace(d.key));
         known += (known.empty() ? "" : ", ") + d.key;
+        if (d.fallback && catalogue && d.list != ListKind::none)
+            if (auto s = check_default(d, *catalogue); !s.ok()) return s;
         const auto value = given.values().find(d.key);
         if (value == given.values().end()) {
             if (!d.fallback) return {ErrorCode::bad_setting, required_setting(d)};
@@ -196,16 +202,29 @@ Status check_given(const std::vector<Declaration>& declared, const runtime::Sett
         }
         if (auto ok = check_value(d, value->second, catalogue); !ok) return {ErrorCode::bad_setting, ok.error().message};
     }
-    for (const auto& [key, value] : given.values()) {
-        const bool declaring = std::any_of(declared.begin(), declared.end(), [&](const Declaration& d) {
-            return runtime::setting_namespace(d.key) == runtime::setting_namespace(key);
-        });
-        const bool is_declared =
-            std::any_of(declared.begin(), declared.end(), [&](const Declaration& d) { return d.key == key; });
-        if (declaring && !is_declared && !runtime::is_profile_path(key))
-            return {ErrorCode::bad_setting, no_such_setting(key, known)};
-    }
+    // The script's own rs.settings accounts for every key; a module's only for its namespace.
+    std::optional<std::string> stray;
+    if (namespaces.count("")) stray = unaccounted_key(given, keys, nullptr);
+    for (auto ns = namespaces.begin(); !stray && ns != namespaces.end(); ++ns) stray = unaccounted_key(given, keys, &*ns);
+    if (stray) return {ErrorCode::bad_setting, no_such_setting(*stray, known)};
     return {};
+}
+
+Status check_default(const Declaration& d, const ObjectCatalogue& catalogue) {
+    if (auto ok = check_value(d, *d.fallback, &catalogue, true); !ok)
+        return {ErrorCode::invalid_argument, "rs.settings: " + d.key + ": the default does not fit the declaration: " +
+                                                 ok.error().message + "; edit the default in the script"};
+    return {};
+}
+
+std::optional<std::string> unaccounted_key(const runtime::Settings& given, const std::set<std::string>& declared,
+                                           const std::string* only_namespace) {
+    for (const auto& [key, value] : given.values()) {
+        if (runtime::is_profile_path(key) || given.used(key) || declared.count(key)) continue;
+        if (only_namespace && runtime::setting_namespace(key) != *only_namespace) continue;
+        return key;
+    }
+    return std::nullopt;
 }
 
 std::string required_setting(const Declaration& d) {

@@ -20,6 +20,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -54,11 +55,21 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
 Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue,
                                bool is_default = false);  // the declaration's default, not a --set
 
-// The --set values of `given` checked as a run checks them before its first trial (rs.settings): each declared
-// setting's value, a required one that is missing, and every key of a namespace that declares settings against what
-// it declares (profile entries are the profile's). For `rollsense run SCRIPT --check`, which runs no trial.
+// The --set values of `given` checked as a run checks them before its first trial (rs.settings): a setting declared
+// twice, a default of objects the catalogue lacks, each declared setting's value, a required one that is missing,
+// and every key no declaration accounts for (unaccounted_key: all of them once the script declares its own; else
+// those of a module's namespace). `given` as the profile left it: the keys it read are its own. For `rollsense run
+// SCRIPT --check`, which runs no trial.
 Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
                    const ObjectCatalogue* catalogue);
+
+// A default of catalogue objects checked as a --set of them is: the script's mistake (rs.settings refuses it).
+Status check_default(const Declaration& d, const ObjectCatalogue& catalogue);
+
+// The first --set key of `given` that is no profile entry, was not read by the profile, and is not in `declared`;
+// only keys of `only_namespace` when given (a module's rs.settings), every key for the script's own call.
+std::optional<std::string> unaccounted_key(const runtime::Settings& given, const std::set<std::string>& declared,
+                                           const std::string* only_namespace);
 
 // "setting 'KEY' is required: pass --set KEY=VALUE (its help)".
 std::string required_setting(const Declaration& d);
