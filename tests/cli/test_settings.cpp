@@ -841,13 +841,16 @@ TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first
         {"--set etrol.clamp_current=150", "--set etrol.clamp_current: no such setting"},
         {"--time-limit -5", "--time-limit expects a number from 0"},
         {"--live-bind 1.2.3.4", "--live-bind needs --live"},
-        {"--plugin-path " + shell_quoted(dir / "none"), "no such folder"}};
+        {"--plugin-path " + shell_quoted(dir / "none"), "no such folder"},
+        // A switch given a value was read as absent: the whole experiment ran.
+        {"--resume=yes --out " + shell_quoted(out), "--resume takes no value: give it alone ('--resume=yes' was given)"}};
     for (const auto& [option, says] : options) {
         INFO(option);
         const auto r = run_rollsense("run " + kPaper + " --check " + option);
         INFO(r.output);
         CHECK(r.status == 2);
         CHECK(count_of(r.output, says) == 1);
+        CHECK_FALSE(fs::exists(out));
     }
     // Settings a profile reads are its own (diff review: --check refused a replay's dataset=, the run took it).
     const auto replay = run_rollsense("run " + kPaper + " --check --profile replay --set dataset=" + shell_quoted(dir.path()));
@@ -867,6 +870,23 @@ TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first
     const auto profile = run_rollsense("run " + kPaper + " --check --profile " + shell_quoted(dir / "none.lua"));
     INFO(profile.output);
     CHECK(profile.status == 3);
+
+    // The run's folder checks only read, so --check makes them (re-review: an existing dataset passed).
+    const auto ds = dir / "ds";
+    REQUIRE(run_rollsense("run " + kPaper + kSmall + " --out " + shell_quoted(ds)).status == 0);
+    const auto taken = run_rollsense("run " + kPaper + " --check --out " + shell_quoted(ds));
+    INFO(taken.output);
+    CHECK(taken.status == 2);
+    CHECK(count_of(taken.output, "already holds a dataset; continue it with --resume") == 1);
+    const auto other = run_rollsense("run " + kPaper + kSmall + " --check --resume --set runs=2 --out " + shell_quoted(ds));
+    INFO(other.output);
+    CHECK(other.status == 2);
+    CHECK(count_of(other.output, "this run differs from the one that recorded it") == 1);
+    const auto alone = run_rollsense("run " + kPaper + " --check=yes --set runs=1 --out " + shell_quoted(out));
+    INFO(alone.output);
+    CHECK(alone.status == 2);
+    CHECK(count_of(alone.output, "--check takes no value: give it alone ('--check=yes' was given)") == 1);
+    CHECK_FALSE(fs::exists(out));
 
     const auto good = run_rollsense("run " + kPaper + " --check --set runs=2 --set objects=C1,P2 --set "
                                     "etroll.clamp_current=150 --out " + shell_quoted(out));

@@ -56,9 +56,10 @@ options:
                         run-info.csv is kept as run-info.N.csv
   --check               check what the run checks before its first trial
                         (the script's declared settings against --set, the
-                        profile with its overrides), then stop: no folder, no
-                        device, no trial; plugins' parameters are checked
-                        only when a run starts its devices
+                        profile with its overrides, the other options, --out),
+                        then stop: nothing created, no device, no trial;
+                        plugins' parameters are checked only when a run starts
+                        its devices (docs/scripting.md, Settings)
   --seed N              run seed, 0 to 2^63-1 (per-trial seeds derive from it);
                         default: 1, or, replaying a dataset, the seed it was
                         recorded with
@@ -192,8 +193,8 @@ int run(const std::vector<std::string>& argv) {
         if (!parsed) throw UsageError(parsed.error().message);
         o.shard = *parsed;
     }
-    const bool check_only = args.flag("--check");  // every option parsed as for a run; no folder, no device, no trial
-    if (auto st = check_only ? Status{} : check_out_folder(o.out_dir, o.resume, o.shard); !st) {
+    const bool check_only = args.flag("--check");  // every option checked as for a run; no folder made, no device, no trial
+    if (auto st = check_out_folder(o.out_dir, o.resume, o.shard); !st) {
         if (st.code() == ErrorCode::invalid_argument) throw UsageError(st.message());
         std::fprintf(stderr, "rollsense run: %s\n", st.error().describe().c_str());  // a damaged dataset: 3, or 5
         return exit_code_for(st.code(), kExitConfig);
@@ -217,10 +218,6 @@ int run(const std::vector<std::string>& argv) {
     // Ranges: a zero or negative budget would silently switch a protection off.
     o.time_limit_s = args.number_option("--time-limit", 0, 0, 1e9);
     o.commit_every = args.unsigned_option("--commit-every", 0, 0, 1'000'000);
-    if (check_only) {
-        live_options_of(argv, args);  // refused here as in a run
-        return check_run_settings(o, pos[0]);
-    }
     // Before run-config.csv: it records the seed the run uses (review: a replay's said 1, and its resume was refused).
     if (args.option("--seed").empty())
         if (auto recorded = recorded_seed(o)) {
@@ -238,6 +235,10 @@ int run(const std::vector<std::string>& argv) {
             std::fprintf(stderr, "rollsense run: %s\n", s.error().describe().c_str());
             return exit_code_for(s.code(), kExitConfig);
         }
+    if (check_only) {  // the folder and resume checks above only read; nothing further is opened
+        live_options_of(argv, args);  // refused here as in a run
+        return check_run_settings(o, pos[0]);
+    }
     o.digital_lines = hal::gpio_digital_lines();
     o.command_line = "rollsense run " + shell_join(argv);  // as a shell reads it back (review: paths with spaces)
     // The watchdog's way out (three Ctrl-C, a script stuck in one C call) ends the process inside the run.

@@ -109,9 +109,14 @@ std::vector<std::string> Args::options(std::string_view name) const {
 }
 
 bool Args::flag(std::string_view name) const {
-    for (const auto& a : args_)
-        if (a == name) return true;
-    return false;
+    bool given = false;
+    for (const auto& a : args_) {
+        given = given || a == name;
+        // A switch takes no value (diff review: `run --check=yes`, read as no --check, ran the whole experiment).
+        if (split_equals(a, name, nullptr))
+            throw UsageError(std::string(name) + " takes no value: give it alone ('" + a + "' was given)");
+    }
+    return given;
 }
 
 std::uint64_t Args::unsigned_option(std::string_view name, std::uint64_t fallback, std::uint64_t min,
