@@ -67,7 +67,7 @@ const std::vector<std::string> kCvSchemeOptions = {"--cv", "--group-by", "--bloc
 void require_optimize(const Args& args, const std::vector<std::string>& options) {
     if (args.flag("--optimize")) return;
     for (const auto& o : options)
-        if (args.flag(o) || !args.options(o).empty())  // "--o", "--o VALUE" or "--o=VALUE"
+        if (args.given(o))
             throw UsageError(o + " applies with --optimize only (it sets the optimiser); add --optimize or drop " + o);
 }
 

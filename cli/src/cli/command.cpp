@@ -119,6 +119,11 @@ bool Args::flag(std::string_view name) const {
     return given;
 }
 
+bool Args::given(std::string_view name) const {
+    return std::any_of(args_.begin(), args_.end(),
+                       [&](const std::string& a) { return a == name || split_equals(a, name, nullptr); });
+}
+
 std::uint64_t Args::unsigned_option(std::string_view name, std::uint64_t fallback, std::uint64_t min,
                                     std::uint64_t max) const {
     const auto text = option(name);

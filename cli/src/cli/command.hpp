@@ -67,7 +67,10 @@ public:
     // Every occurrence (an empty value throws UsageError). A folder option (--plugin-path, --training) is checked here for every
     // command: a value that is not an existing folder throws UsageError naming both.
     std::vector<std::string> options(std::string_view name) const;
+    // A switch: "--name" given; "--name=VALUE" throws UsageError (a switch takes no value).
     bool flag(std::string_view name) const;
+    // Whether "--name" appears at all, alone or with a value ("--name V", "--name=V").
+    bool given(std::string_view name) const;
     // "--name N": a whole number in [min, max] (no sign, fraction or exponent),
     // or `fallback` when absent. Throws UsageError naming the option and range.
     std::uint64_t unsigned_option(std::string_view name, std::uint64_t fallback, std::uint64_t min,
