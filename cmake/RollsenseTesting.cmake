@@ -51,10 +51,9 @@ function(rollsense_test_flags target)
     endif()
     # Instrumentation made each test file take 60 % longer to compile; the libraries and plugins they load keep
     # theirs, and the sanitizer runtime is still linked (what a test file compiles itself, header-inline and template
-    # code included, is not checked). __SANITIZE_ADDRESS__ stays defined, as it is where the code
-    # is instrumented: headers decide layouts by it (Eigen's aligned allocation: a matrix allocated by a test and
-    # freed in the library read outside its block), and the tests that behave differently under AddressSanitizer
-    # read it.
+    # code included, is not checked). __SANITIZE_ADDRESS__ stays defined, as where the code is instrumented: headers
+    # decide layouts by it (Eigen's aligned allocation: a matrix allocated by a test and freed in the library read
+    # outside its block), and the tests that behave differently under AddressSanitizer read it.
     target_compile_options(${target} PRIVATE -fno-sanitize=all)
     target_compile_definitions(${target} PRIVATE __SANITIZE_ADDRESS__=1)
   endif()

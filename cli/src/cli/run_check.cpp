@@ -1,6 +1,5 @@
 #include "cli/run_check.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <optional>
 
@@ -18,9 +17,7 @@ int check_run_settings(const runtime::SessionOptions& o, const std::string& scri
     auto profile = runtime::load_profile(o.profile, o.share_dir, settings, o.sandbox);
     if (!profile) throw StatusError(runtime::profile_refusal(profile.status(), o.settings));
     std::optional<ObjectCatalogue> catalogue;
-    if (std::any_of(declared->begin(), declared->end(), [](const auto& d) {
-            return d.list == script_settings::ListKind::object || d.list == script_settings::ListKind::objects;
-        })) {
+    if (script_settings::names_objects(*declared)) {
         auto loaded = ObjectCatalogue::load(script_settings::catalogue_path(*profile, o.share_dir));
         if (!loaded) throw StatusError(Status{loaded.error()});
         catalogue = std::move(*loaded);

@@ -52,13 +52,11 @@ int l_settings(lua_State* L) {
     Settings& st = s.settings();
 
     std::optional<ObjectCatalogue> catalogue;
-    for (const auto& d : declarations)
-        if ((d.list == script_settings::ListKind::object || d.list == script_settings::ListKind::objects) &&
-            !catalogue) {
-            auto loaded = ObjectCatalogue::load(script_settings::catalogue_path(s.profile(), s.options().share_dir));
-            if (!loaded) raise_status(L, Status{loaded.error()}.with_context("rs.settings: kind 'objects'"));
-            catalogue = std::move(*loaded);
-        }
+    if (script_settings::names_objects(declarations)) {
+        auto loaded = ObjectCatalogue::load(script_settings::catalogue_path(s.profile(), s.options().share_dir));
+        if (!loaded) raise_status(L, Status{loaded.error()}.with_context("rs.settings: kind 'objects'"));
+        catalogue = std::move(*loaded);
+    }
     for (const auto& d : declarations) {
         if (st.declared().count(d.key)) refuse(L, "rs.settings: " + d.key + " is declared twice");
         // A default of catalogue objects is checked as a --set of them is (check_value), whether or not a --set

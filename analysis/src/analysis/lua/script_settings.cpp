@@ -210,6 +210,12 @@ Status check_given(const std::vector<Declaration>& declared, const runtime::Sett
     return {};
 }
 
+bool names_objects(const std::vector<Declaration>& declared) {
+    return std::any_of(declared.begin(), declared.end(), [](const Declaration& d) {
+        return d.list == ListKind::object || d.list == ListKind::objects;
+    });
+}
+
 Status check_default(const Declaration& d, const ObjectCatalogue& catalogue) {
     if (auto ok = check_value(d, *d.fallback, &catalogue, true); !ok)
         return {ErrorCode::invalid_argument, "rs.settings: " + d.key + ": the default does not fit the declaration: " +

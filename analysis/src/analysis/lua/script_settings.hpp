@@ -63,6 +63,9 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
 Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
                    const ObjectCatalogue* catalogue);
 
+// Whether any declaration names catalogue objects (kind "object" or "objects"): then the catalogue is read.
+bool names_objects(const std::vector<Declaration>& declared);
+
 // A default of catalogue objects checked as a --set of them is: the script's mistake (rs.settings refuses it).
 Status check_default(const Declaration& d, const ObjectCatalogue& catalogue);
 
