@@ -130,10 +130,10 @@ TEST_CASE("unknown keys, unknown objects and out-of-range values are errors befo
                          Case{"etroll.clamp_curent=150", "--set etroll.clamp_curent: no such setting"},
                          Case{"objects=C1,X9", "'X9' is not an object of"},
                          Case{"objects=X9", "(objects: C1, C2, C3, S1, S2, P1, P2, H1, H2)"},
-                         Case{"runs=0", "'runs': 0 is outside the allowed range [1, inf]"},
-                         Case{"runs=two", "'runs' must be an integer"},
+                         Case{"runs=0", "--set runs=0: 0 is outside the allowed range [1, inf]"},
+                         Case{"runs=two", "--set runs=two: must be an integer"},
                          Case{"speeds=10,0", "'0' is not a number >= 1"},
-                         Case{"etroll.clamp_current=-5", "'etroll.clamp_current': -5 is outside the allowed range"}}) {
+                         Case{"etroll.clamp_current=-5", "--set etroll.clamp_current=-5: -5 is outside the allowed range"}}) {
         INFO(c.set);
         const auto out = dir / "out";
         const auto r = run_rollsense("run " + kPaper + " --set " + shell_quoted(c.set) + " --no-progress --out " + shell_quoted(out));
@@ -194,9 +194,9 @@ TEST_CASE("nan and inf are refused where a setting declares a range, as a bad co
                               "rs.settings{ speed = { default = 10, min = 1, help = 'roll speed' },\n"
                               "             speeds = { default = '10', kind = 'numbers', min = 1 } }\n"
                               "rs.log('speed', rs.setting('speed'))\n");
-    for (const Case c : {Case{"speed=nan", "s.lua:2: --set: key 'speed': nan is not a finite number in the allowed range [1, inf]"},
-                         Case{"speed=inf", "key 'speed': inf is not a finite number in the allowed range [1, inf]"},
-                         Case{"speed=-inf", "key 'speed': -inf is not a finite number in the allowed range [1, inf]"},
+    for (const Case c : {Case{"speed=nan", "s.lua:2: --set speed=nan: nan is not a finite number in the allowed range [1, inf]"},
+                         Case{"speed=inf", "--set speed=inf: inf is not a finite number in the allowed range [1, inf]"},
+                         Case{"speed=-inf", "--set speed=-inf: -inf is not a finite number in the allowed range [1, inf]"},
                          Case{"speeds=10,inf", "'inf' is not a number >= 1"},
                          Case{"speeds=nan", "'nan' is not a number >= 1"}}) {
         INFO(c.set);
@@ -248,8 +248,8 @@ TEST_CASE("in a script that declares its settings, reading an undeclared one is 
     write_file(dir / "unfit.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 'ten', kind = 'integer' } }\n");
     const auto unfit = run_rollsense("run " + shell_quoted(dir / "unfit.lua") + " --profile mock --out " + shell_quoted(dir / "d"));
     INFO(unfit.output);
-    CHECK(unfit.output.find("unfit.lua:2: rs.settings: runs: the default does not fit the declaration: the default: key "
-                            "'runs' must be an integer, got a string ('ten')") != std::string::npos);
+    CHECK(unfit.output.find("unfit.lua:2: rs.settings: runs: the default does not fit the declaration: default ten: "
+                            "must be an integer, got a string ('ten')") != std::string::npos);
     CHECK(unfit.output.find("--set") == std::string::npos);
 }
 
@@ -799,7 +799,7 @@ TEST_CASE("a string setting's choices are listed by --help, and another word is 
                                    "--no-progress --out " + shell_quoted(dir / "out"));
     INFO(bad.output);
     CHECK(bad.status == 2);
-    CHECK_THAT(bad.output, Catch::Contains("'series_amplitude' is 'bogus', expected one of: global_scale, z_per_channel") &&
+    CHECK_THAT(bad.output, Catch::Contains("--set series_amplitude=bogus: is 'bogus', expected one of: global_scale, z_per_channel") &&
                                Catch::Contains("compare_methods.lua:"));
     CHECK_FALSE(fs::exists(dir / "out"));  // nothing recorded
     // choices belong to a string setting, as a list of words.
@@ -824,7 +824,7 @@ TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first
     for (const Case c : {Case{"runz=2", "--set runz: no such setting. Settings here: analyse, etroll.clamp_current"},
                          Case{"etroll.clamp_curent=150", "--set etroll.clamp_curent: no such setting"},
                          Case{"objects=C1,X9", "'X9' is not an object of"},
-                         Case{"runs=two", "'runs' must be an integer"},
+                         Case{"runs=two", "--set runs=two: must be an integer"},
                          Case{"speeds=10,0", "'0' is not a number >= 1"},
                          Case{"joints.sensing_finger.max=-100", "--set joints.sensing_finger.max=-100: "}}) {
         INFO(c.set);
@@ -894,4 +894,32 @@ TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first
     CHECK(good.status == 0);
     CHECK_THAT(good.output, Catch::Contains("settings checked with the --set given, profile 'sim' loads; no trial"));
     CHECK_FALSE(fs::exists(out));
+}
+
+// Last note: with two mistakes at once, --check named another one first than the run, and so gave another exit code:
+// it read the script before the profile, and checked every value before any unknown key (the run checks call by call).
+TEST_CASE("run SCRIPT --check names first the mistake the run names first") {
+    TempDir dir("rollsense-settings-check-order");
+    write_file(dir / "syntax.lua", "local rs = require 'rollsense'\nlocal x = = 1\n");
+    // A module required after the script's own rs.settings: that call accounts only for what is declared by then.
+    write_file(dir / "late.lua", "local rs = require 'rollsense'\nrs.settings{ runs = { default = 1, kind = 'integer' } }\n"
+                                 "local etroll = require 'etroll'\n");
+    struct Mistakes {
+        std::string script, sets, says;
+    };
+    for (const auto& m : {Mistakes{shell_quoted(dir / "syntax.lua"), "--set sample_rate_hz=-1", "--set sample_rate_hz=-1: "},
+                          Mistakes{kPaper, "--set runs=0 --set etroll.bogus=1", "--set etroll.bogus: no such setting"},
+                          Mistakes{shell_quoted(dir / "late.lua"), "--set etroll.move_velocity=20",
+                                   "--set etroll.move_velocity: no such setting. Settings here: runs;"}}) {
+        INFO(m.script << " " << m.sets);
+        const auto check = run_rollsense("run " + m.script + " --check " + m.sets);
+        const auto run = run_rollsense("run " + m.script + " " + m.sets + " --out " + shell_quoted(dir / "out"));
+        INFO(check.output);
+        INFO(run.output);
+        CHECK(run.status == 2);
+        CHECK(check.status == run.status);
+        CHECK(count_of(run.output, m.says) == 1);
+        CHECK(count_of(check.output, m.says) == 1);
+        CHECK_FALSE(fs::exists(dir / "out"));
+    }
 }

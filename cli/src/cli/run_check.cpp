@@ -10,19 +10,21 @@
 namespace rollsense::cli {
 
 int check_run_settings(const runtime::SessionOptions& o, const std::string& script_arg) {
-    std::string stopped_at;
-    auto declared = script_settings::declared_by(o.script, o.share_dir, o.sandbox, &stopped_at);
-    if (!declared) throw StatusError(Status{declared.error()});
+    // In the run's order (the profile loads before the script), so that of two mistakes the run's first is named.
     const runtime::Settings settings = o.settings;  // the keys the profile reads are marked in it: its own
     auto profile = runtime::load_profile(o.profile, o.share_dir, settings, o.sandbox);
     if (!profile) throw StatusError(runtime::profile_refusal(profile.status(), o.settings));
+    std::string stopped_at;
+    std::vector<script_settings::SettingsCall> calls;
+    auto declared = script_settings::declared_by(o.script, o.share_dir, o.sandbox, &stopped_at, &calls);
+    if (!declared) throw StatusError(Status{declared.error()});
     std::optional<ObjectCatalogue> catalogue;
     if (script_settings::names_objects(*declared)) {
         auto loaded = ObjectCatalogue::load(script_settings::catalogue_path(*profile, o.share_dir));
         if (!loaded) throw StatusError(Status{loaded.error()});
         catalogue = std::move(*loaded);
     }
-    if (auto s = script_settings::check_given(*declared, settings, catalogue ? &*catalogue : nullptr); !s.ok())
+    if (auto s = script_settings::check_given(calls, settings, catalogue ? &*catalogue : nullptr); !s.ok())
         throw StatusError(s);
     if (declared->empty())
         std::printf("%s declares no settings%s: its --set keys are checked only when it runs; profile '%s' loads\n",

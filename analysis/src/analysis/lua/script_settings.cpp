@@ -178,35 +178,44 @@ Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, co
     }
     ParamSpec spec = d.spec;
     spec.default_value.reset();
-    auto checked = validate_params({spec}, {{d.key, value}}, is_default ? "the default" : "--set");
-    if (!checked) return Error{ErrorCode::invalid_argument, checked.error().message + about};
+    const std::string context = is_default ? "the default" : "--set";
+    auto checked = validate_params({spec}, {{d.key, value}}, context);
+    if (!checked) {
+        // validate_params names a plugin parameter ("--set: key 'runs': 0 is outside ..."); a setting is named as the
+        // user typed it ("--set runs=0: 0 is outside ...", user review).
+        std::string why = checked.error().message;
+        const std::string named = context + ": key '" + d.key + "'";
+        if (why.starts_with(named)) why = where + ": " + why.substr(why.compare(named.size(), 2, ": ") == 0 ? named.size() + 2 : named.size() + 1);
+        return Error{ErrorCode::invalid_argument, why + about};
+    }
     // A number keeps the type it was given in (150 stays a Lua integer, as the default would be).
     if (d.spec.type == ParamType::number) return value;
     return checked->values().at(d.key);
 }
 
-Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
+Status check_given(const std::vector<SettingsCall>& calls, const runtime::Settings& given,
                    const ObjectCatalogue* catalogue) {
-    std::set<std::string> keys, namespaces;
-    std::string known;
-    for (const auto& d : declared) {
-        if (!keys.insert(d.key).second) return {ErrorCode::invalid_argument, "rs.settings: " + d.key + " is declared twice"};
-        namespaces.insert(runtime::setting_namespace(d.key));
-        known += (known.empty() ? "" : ", ") + d.key;
-        if (d.fallback && catalogue && d.list != ListKind::none)
-            if (auto s = check_default(d, *catalogue); !s.ok()) return s;
-        const auto value = given.values().find(d.key);
-        if (value == given.values().end()) {
-            if (!d.fallback) return {ErrorCode::bad_setting, required_setting(d)};
-            continue;
+    std::set<std::string> keys;  // declared so far
+    for (const auto& call : calls) {
+        const auto refuse = [&](ErrorCode code, const std::string& text) { return Status{code, call.where + ": " + text}; };
+        for (const auto& d : call.declarations) {
+            if (!keys.insert(d.key).second) return refuse(ErrorCode::invalid_argument, "rs.settings: " + d.key + " is declared twice");
+            if (d.fallback && catalogue && d.list != ListKind::none)
+                if (auto s = check_default(d, *catalogue); !s.ok()) return refuse(s.code(), s.message());
+            const auto value = given.values().find(d.key);
+            if (value == given.values().end()) {
+                if (!d.fallback) return refuse(ErrorCode::bad_setting, required_setting(d));
+                continue;
+            }
+            if (auto ok = check_value(d, value->second, catalogue); !ok) return refuse(ErrorCode::bad_setting, ok.error().message);
         }
-        if (auto ok = check_value(d, value->second, catalogue); !ok) return {ErrorCode::bad_setting, ok.error().message};
+        // The script's own rs.settings accounts for every key; a module's only for its namespace.
+        if (const auto stray = unaccounted_key(given, keys, call.ns.empty() ? nullptr : &call.ns)) {
+            std::string known;
+            for (const auto& k : keys) known += (known.empty() ? "" : ", ") + k;
+            return refuse(ErrorCode::bad_setting, no_such_setting(*stray, known));
+        }
     }
-    // The script's own rs.settings accounts for every key; a module's only for its namespace.
-    std::optional<std::string> stray;
-    if (namespaces.count("")) stray = unaccounted_key(given, keys, nullptr);
-    for (auto ns = namespaces.begin(); !stray && ns != namespaces.end(); ++ns) stray = unaccounted_key(given, keys, &*ns);
-    if (stray) return {ErrorCode::bad_setting, no_such_setting(*stray, known)};
     return {};
 }
 
@@ -275,6 +284,7 @@ namespace {
 
 struct Probe {
     std::vector<Declaration> found;
+    std::vector<SettingsCall> calls;
     std::string stopped_at;  // "demo.lua:7 (rs.trial)": the call the probe stopped at
     runtime::Sandbox* sandbox = nullptr;
 };
@@ -295,9 +305,11 @@ int probe_stop(lua_State* L) { return stop_at(L, std::string("rs.") + lua_tostri
 
 int probe_settings(lua_State* L) {
     const bool module = lua_type(L, 1) == LUA_TSTRING;
-    auto found = read_declarations(L, module ? 2 : 1, module ? lua_tostring(L, 1) : "");
-    auto& all = probe_of(L).found;
-    all.insert(all.end(), found.begin(), found.end());
+    const std::string ns = module ? lua_tostring(L, 1) : "";
+    auto found = read_declarations(L, module ? 2 : 1, ns);
+    auto& probe = probe_of(L);
+    probe.found.insert(probe.found.end(), found.begin(), found.end());
+    probe.calls.push_back({ns, runtime::script_line(L, 1).data(), std::move(found)});
     return 0;
 }
 
@@ -337,7 +349,8 @@ int probe_index(lua_State* L) {
 
 Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
                                              const std::filesystem::path& share_dir,
-                                             const runtime::SandboxLimits& limits, std::string* stopped_at) {
+                                             const runtime::SandboxLimits& limits, std::string* stopped_at,
+                                             std::vector<SettingsCall>* calls) {
     Probe probe;
     runtime::Sandbox sandbox(limits,
                              {script.parent_path().empty() ? std::filesystem::path(".") : script.parent_path(),
@@ -368,6 +381,7 @@ Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script
     std::sort(probe.found.begin(), probe.found.end(),
               [](const Declaration& a, const Declaration& b) { return a.key < b.key; });
     if (stopped_at) *stopped_at = probe.stopped_at;
+    if (calls) *calls = std::move(probe.calls);
     return probe.found;
 }
 

@@ -55,12 +55,20 @@ std::vector<Declaration> read_declarations(lua_State* L, int index, const std::s
 Result<ParamValue> check_value(const Declaration& d, const ParamValue& given, const ObjectCatalogue* catalogue,
                                bool is_default = false);  // the declaration's default, not a --set
 
-// The --set values of `given` checked as a run checks them before its first trial (rs.settings): a setting declared
-// twice, a default of objects the catalogue lacks, each declared setting's value, a required one that is missing,
-// and every key no declaration accounts for (unaccounted_key: all of them once the script declares its own; else
-// those of a module's namespace). `given` as the profile left it: the keys it read are its own. For `rollsense run
-// SCRIPT --check`, which runs no trial.
-Status check_given(const std::vector<Declaration>& declared, const runtime::Settings& given,
+// One rs.settings call as the script's top makes it: a module's (`ns` its name) or the script's own (`ns` empty).
+struct SettingsCall {
+    std::string ns;
+    std::string where;                      // "demo.lua:5": its file:line, which the run's refusals name too
+    std::vector<Declaration> declarations;  // in the order rs.settings checks them (by key)
+};
+
+// The --set values of `given` checked as a run checks them before its first trial, call by call in the order the
+// script makes them (so that of two mistakes the same one is named first): a setting declared twice, a default of
+// objects the catalogue lacks, each declared setting's value, a required one that is missing, and after each call
+// every key nothing declared so far accounts for (unaccounted_key: all of them after the script's own call; those of
+// its namespace after a module's), each refusal at its call's file:line. `given` as the profile left it: the keys it
+// read are its own. For `rollsense run SCRIPT --check`, which runs no trial.
+Status check_given(const std::vector<SettingsCall>& calls, const runtime::Settings& given,
                    const ObjectCatalogue* catalogue);
 
 // Whether any declaration names catalogue objects (kind "object" or "objects"): then the catalogue is read.
@@ -93,8 +101,10 @@ std::string describe(const std::vector<Declaration>& declarations);
 // ("demo.lua:9 (rs.trial)", empty if the top ran to its end).
 // Its modules (require) load as in a run, so theirs are included.
 // Under the run's limits (`limits`: --slice-limit-ms, --memory-limit-mb).
+// All declarations by key; `calls`, if given, gets them call by call.
 Result<std::vector<Declaration>> declared_by(const std::filesystem::path& script,
                                              const std::filesystem::path& share_dir,
-                                             const runtime::SandboxLimits& limits, std::string* stopped_at = nullptr);
+                                             const runtime::SandboxLimits& limits, std::string* stopped_at = nullptr,
+                                             std::vector<SettingsCall>* calls = nullptr);
 
 }  // namespace rollsense::script_settings
