@@ -892,8 +892,41 @@ TEST_CASE("run SCRIPT --check refuses what the run would refuse before its first
                                     "etroll.clamp_current=150 --out " + shell_quoted(out));
     INFO(good.output);
     CHECK(good.status == 0);
-    CHECK_THAT(good.output, Catch::Contains("settings checked with the --set given, profile 'sim' loads; no trial"));
+    CHECK_THAT(good.output, Catch::Contains("settings checked with the --set given, profile 'sim' loads with its 2 devices' "
+                                           "plugins and parameters; no trial"));
     CHECK_FALSE(fs::exists(out));
+}
+
+// Lab review: --check passed a profile whose device names a plugin that does not exist, which the run then refused at
+// once; it now finds each device's plugin and checks its parameters against the schema, configuring nothing.
+TEST_CASE("run SCRIPT --check finds each device's plugin and checks its parameters, as the run does first") {
+    TempDir dir("rollsense-settings-check-devices");
+    const auto with_tactile = [&](const std::string& name, const std::string& edit) {
+        write_file(dir / (name + ".lua"), "local p = include('sim')\n" + edit + "\nreturn p\n");
+        return " --profile " + shell_quoted(dir / (name + ".lua"));
+    };
+    struct Mistake {
+        std::string options, says;
+        int status;
+    };
+    for (const auto& m :
+         {Mistake{with_tactile("typo", "p.devices.tactile.plugin = 'simm'"), "devices.tactile: no sensor plugin named 'simm'", 3},
+          // A classifier given parameters was refused for an unknown key before it was found to be no device.
+          Mistake{with_tactile("classifier", "p.devices.tactile.plugin = 'bagged_trees'"),
+                  "devices.tactile: plugin 'bagged_trees' is a classifier; classifiers are chosen by the script", 3},
+          Mistake{" --set devices.tactile.params.kernel_fwhm=50", "key 'kernel_fwhm': 50 is outside the allowed range", 2},
+          Mistake{" --set devices.hand.params.bogus=1", "devices.hand.params: unknown key 'bogus'", 2}}) {
+        INFO(m.options);
+        const auto check = run_rollsense("run " + kPaper + " --check" + m.options);
+        const auto run = run_rollsense("run " + kPaper + kSmall + m.options + " --out " + shell_quoted(dir / "out"));
+        INFO(check.output);
+        INFO(run.output);
+        CHECK(check.status == m.status);
+        CHECK(run.status == m.status);
+        CHECK(count_of(check.output, m.says) == 1);
+        CHECK(count_of(run.output, m.says) == 1);
+        CHECK_FALSE(fs::exists(dir / "out"));
+    }
 }
 
 // Last note: with two mistakes at once, --check named another one first than the run, and so gave another exit code:

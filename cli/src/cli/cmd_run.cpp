@@ -55,11 +55,11 @@ options:
                         refused folder is left as it was). The earlier run's
                         run-info.csv is kept as run-info.N.csv
   --check               check what the run checks before its first trial
-                        (the script's declared settings against --set, the
-                        profile with its overrides, the other options, --out),
-                        then stop: nothing created, no device, no trial;
-                        plugins' parameters are checked only when a run starts
-                        its devices (docs/scripting.md, Settings)
+                        (the profile with its overrides, each device's plugin
+                        and its parameters against the plugin's schema, the
+                        script's declared settings against --set, the other
+                        options, --out), then stop: nothing created, no device
+                        configured, no trial (docs/scripting.md, Settings)
   --seed N              run seed, 0 to 2^63-1 (per-trial seeds derive from it);
                         default: 1, or, replaying a dataset, the seed it was
                         recorded with

@@ -1,7 +1,8 @@
-// `rollsense run SCRIPT --check`: what a run checks before its first trial, without running one: the script's
-// declared settings against --set, and the profile with its overrides. For a batch system (tools/slurm/submit.sh),
-// where a mistyped --set would fail every queued shard. Plugins are not loaded: their parameters are checked when a
-// run starts its devices.
+// `rollsense run SCRIPT --check`: what a run checks before its first trial, without running one: the profile with its
+// overrides, each device's plugin and its parameters against the plugin's schema, and the script's declared settings
+// against --set. For a batch system (tools/slurm/submit.sh), where a mistyped --set would fail every queued shard.
+// No device is configured: what a plugin itself refuses then (a port that does not open, a servo that does not
+// answer, a parameter its schema cannot express) is found when a run starts its devices.
 #pragma once
 
 #include <filesystem>

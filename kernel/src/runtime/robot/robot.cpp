@@ -60,36 +60,38 @@ JointCommand hold_command(const Joint& j) {
     return c;
 }
 
+Result<ResolvedDevice> resolve_device(const Profile& profile, const DeviceSpec& dev, PluginRegistry& registry) {
+    const std::string where = profile.at("devices." + dev.name);
+    std::shared_ptr<const LoadedLibrary> lib;
+    for (auto kind : {PluginKind::sensor, PluginKind::actuator, PluginKind::classifier})
+        if (auto found = registry.find(dev.plugin, kind)) { lib = *found; break; }
+    if (!lib)  // a sensor's search, for the full "searched" message
+        return Error{ErrorCode::not_found, where + ": " + registry.find(dev.plugin, PluginKind::sensor).error().message};
+    // Before its parameters (review: a classifier given params was refused for an unknown key).
+    if (lib->manifest().kind == PluginKind::classifier)
+        return Error{ErrorCode::invalid_argument, where + ": plugin '" + dev.plugin +
+                                                      "' is a classifier; classifiers are chosen by the script, not listed as devices"};
+    auto schema = PluginRegistry::schema_of(*lib);
+    if (!schema) return schema.status().with_context(where);  // review: a schema() that threw named no device
+    auto params = validate_params(*schema, dev.params, "devices." + dev.name + ".params");
+    if (!params) return Error{params.error().code, params_site(profile, dev, params.error().message) + ": " + params.error().message};
+    return ResolvedDevice{std::move(lib), std::move(*params)};
+}
+
 Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegistry& registry,
                                              const std::filesystem::path& share_dir) {
     std::unique_ptr<Robot> r(new Robot());
     r->profile_label_ = "profile '" + profile.name + "' (" + profile.path.string() + ")";
 
     for (const auto& dev : profile.devices) {
-        const std::string where = profile.at("devices." + dev.name);
-        std::shared_ptr<const LoadedLibrary> lib;
-        for (auto kind : {PluginKind::sensor, PluginKind::actuator, PluginKind::classifier}) {
-            if (auto found = registry.find(dev.plugin, kind)) {
-                lib = *found;
-                break;
-            }
-        }
-        if (!lib)  // a sensor's search, for the full "searched" message
-            return Error{ErrorCode::not_found,
-                         where + ": " + registry.find(dev.plugin, PluginKind::sensor).error().message};
-        auto schema = PluginRegistry::schema_of(*lib);
-        if (!schema) return schema.status().with_context(where);  // review: a schema() that threw named no device
-        auto params = validate_params(*schema, dev.params, "devices." + dev.name + ".params");
-        if (!params) return Error{params.error().code, params_site(profile, dev, params.error().message) + ": " + params.error().message};
-        PluginContext ctx;
-        ctx.instance = dev.name;
-        ctx.share_dir = share_dir;
-        ctx.profile_path = profile.path;
-        ctx.virtual_time = profile.virtual_clock;
-
+        auto resolved = resolve_device(profile, dev, registry);
+        if (!resolved) return resolved.error();
+        const auto& [lib, params] = *resolved;
+        const PluginContext ctx{dev.name, share_dir, profile.path, profile.virtual_clock};
         // Created and configured; a refusal names where the profile writes what the plugin refused (once).
         const auto configure = [&](auto& h) {
-            auto s = h ? (*h)->configure(*params, ctx) : h.status().with_context(where);  // a constructor that threw
+            auto s = h ? (*h)->configure(params, ctx)
+                       : h.status().with_context(profile.at("devices." + dev.name));  // a constructor that threw
             const std::string site = s.ok() ? "" : params_site(profile, dev, s.message());
             return s.ok() || !h || s.message().find(site) != std::string::npos ? s : Status{s.code(), site + ": " + s.message()};
         };
@@ -100,14 +102,10 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
             if (auto s = (*h)->call("channels", [&] { return channels = (*h)->plugin().channels(), Status{}; }); !s.ok())
                 return s.error();
             r->sensors_.push_back({std::move(*h), std::move(channels), {}});
-        } else if (lib->manifest().kind == PluginKind::actuator) {
+        } else {
             auto h = registry.create_actuator(dev.plugin, dev.name);
             if (auto s = configure(h); !s.ok()) return s.error();
             r->actuators_.push_back({std::move(*h), {}, {}, {}});
-        } else {
-            return Error{ErrorCode::invalid_argument,
-                         where + ": plugin '" + dev.plugin +
-                             "' is a classifier; classifiers are chosen by the script, not listed as devices"};
         }
     }
 

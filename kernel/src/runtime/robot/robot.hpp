@@ -32,6 +32,14 @@ ControlMode position_mode_of(const JointInfo& info);
 // for the safe state and by hold().
 JointCommand hold_command(const Joint& joint);
 
+// A profile's device with its plugin found (a sensor or an actuator) and its parameters checked against the plugin's
+// schema: all that needs no hardware (Robot::create's first step; `rollsense run --check` stops here).
+struct ResolvedDevice {
+    std::shared_ptr<const LoadedLibrary> library;
+    ParamSet params;
+};
+Result<ResolvedDevice> resolve_device(const Profile& profile, const DeviceSpec& device, PluginRegistry& registry);
+
 class Robot final : public JointAccess {
 public:
     // Creates and configures every device of the profile (parameters checked against each plugin's schema). Nothing
