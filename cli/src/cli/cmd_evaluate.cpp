@@ -325,6 +325,7 @@ options:
                       other: FILE.txt and FILE.json for -o FILE.json, else
                       FILE and FILE's stem + .json (schema: docs/evaluation-json.md)
   --plugin-path DIR   search classifier plugins here first (repeatable)
+  -v, --verbose       debug messages;   -q, --quiet   no info messages: warnings, errors
   plus the feature options of 'rollsense features' when INPUT is a dataset
   (refused with a features CSV, whose features are computed already))";
 

@@ -42,6 +42,7 @@ options (defaults reproduce the paper):
   --half-width RULE        outermost (default) or contiguous 50 % crossings
   --time-base B            samples (default) or timestamps
   --interpolate            sub-sample interpolation of the 5 % and 50 % crossings
+  -v, --verbose            debug messages;   -q, --quiet   no info messages: warnings, errors
   --threads N              extraction threads, 0 to 4096 (0 = all cores; results do not depend on it))";
 
 double number_option(const Args& args, std::string_view name, double fallback) {

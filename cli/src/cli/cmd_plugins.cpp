@@ -30,6 +30,7 @@ options:
   --plugin-path DIR   search here first (repeatable)
   --profile NAME      also search the profile's plugin_path
   --params            show each plugin's parameters (type, default, range, doc)
+  -v, --verbose       debug messages;   -q, --quiet   no info messages: warnings, errors
   --check             exit with 3 if any candidate failed to load (two of
                       one name in one folder too), its parameter schema
                       contradicts itself (a parameter declared twice, a

@@ -69,6 +69,7 @@ options:
                      dataset-info.csv and features.csv (default: MODEL's
                      folder); a folder that is not a dataset is refused
   --plugin-path DIR  search classifier plugins here first (repeatable)
+  -v, --verbose      debug messages;   -q, --quiet   no info messages: warnings, errors
   plus the feature options of 'rollsense features')";
 
 // A trial's outcome. `cls` empty = no decision (then `reason` says why).

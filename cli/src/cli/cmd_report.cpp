@@ -76,6 +76,7 @@ options:
                       amplitude and time axis (as 'rollsense evaluate --help'
                       says; roll_relative is outside the paper's timing rule)
   --plugin-path DIR   search classifier plugins here first (repeatable)
+  -v, --verbose       debug messages;   -q, --quiet   no info messages: warnings, errors
   plus the feature options of 'rollsense features'
 
 exit codes: 0 ok, 1 the evaluation failed, 2 bad command line (or the

@@ -63,6 +63,7 @@ options:
                       (default: docs/series-preparation.md; series
                       classifiers only)
   --plugin-path DIR   search classifier plugins here first (repeatable)
+  -v, --verbose       debug messages;   -q, --quiet   no info messages: warnings, errors
   plus the feature options of 'rollsense features' when INPUT is a dataset
   (refused with a features CSV, whose features are computed already))";
 

@@ -22,7 +22,8 @@ void print_overview() {
     std::printf(
         "rollsense %s — tactile object identification by rolling\n\n"
         "usage: rollsense [--log-time] <command> [options]\n"
-        "       rollsense <command> --help   (or: rollsense help <command>)\n\ncommands:\n",
+        "       rollsense <command> --help   (or: rollsense help <command>)\n"
+        "       rollsense --version\n\ncommands:\n",
         ROLLSENSE_VERSION_STRING);
     for (const auto& c : commands()) std::printf("  %-10s %s\n", c.name.c_str(), c.summary.c_str());
     std::printf(

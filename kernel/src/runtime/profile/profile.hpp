@@ -1,23 +1,7 @@
 // Robot profiles: Lua files in share/profiles/ that say which plugin drives which device, with what parameters, what
-// the joint limits are and how the run is clocked. A profile is configuration only (Cartographer-style): it runs in an
-// empty sandbox, and every key must be one the kernel knows, so a typo is an error naming the file:line and the key
-// instead of a silent default.
-//
-//   return {
-//     description = "...",
-//     clock = "virtual" | "monotonic",
-//     sample_rate_hz = 31.1, control_rate_hz = 100,
-//     plugin_path = { "..." },
-//     devices = { name = { plugin = "...", params = { ... } }, ... },
-//     joints  = { name = { min = .., max = .., max_velocity = .., max_current = .., safe = "hold"|"torque_off" } },
-//     record_joints = { "sensing_finger" },
-//     identification_channels = { "a_ch1", "a_ch2", "a_ch3" },  -- with several sensors
-//     controllers = { palm_parallel = { ... } },
-//     safety = { estop = { chip = .., line = .., active_low = .. }, trigger = { chip = .., line = .., pulse_ms = .. } },
-//   }
-//
-// Inside a profile, `include("other")` returns another profile's table (to extend it) and `setting("key", default)`
-// reads a --set value.
+// the joint limits are and how the run is clocked; every key, its default and its checks: docs/profiles.md. A profile
+// is configuration only (Cartographer-style): it runs in an empty sandbox with `include` and `setting`, and every key
+// must be one the kernel knows, so a typo is an error naming the file:line and the key instead of a silent default.
 #pragma once
 
 #include <filesystem>
