@@ -118,6 +118,24 @@ rs.write_output("result.txt", string.format("%s|%s|%s|%s|%s|%.3f", tostring(ok),
     CHECK_THAT(out, Catch::EndsWith("|false|0.000"));
 }
 
+// Lab review: a limit refused inside a module (etroll.lua) named only the module's line; the script's line that made
+// the call was in the traceback alone. The run's error now ends with it; a refusal in the script itself does not.
+TEST_CASE("an error raised inside a module names the script's line that called it", "[limits]") {
+    kt::TempDir dir;
+    kt::write_file(dir / "hand.lua", "local rs = require 'rollsense'\nlocal M = {}\n"
+                                 "function M.reach(goal) rs.joint('finger'):move(goal) end\nreturn M\n");
+    auto r = kt::run_script(dir, "local hand = require 'hand'\n\nhand.reach(70)\n");
+    CHECK(r.summary.status.code() == ErrorCode::limit_violation);
+    const auto& message = r.summary.status.message();
+    CHECK_THAT(message, Catch::Contains("hand.lua:3: joint 'finger': goal 70 deg is outside the joint limits [-50, 50]") &&
+                            Catch::Contains("nothing was moved (called from " + (dir / "script.lua").string() + ":3)\n"));
+    kt::TempDir other;
+    auto direct = kt::run_script(other, "local rs = require 'rollsense'\nrs.joint('finger'):move(70)\n");
+    CHECK(direct.summary.status.code() == ErrorCode::limit_violation);
+    CHECK_THAT(direct.summary.status.message(), Catch::Contains("nothing was moved\n"));
+    CHECK(direct.summary.status.message().find("called from") == std::string::npos);
+}
+
 // Diff review: the stop before the cleanup of a script that ended normally re-energised a joint the script had
 // released (torque off), for the whole cleanup. After a failure the profile's safe action applies, as before.
 TEST_CASE("after a normal end a joint the script released stays released through the cleanup", "[safety]") {

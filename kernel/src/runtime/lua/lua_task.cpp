@@ -10,10 +10,24 @@
 namespace rollsense::runtime {
 namespace {
 
+// The innermost Lua line of a thread's stack and, when it is elsewhere, the task's own function's: a call inside a
+// module (etroll.lua) is found from the script's line that made it (review). "etroll.lua:142, called from demo.lua:18".
+std::string stack_lines(lua_State* L) {
+    std::string inner, outer;
+    lua_Debug ar;
+    for (int level = 0; lua_getstack(L, level, &ar); ++level)
+        if (lua_getinfo(L, "Sl", &ar) && ar.currentline > 0)
+            (inner.empty() ? inner : outer) = std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
+    return outer.empty() || outer == inner ? inner : inner + ", called from " + outer;
+}
+
 // The error's text and the traceback, taken where the error was raised (the kernel's pcall below unwinds the stack
-// before the scheduler looks). Called for the hook's cancel error with hooks off: no __tostring then.
+// before the scheduler looks). Called for the hook's cancel error with hooks off: no __tostring then. An error raised
+// inside a module also says the script's line (lab review: a joint limit named only etroll.lua's line).
 int task_message_handler(lua_State* L) {
-    const std::string text = Sandbox::of(L).cancelled() ? error_text_raw(L, 1) : error_text(L, 1);
+    std::string text = Sandbox::of(L).cancelled() ? error_text_raw(L, 1) : error_text(L, 1);
+    if (const auto lines = stack_lines(L); !Sandbox::of(L).cancelled() && lines.find(", called from ") != std::string::npos)
+        text += " (" + lines.substr(lines.find(", ") + 2) + ")";
     luaL_traceback(L, L, text.c_str(), 1);
     return 1;
 }
@@ -58,16 +72,7 @@ LuaTask::~LuaTask() {
 
 void LuaTask::on_cancel() { sandbox_.arm(thread_); }
 
-// The innermost line, and where the task's own function called it when that is elsewhere: a wait inside a module
-// (etroll.lua) is found from the script's line that called it (review).
-std::string LuaTask::where() const {
-    std::string inner, outer;
-    lua_Debug ar;
-    for (int level = 0; lua_getstack(thread_, level, &ar); ++level)
-        if (lua_getinfo(thread_, "Sl", &ar) && ar.currentline > 0)
-            (inner.empty() ? inner : outer) = std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
-    return outer.empty() || outer == inner ? inner : inner + ", called from " + outer;
-}
+std::string LuaTask::where() const { return stack_lines(thread_); }
 
 void LuaTask::request(Wait wait) { waiting_for_ = wait.what, pending_ = std::move(wait); }
 
