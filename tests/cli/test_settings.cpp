@@ -188,6 +188,17 @@ TEST_CASE("a --set of the profile that the profile or a plugin refuses is a bad 
 
 // Independent review item 3: NaN passed the range check of a declared setting
 // (`nan < 1` is false), and infinity a range with one end.
+// Profiles review: identification_channels is a profile entry, but a --set of it was taken as a script setting (the
+// stock script refused it as unknown), so the three channels could only be chosen by editing the profile.
+TEST_CASE("a --set of identification_channels overrides the profile's entry and is recorded into dataset-info.csv") {
+    TempDir dir("rollsense-settings-ident");
+    const auto r = run_rollsense("run " + kPaper + kSmall + " --set 'identification_channels={ch3,ch2,ch1}' --out " +
+                                 shell_quoted(dir / "ds"));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK(count_of(read_file(dir / "ds" / "dataset-info.csv"), "\nidentification_channels,ch3 ch2 ch1\n") == 1);
+}
+
 TEST_CASE("nan and inf are refused where a setting declares a range, as a bad command line") {
     TempDir dir("rollsense-settings");
     write_file(dir / "s.lua", "local rs = require 'rollsense'\n"

@@ -48,9 +48,9 @@ std::string setting_namespace(const std::string& key) {
 }
 
 bool is_profile_path(const std::string& key) {
-    static const std::set<std::string> entries = {"description", "clock",         "sample_rate_hz", "control_rate_hz",
-                                                  "plugin_path", "devices",       "joints",         "record_joints",
-                                                  "controllers", "safety"};
+    static const std::set<std::string> entries = {"description", "clock",   "sample_rate_hz", "control_rate_hz",
+                                                  "plugin_path", "devices", "joints",         "record_joints",
+                                                  "controllers", "safety",  "identification_channels"};
     return entries.count(key.substr(0, key.find('.'))) > 0;  // an entry (sample_rate_hz) or a path under one
 }
 
