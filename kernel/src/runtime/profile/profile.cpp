@@ -3,6 +3,8 @@
 #include <lua.hpp>
 
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <chrono>
 #include <memory>
 #include <type_traits>
@@ -328,13 +330,17 @@ Status read_profile_table(lua_State* L, Profile& p) {
         for (auto [key, bound] : {std::pair{"min", &j.min}, std::pair{"max", &j.max}}) {
             TRY(take(jr.number(key), v));
             if (!v) return {ErrorCode::invalid_argument, jr.at(key) + " is missing (the kernel keeps the joint within min and max)"};
+            if (!std::isfinite(*v)) return {ErrorCode::invalid_argument, jr.at(key) + " is " + format_param_value(*v) + ", expected a finite number"};
             *bound = *v;
         }
         if (j.min >= j.max) return {ErrorCode::invalid_argument, jr.at("min") + " is not below its max, joints." + name + ".max (" + format_param_value(j.max) + ")"};
-        TRY(take(jr.number("max_velocity"), v));
-        j.max_velocity = v.value_or(0);
-        TRY(take(jr.number("max_current"), v));
-        j.max_current = v.value_or(0);
+        for (auto [key, bound] : {std::pair{"max_velocity", &j.max_velocity}, std::pair{"max_current", &j.max_current}}) {
+            TRY(take(jr.number(key), v));
+            *bound = v.value_or(0);
+            // Written so that NaN fails: it would switch a limit's check off (checked at load: `run --check` sees it).
+            if (!(*bound >= 0 && *bound <= DBL_MAX))
+                return {ErrorCode::invalid_argument, jr.at(key) + " is " + format_param_value(*bound) + ", expected a number >= 0"};
+        }
         std::optional<std::string> safe;
         TRY(take(jr.string("safe"), safe));
         if (safe && *safe != "hold" && *safe != "torque_off")

@@ -149,11 +149,6 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
                                  "' has no limits; add joints." + info.name +
                                  " = { min = ..., max = ... } (the kernel enforces them; the profile's joints: " +
                                  names_of(profile.joints, &JointLimit::name) + ")"};  // a misspelt one beside the joint it meant
-            // Written so that NaN fails: it would switch a limit's check off.
-            for (auto [key, v] : {std::pair{"max_velocity", lim->max_velocity}, std::pair{"max_current", lim->max_current}})
-                if (!(v >= 0 && v <= DBL_MAX))
-                    return Error{ErrorCode::invalid_argument, profile.at("joints." + info.name + "." + key) + " is " +
-                                                                  fmt(v) + ", expected a number >= 0"};
             // The key outside the device's range is named, so that a --set of it is said as that --set's error.
             if (!(lim->min >= info.min_position && lim->max <= info.max_position))
                 return Error{ErrorCode::invalid_argument,
