@@ -15,6 +15,9 @@ ComponentHandle::~ComponentHandle() {
 }
 
 const std::string& ComponentHandle::plugin_name() const { return library_->name(); }
+std::string ComponentHandle::plugin_build() const {
+    return library_->name() + " " + library_->manifest().version + " (" + library_->path().string() + ")";
+}
 
 std::string ComponentHandle::describe() const {  // a classifier is no device of the profile (user review)
     if (library_->manifest().kind == PluginKind::classifier) return "classifier plugin '" + plugin_name() + "'";

@@ -25,6 +25,7 @@ public:
 
     const std::string& instance() const { return instance_; }
     const std::string& plugin_name() const;
+    std::string plugin_build() const;  // "sim 1.0.0 (/…/librollsense_sim.so)": a rebuilt or moved plugin is told apart
     LifecycleState state() const { return state_; }
     // The error that moved the component to `error` (empty otherwise).
     const Status& last_error() const { return last_error_; }

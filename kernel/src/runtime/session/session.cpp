@@ -229,6 +229,8 @@ void Session::write_run_info(const Status& s, double wall_start) {
         {"wall_time_s", std::to_string(wall_seconds() - wall_start)},
         {"control_loop", loop_timing_ ? loop_timing_->summary().describe() : "virtual clock"}};
     if (options_.shard) fields.emplace_back("shard", options_.shard->text());
+    for (const auto& name : robot_ ? robot_->device_names() : std::vector<std::string>{})  // which build drove each device
+        fields.emplace_back("device." + name, robot_->find_device(name)->plugin_build());
     recorder_->write_run_info(fields);
 }
 
