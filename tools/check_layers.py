@@ -48,7 +48,9 @@ ALLOWED = {
     "cli": {"sdk", "data", "hal", "kernel", "hands", "analysis", "live", "cli"},
 }
 
-KERNEL_LINE_BUDGET = 6000
+# 6,000 until 2026-11-28; raised by 50 for safety checks that belong beside the sandbox and the robot (a slice
+# cap while a joint moves on by itself on a real clock) once the kernel was at its limit (docs/architecture.md).
+KERNEL_LINE_BUDGET = 6050
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')
 SOURCE_SUFFIXES = (".hpp", ".cpp", ".h", ".c")

@@ -21,6 +21,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -107,6 +108,9 @@ public:
         external_flag_ = flag;
         external_reason_ = std::move(reason);
     }
+    // A slice that computes (CPU time) past `ms` also ends the script while `moving()` names something that moves on by
+    // itself between control periods (Session: on a real clock, whose limits and controllers run between slices only).
+    void watch_motion(double ms, std::function<std::string()> moving) { motion_ms_ = ms, moving_ = std::move(moving); }
 
 private:
     // The chunk luaL_load* pushed (rc its result) gets the sandbox's environment; a load error is popped, returned.
@@ -131,9 +135,12 @@ private:
     std::string cancel_reason_;
     ErrorCode cancel_code_ = ErrorCode::cancelled;  // set and read on the Lua thread
     double slice_start_ = 0;
+    double slice_cpu_start_ = 0;  // this thread's CPU ms, with moving_
     std::atomic<std::int64_t> in_lua_since_ms_{0};
     const std::atomic<bool>* external_flag_ = nullptr;
     std::string external_reason_;
+    double motion_ms_ = 0;  // with moving_ (watch_motion)
+    std::function<std::string()> moving_;
 };
 
 }  // namespace rollsense::runtime

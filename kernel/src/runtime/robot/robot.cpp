@@ -218,6 +218,15 @@ ComponentHandle* Robot::find_device(const std::string& name) {
     return nullptr;
 }
 
+std::string Robot::unattended_motion() const {
+    for (const auto& j : joints_)
+        if (j.command.torque_enabled && (j.command.mode == ControlMode::current || j.command.mode == ControlMode::velocity))
+            return "joint '" + j.name + "' is driven by " + (j.command.mode == ControlMode::current ? "current" : "velocity");
+    for (const auto& c : controllers_)
+        if (c.enabled) return "controller '" + c.name + "' is on";
+    return {};
+}
+
 std::vector<std::string> Robot::device_names() const {
     std::vector<std::string> out;
     for (const auto& a : actuators_) out.push_back(a.handle->instance());

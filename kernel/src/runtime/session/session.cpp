@@ -108,6 +108,8 @@ Status Session::prepare() {
     sandbox_ = std::make_unique<Sandbox>(options_.sandbox, modules);
     lua_atpanic(sandbox_->state(), &on_lua_panic);
     sandbox_->watch_flag(&safety_.interrupt_flag(), "interrupted by Ctrl-C or a SIGTERM/SIGHUP");
+    if (!clock_->is_virtual())  // five control periods; the Dynamixel Bus Watchdog's default is 500 ms
+        sandbox_->watch_motion(5000.0 / profile_.control_rate_hz, [this] { return robot_->unattended_motion(); });
     scheduler_ = std::make_unique<Scheduler>(*clock_, *robot_, *recorder_, safety_, *sandbox_,
                                              clock_->quantize(1.0 / profile_.control_rate_hz), loop_timing_.get());
     open_rollsense_api(*this);
