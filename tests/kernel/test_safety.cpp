@@ -121,17 +121,18 @@ rs.write_output("result.txt", string.format("%s|%s|%s|%s|%s|%.3f", tostring(ok),
 // Hardware review: on a real clock the kernel checks limits between the script's slices only, and a finger pushing
 // in current mode ran 130 deg past its limit while the script computed for 1.5 s (under --slice-limit-ms). A slice
 // now ends after five control periods while a joint is driven by current or velocity; holding, it may compute.
-TEST_CASE("on a real clock a script that computes while a joint is driven by current is stopped", "[limits]") {
+TEST_CASE("on a real clock a script that computes while a joint is driven by velocity is stopped", "[limits]") {
     std::string profile = kt::kTestProfile;
     profile.replace(profile.find("clock = \"virtual\""), 17, "clock = \"monotonic\"");
     const std::string compute = "local t = os.clock()\nwhile os.clock() - t < 0.3 do end\nrs.log('computed')\n";
     kt::TempDir pushing;
-    auto r = kt::run_script(pushing, "local rs = require 'rollsense'\nrs.joint('finger'):push(100)\nrs.wait(20)\n" + compute,
+    // Slowly (1 deg/s), so that a loaded machine's late wake-up does not reach the joint's limit first.
+    auto r = kt::run_script(pushing, "local rs = require 'rollsense'\nrs.joint('finger'):spin(1)\nrs.wait(20)\n" + compute,
                             profile);
     CHECK(r.summary.status.code() == ErrorCode::limit_violation);
     CHECK_THAT(r.summary.status.message(),
                Catch::Contains("script.lua:5: the script computed ") &&
-                   Catch::Contains(" ms without waiting while joint 'finger' is driven by current, past 50 ms: on a "
+                   Catch::Contains(" ms without waiting while joint 'finger' is driven by velocity, past 50 ms: on a "
                                    "real clock the kernel checks limits between the script's waits; let it wait"));
     kt::TempDir holding;
     auto held = kt::run_script(holding, "local rs = require 'rollsense'\nrs.joint('finger'):move(10)\n" + compute, profile);
