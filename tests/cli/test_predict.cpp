@@ -1,6 +1,8 @@
 // `rollsense predict` end to end on a tiny stock run (runs=1, seed 11):
 // record, extract features, train, then classify the recordings, a single
 // trial file, a trial without clean peaks and trials unlike the training data.
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -239,6 +241,26 @@ TEST_CASE("predict's errors name the model, the plugin and the way out") {
     CHECK(empty.status == 3);
     CHECK(empty.output.find("empty.rsm: the model file is empty") != std::string::npos);
     CHECK(empty.output.find("--classifier") == std::string::npos);
+
+    // Sandbox review: a pipe or a device as the model was read without end (/dev/zero: 1 GB in 18 s; a pipe nobody
+    // writes: no end, past Ctrl-C), by predict and by a script's rs.classifier, before any plugin looked at it.
+    REQUIRE(::mkfifo((dir / "pipe.rsm").c_str(), 0600) == 0);
+    write_file(dir / "load.lua", "local rs = require 'rollsense'\nfor _, m in ipairs({ '/dev/zero', '" +
+                                     (dir / "pipe.rsm").string() + "' }) do\n"
+                                     "  for _, c in ipairs({ '', 'bagged_trees' }) do\n"
+                                     "    local ok, err = pcall(rs.classifier, { model = m, classifier = c ~= '' and c or nil })\n"
+                                     "    rs.log(tostring(ok) .. ' ' .. err)\n  end\nend\n");
+    for (const std::string& device : {std::string("/dev/zero"), (dir / "pipe.rsm").string()}) {
+        const auto r = run_rollsense("predict " + shell_quoted(device) + " " + shell_quoted(run));
+        INFO(r.output);
+        CHECK(r.status == 2);
+        CHECK(count_of(r.output, device + " is not a regular file (a pipe, a socket or a device): give the model file") == 1);
+    }
+    const auto script = run_rollsense("run " + shell_quoted(dir / "load.lua") + " --profile mock --out " + shell_quoted(dir / "out"));
+    INFO(script.output);
+    CHECK(script.status == 0);
+    CHECK(count_of(script.output, "false /dev/zero is not a regular file") == 2);
+    CHECK(count_of(script.output, "false " + (dir / "pipe.rsm").string() + " is not a regular file") == 2);
 }
 
 // Review: `--training nosuch` exited 0 with only "not checked ... no

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 
 #include "rollsense/csv.hpp"
 
@@ -9,7 +10,7 @@ namespace rollsense::learn {
 
 namespace fs = std::filesystem;
 
-Result<ModelHeader> read_model_header(const fs::path& model) {
+Status check_model_file(const fs::path& model) {
     std::error_code ec;
     if (!fs::exists(model, ec))
         return Error{ErrorCode::not_found, model.string() + ": no such model file (write one with 'rollsense train ... "
@@ -21,11 +22,23 @@ Result<ModelHeader> read_model_header(const fs::path& model) {
                          (stock ? "; did you mean " + (model / "model.rsm").string() + "?"
                                 : " (MODEL is the file 'rollsense train -o' or a stock run wrote, e.g. DIR/model.rsm)")};
     }
-    if (fs::is_regular_file(model, ec) && fs::file_size(model, ec) == 0 && !ec)
+    if (!fs::is_regular_file(model, ec))
+        return Error{ErrorCode::invalid_argument, model.string() + " is not a regular file (a pipe, a socket or a device): "
+                                                                   "give the model file 'rollsense train -o' wrote"};
+    if (fs::file_size(model, ec) == 0 && !ec)
         return Error{ErrorCode::parse_error, model.string() + ": the model file is empty (an interrupted write?); "
                                                               "train it again with 'rollsense train ... -o MODEL'"};
-    std::ifstream in(model, std::ios::binary);
-    if (!in) return Error{ErrorCode::io_error, model.string() + ": cannot be opened for reading (check permissions)"};
+    return {};
+}
+
+Result<ModelHeader> read_model_header(const fs::path& model) {
+    if (auto s = check_model_file(model); !s.ok()) return s.error();
+    std::ifstream file(model, std::ios::binary);
+    if (!file) return Error{ErrorCode::io_error, model.string() + ": cannot be opened for reading (check permissions)"};
+    std::string head(std::size_t{1} << 20, '\0');  // the header is short: a file of one endless line is not read whole
+    file.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(file.gcount()));
+    std::istringstream in(head);
     ModelHeader h;
     std::string line;
     std::getline(in, line);

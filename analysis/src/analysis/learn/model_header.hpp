@@ -17,7 +17,11 @@ struct ModelHeader {
     std::size_t series_length = 0;      // "series_length N"
 };
 
-// The header of `model`, or an error naming the file and the way out (missing, a folder, empty, unreadable).
+// Whether `model` can be a model file, or an error naming it and the way out: missing, a folder, not a regular file (a
+// pipe or a device such as /dev/stdin, which would hang or never end: sandbox review), empty.
+Status check_model_file(const std::filesystem::path& model);
+
+// The header of `model` (checked as above; at most its first MiB is read), or an error naming the file and the way out.
 Result<ModelHeader> read_model_header(const std::filesystem::path& model);
 
 // "rollsense-bagged-trees" → "bagged_trees": the plugin a model file names, or an error saying it names none, in

@@ -384,6 +384,7 @@ int l_classifier(lua_State* L) {
     check_options(L, 1, "rs.classifier", {"model", "classifier"});
     const std::string model = opt_field_string(L, 1, "model", "");
     if (model.empty()) return luaL_error(L, "rs.classifier: give model = '<path of a saved model>'");
+    check(L, learn::check_model_file(model));  // before any plugin reads it
     // As `rollsense predict`: the plugin the model's first line names (plugin review: a plugin's model was read as a
     // bagged-trees one, the stock default, and refused). A file that names none is left to the default plugin's
     // load, which says what is wrong with it, as before.
