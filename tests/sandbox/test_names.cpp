@@ -3,6 +3,7 @@
 // are plain dotted names found only under the allowed roots.
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "limited_child.hpp"
@@ -24,6 +25,32 @@ TEST_CASE("rs.write_output refuses the dataset's own files and unsafe names", "[
     auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\nrs.write_output('notes.txt', 'x')\n"
                                                    "rs.write_output('run-info.0.csv', 'x')\nrs.write_output('run-info.x.csv', 'x')\n");
     CHECK(r.text == "ok");  // not an earlier run's record: N counts from 1, digits only
+}
+
+// Sandbox review: a NUL byte cut a name short, so another file than the one named was written or loaded; and a link
+// placed in the run's folder beforehand to a FIFO or a device was written through.
+TEST_CASE("a name holding a NUL byte is refused, and rs.write_output does not write through a link to a pipe",
+          "[sandbox][names]") {
+    const std::pair<std::string, std::string> calls[] = {
+        {"rs.write_output('ok.txt\\0/../../nul.txt', 'x')", "output name"},
+        {"rs.trial{ object = 'C1', speed = 10, repetition = 1, id = 'ok\\0../../x' }", "option 'id' holds a NUL byte"},
+        {"require('lib.helper\\0/../../x')", "module name"}};
+    for (const auto& [call, says] : calls) {
+        kt::TempDir dir;
+        kt::write_file(dir / "lib" / "helper.lua", "return { x = 7 }\n");
+        auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\n" + call + "\n");
+        INFO(call << " -> " << r.text);
+        CHECK_THAT(r.text, Catch::Contains(says));
+        CHECK_FALSE(kt::fs::exists(dir / "out" / "ok.txt"));
+    }
+    kt::TempDir dir;
+    kt::fs::create_directories(dir / "out");
+    REQUIRE(::mkfifo((dir / "pipe").c_str(), 0600) == 0);
+    kt::fs::create_symlink(dir / "pipe", dir / "out" / "notes.txt");
+    auto r = sandbox_test::run_script_limited(dir, "local rs = require 'rollsense'\nrs.write_output('notes.txt', 'x')\n");
+    CHECK_THAT(r.text, Catch::StartsWith("invalid argument") &&
+                           Catch::Contains("notes.txt leads to a pipe, a device or a socket; a script writes files into "
+                                           "the run's folder only"));
 }
 
 TEST_CASE("rs.analyse refuses a model name that is one of the dataset's files, before any work", "[sandbox][names]") {

@@ -182,7 +182,10 @@ bool opt_field_bool(lua_State* L, int table, const char* key, bool fallback) {
 std::string opt_field_string(lua_State* L, int table, const char* key, const std::string& fallback) {
     const bool given = push_option(L, table, key);
     if (given && !lua_isstring(L, -1)) luaL_error(L, "option '%s' must be a string", key);
-    std::string v = given ? lua_tostring(L, -1) : fallback;
+    std::size_t length = 0;
+    const char* text = given ? lua_tolstring(L, -1, &length) : nullptr;
+    if (text && std::strlen(text) != length) luaL_error(L, "option '%s' holds a NUL byte", key);  // a file name cut short
+    std::string v = text ? std::string(text, length) : fallback;
     lua_pop(L, 1);
     return v;
 }
@@ -336,13 +339,15 @@ int l_on_cleanup(lua_State* L) {
 
 // rs.write_output(name, text): a text file in the run's output folder.
 int l_write_output(lua_State* L) {
-    const char* name = luaL_checkstring(L, 1);
+    std::size_t name_length = 0;
+    const char* given = luaL_checklstring(L, 1, &name_length);
+    const std::string name(given, name_length);  // whole: a NUL in it is refused as no plain name (sandbox review)
     size_t len = 0;
     const char* text = luaL_checklstring(L, 2, &len);
     Session& s = Session::of(L);
     // Checked before the text is copied out of the Lua heap.
     if (auto st = Session::check_output_name(name, "rs.write_output"); !st.ok()) raise_status(L, st);
-    if (auto st = s.sandbox().charge(len, std::string("rs.write_output('") + name + "')"); !st.ok()) raise_status(L, st);
+    if (auto st = s.sandbox().charge(len, "rs.write_output('" + name + "')"); !st.ok()) raise_status(L, st);
     auto st = s.write_output_text(name, std::string(text, len));
     if (!st.ok()) raise_status(L, st);
     return 0;

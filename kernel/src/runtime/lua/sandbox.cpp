@@ -231,19 +231,21 @@ int Sandbox::lua_print(lua_State* L) {
 
 int Sandbox::lua_require(lua_State* L) {
     auto& self = of(L);
-    std::string name = luaL_checkstring(L, 1);
+    std::size_t length = 0;
+    const char* given = luaL_checklstring(L, 1, &length);
+    const std::string name(given, length);  // whole: "lib.helper\0/../x" is no module name (sandbox review)
     if (name == "rollsense") {
         lua_rawgeti(L, LUA_REGISTRYINDEX, self.api_ref_);
         return 1;
     }
-    lua_rawgeti(L, LUA_REGISTRYINDEX, self.loaded_ref_);
-    if (lua_getfield(L, -1, name.c_str()) != LUA_TNIL) return 1;
-    lua_pop(L, 1);
     if (!plain_module_name(name))
         return luaL_error(L,
                           "require('%s'): a module name is identifiers joined by '.', e.g. 'lib.helper' for "
                           "lib/helper.lua beside the script or in share/lua (at most %d characters)",
                           name.substr(0, 60).c_str(), static_cast<int>(kMaxModuleName));
+    lua_rawgeti(L, LUA_REGISTRYINDEX, self.loaded_ref_);
+    if (lua_getfield(L, -1, name.c_str()) != LUA_TNIL) return 1;
+    lua_pop(L, 1);
     std::string rel = name;
     for (auto& c : rel)
         if (c == '.') c = '/';

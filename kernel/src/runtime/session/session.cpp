@@ -13,6 +13,7 @@
 #include <exception>
 #include <new>
 
+#include "rollsense/atomic_file.hpp"
 #include "rollsense/dataset_files.hpp"
 #include "rollsense/last_resort.hpp"
 #include "rollsense/log.hpp"
@@ -306,6 +307,10 @@ void Session::report_progress(std::size_t done, std::size_t total, const std::st
 Status Session::write_output_text(const std::string& name, const std::string& text) {
     if (options_.out_dir.empty()) return {ErrorCode::state_error, "no output folder: run with --out DIR"};
     if (auto s = check_output_name(name, "rs.write_output"); !s.ok()) return s;
+    // A link placed there beforehand to a pipe, a device or a socket would be written through (sandbox review).
+    if (landing_of(options_.out_dir / name).written_in_place())
+        return {ErrorCode::invalid_argument, "rs.write_output: " + (options_.out_dir / name).string() + " leads to a pipe, "
+                                             "a device or a socket; a script writes files into the run's folder only"};
     return write_file_atomic(options_.out_dir / name, text);
 }
 
