@@ -120,6 +120,15 @@ TEST_CASE("joints are reported in their units with limits, current ceiling and m
     CHECK(j[3].modes.front() == ControlMode::extended_position);
     CHECK(j[0].max_current == Approx(1193 * 2.69));  // XM430: 2.69 mA/unit
     CHECK(j[3].max_current == Approx(1750.0));       // XL330: 1 mA/unit
+
+    // Hardware review: a profile's 400 mA was written as 149 units, 400.81 mA, above what the profile allows.
+    auto other_bus = start_emulator(false);  // the first actuator keeps its port
+    auto raw = etroll_raw(other_bus->device());
+    raw["max_current"] = std::vector<double>{400, 400, 400, 300};
+    DynamixelActuator limited;
+    REQUIRE(limited.on_configure(validated(raw), {}).ok());
+    CHECK(limited.joints()[0].max_current == Approx(148 * 2.69));  // 398.12 mA: the whole units below 400 mA
+    CHECK(limited.joints()[3].max_current == Approx(300.0));       // an exact number of units stays as it is
 }
 
 TEST_CASE("positions convert per joint: degrees, palm width through the pinion, string through the drum") {
@@ -445,7 +454,7 @@ TEST_CASE("a hardware error becomes a fault on the joint, a typed error on write
     CHECK_THAT(st.message(), Catch::Contains("rollsense dxl reboot --device " + emu->device() + " --baud 57600 --id 3") &&
                                  Catch::Contains("device:call('reboot', {joint='palm'})"));
     // While the run holds the port (its lock) the command is refused: the script's call first (second diff review).
-    CHECK_THAT(st.message(), Catch::Contains("a script that carries on can call device:call('reboot', {joint='palm'}); "
+    CHECK_THAT(st.message(), Catch::Contains("a cleanup function (rs.on_cleanup) can call device:call('reboot', {joint='palm'}); "
                                              "after the run: rollsense dxl reboot"));
 
     auto r = a.invoke("reboot", {{"joint", std::string("palm")}});

@@ -86,8 +86,8 @@ TEST_CASE("each injected servo fault ends the run with a typed error, complete t
 // was printed twice: by the plugin when it read the alert, then as the run's error.
 TEST_CASE("a servo fault is reported once, as the run's error", "[fault]") {
     for (auto [spec, code, text, kind] :
-         {std::tuple{"1:silent:25", ErrorCode::timeout, "did not answer", "(after a timeout error)"},
-          std::tuple{"1:hardware-error:25", ErrorCode::hardware_fault, "overload", "(after a hardware fault error)"}}) {
+         {std::tuple{"1:silent:25", ErrorCode::timeout, "did not answer", "(after its fault: timeout)"},
+          std::tuple{"1:hardware-error:25", ErrorCode::hardware_fault, "overload", "(after its fault: hardware fault)"}}) {
         INFO(spec);
         const testing::TempDir tmp("rollsense-emulated-fault-once");
         const testing::LogCapture log(LogLevel::info);

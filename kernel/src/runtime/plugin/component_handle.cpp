@@ -39,7 +39,7 @@ Status ComponentHandle::require_active(const char* what) const {
     return {ErrorCode::state_error, describe() + ": " + what + " needs the active state, it is " +
                                         std::string(to_string(state_)) +
                                         (state_ == LifecycleState::error
-                                             ? " (after a " + std::string(to_string(last_error_.code())) + " error)"
+                                             ? " (after its fault: " + std::string(to_string(last_error_.code())) + ")"
                                              : "")};
 }
 

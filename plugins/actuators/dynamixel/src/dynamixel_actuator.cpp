@@ -573,7 +573,9 @@ Result<std::size_t> DynamixelActuator::joint_index(const ValueMap& args) const {
 std::string DynamixelActuator::reboot_way_out(std::size_t i, bool in_script) const {
     const std::string call = "device:call('reboot', {joint='" + config_.joints[i].name + "'})";
     if (config_.device == "emulator")  // no port outside this process: the next run's emulated servos start afresh
-        return in_script ? "reboot it from the script: " + call : "run again (the emulated servos start afresh)";
+        return in_script ? "reboot it from a cleanup function (rs.on_cleanup): " + call +
+                               ", or run again (the emulated servos start afresh)"
+                         : "run again (the emulated servos start afresh)";
     // The port as one shell word (a path with a space in it would not paste).
     const bool plain = std::all_of(config_.device.begin(), config_.device.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("/._-:+").find(c) != std::string_view::npos;
@@ -581,8 +583,9 @@ std::string DynamixelActuator::reboot_way_out(std::size_t i, bool in_script) con
     const std::string port = plain ? config_.device : "'" + config_.device + "'";
     const std::string command = "rollsense dxl reboot --device " + port + " --baud " + std::to_string(config_.baud) +
                                 " --id " + std::to_string(ids_[i]);
-    // While the run holds the port the command is refused (its lock): a script that carries on reboots it itself.
-    if (in_script) return "reboot it: a script that carries on can call " + call + "; after the run: " + command +
+    // While the run holds the port the command is refused (its lock), and a device's fault ends the script: its cleanup
+    // functions may reboot it (hardware review: "a script that carries on" was no way out, none can).
+    if (in_script) return "reboot it: a cleanup function (rs.on_cleanup) can call " + call + "; after the run: " + command +
                           " (or power-cycle it)";
     return "reboot it: " + command + " (or power-cycle it)";
 }

@@ -48,7 +48,8 @@ std::int32_t JointMap::ma_to_current_units(double ma) const {
 
 std::uint16_t JointMap::current_limit_units() const {
     if (max_current_ma <= 0.0) return model->max_current_limit;
-    const auto units = std::lround(hal::dxl::ma_to_current_units(*model, max_current_ma));
+    // Down (hardware review: 400 mA became 149 units, 400.81 mA): the servo's limit never exceeds the profile's.
+    const auto units = static_cast<long>(std::floor(hal::dxl::ma_to_current_units(*model, max_current_ma) + 1e-9));
     return static_cast<std::uint16_t>(std::clamp<long>(units, 1, model->max_current_limit));
 }
 
