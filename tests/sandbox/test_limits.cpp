@@ -19,6 +19,24 @@ for i = 1, 2e6 do rs.spawn(function() rs.wait(1e6) end) end
     CHECK(kt::fs::exists(dir / "out" / "run-info.csv"));
 }
 
+// Sandbox review: each task spawned the next and ended, so one was always ready: the virtual clock stood still,
+// --time-limit never came, and only Ctrl-C ended the run.
+TEST_CASE("a chain of spawned tasks that never lets the clock move ends as a limit violation, and cleanup runs",
+          "[sandbox][spawn]") {
+    kt::TempDir dir;
+    auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'
+rs.on_cleanup(function() rs.write_output('cleanup.txt', tostring(rs.now())) end)
+local function chain() rs.spawn(chain) end
+rs.spawn(chain)
+rs.wait(100)
+)", 60);
+    INFO(r.text);
+    REQUIRE(r.exited);
+    CHECK_THAT(r.text, Catch::StartsWith("limit violation: 100000 task steps at run time 0 s without the clock moving "
+                                         "(a chain of rs.spawn?); let tasks wait (rs.wait)"));
+    CHECK(kt::read_file(dir / "out" / "cleanup.txt") == "0.0");
+}
+
 TEST_CASE("tasks that have ended do not count against the spawn limit", "[sandbox][spawn]") {
     kt::TempDir dir;
     auto r = sandbox_test::run_script_limited(dir, R"(local rs = require 'rollsense'

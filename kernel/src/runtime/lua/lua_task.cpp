@@ -10,8 +10,7 @@
 namespace rollsense::runtime {
 namespace {
 
-// The innermost Lua line of a thread's stack and, when it is elsewhere, the task's own function's: a call inside a
-// module (etroll.lua) is found from the script's line that made it (review). "etroll.lua:142, called from demo.lua:18".
+// "etroll.lua:142, called from demo.lua:18": the innermost Lua line and, when elsewhere, the task function's (review).
 std::string stack_lines(lua_State* L) {
     std::string inner, outer;
     lua_Debug ar;

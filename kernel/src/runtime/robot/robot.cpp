@@ -222,8 +222,7 @@ std::string Robot::unattended_motion() const {
     for (const auto& j : joints_)
         if (j.command.torque_enabled && (j.command.mode == ControlMode::current || j.command.mode == ControlMode::velocity))
             return "joint '" + j.name + "' is driven by " + (j.command.mode == ControlMode::current ? "current" : "velocity");
-    for (const auto& c : controllers_)
-        if (c.enabled) return "controller '" + c.name + "' is on";
+    for (const auto& c : controllers_) if (c.enabled) return "controller '" + c.name + "' is on";
     return {};
 }
 

@@ -97,8 +97,7 @@ public:
     void disable_all_controllers(double time);
     Controller* find_controller(const std::string& name);
     bool controller_enabled(const std::string& name) const;
-    // "joint 'palm' is driven by current" (or velocity), "controller 'x' is on": what moves between control periods
-    // without a new command; "" when every joint only holds or goes to a position.
+    // What moves between control periods without a new command ("joint 'palm' is driven by current"); "" if nothing.
     std::string unattended_motion() const;
 
     // Devices by name, for `device:call(...)` from scripts.

@@ -66,6 +66,14 @@ void Scheduler::on_recording_start(double t) {
 }
 
 void Scheduler::resume(Slot& slot) {
+    // Sandbox review: a chain of rs.spawn kept a task ready at every pass: the virtual clock and --time-limit stood still.
+    if (now() != instant_) instant_ = now(), instant_steps_ = 0;
+    if (++instant_steps_ == 100'000) {  // once: the cancel then ends every task at its next instruction
+        const std::string why = "100000 task steps at run time " + format_number(now()) + " s without the clock moving "
+                                "(a chain of rs.spawn?); let tasks wait (rs.wait)";
+        fail(Status(ErrorCode::limit_violation, why));
+        cancellation_.cancel(why);
+    }
     current_ = slot.task.get();
     TaskStep step = slot.task->resume(slot.outcome);
     current_ = nullptr;

@@ -88,6 +88,8 @@ private:
     std::uint64_t control_k_ = 0;
     double next_control_ = 0;
     double last_control_ = 0;
+    double instant_ = -1;            // the run time of the last task step, and how many steps it has seen
+    std::uint64_t instant_steps_ = 0;
 };
 
 }  // namespace rollsense::runtime

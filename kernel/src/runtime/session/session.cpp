@@ -13,7 +13,6 @@
 #include <exception>
 #include <new>
 
-#include "rollsense/atomic_file.hpp"
 #include "rollsense/dataset_files.hpp"
 #include "rollsense/last_resort.hpp"
 #include "rollsense/log.hpp"
@@ -221,10 +220,8 @@ void Session::write_run_info(const Status& s, double wall_start) {
     const std::string working_dir = fs::current_path(ec).string();
     std::vector<std::pair<std::string, std::string>> fields{
         {"date_utc", utc_now()}, {"command_line", options_.command_line},
-        {"rollsense_version", ROLLSENSE_VERSION},
-        {"profile", profile_.path.string()},
-        {"script", options_.script.string()}, {"working_dir", working_dir},
-        {"seed", std::to_string(options_.seed)},
+        {"rollsense_version", ROLLSENSE_VERSION}, {"profile", profile_.path.string()},
+        {"script", options_.script.string()}, {"working_dir", working_dir}, {"seed", std::to_string(options_.seed)},
         {"status", s.ok() ? "ok" : s.error().describe().substr(0, 1 << 16)},  // a script's error text has no bound
         {"trials_saved", std::to_string(recorder_->trials_saved())},
         {"trials_skipped", std::to_string(recorder_->trials_skipped())},
