@@ -86,16 +86,15 @@ Result<std::unique_ptr<Robot>> Robot::create(const Profile& profile, PluginRegis
     for (const auto& dev : profile.devices) {
         auto resolved = resolve_device(profile, dev, registry);
         if (!resolved) return resolved.error();
-        const auto& [lib, params] = *resolved;
         const PluginContext ctx{dev.name, share_dir, profile.path, profile.virtual_clock};
         // Created and configured; a refusal names where the profile writes what the plugin refused (once).
         const auto configure = [&](auto& h) {
-            auto s = h ? (*h)->configure(params, ctx)
+            auto s = h ? (*h)->configure(resolved->params, ctx)
                        : h.status().with_context(profile.at("devices." + dev.name));  // a constructor that threw
             const std::string site = s.ok() ? "" : params_site(profile, dev, s.message());
             return s.ok() || !h || s.message().find(site) != std::string::npos ? s : Status{s.code(), site + ": " + s.message()};
         };
-        if (lib->manifest().kind == PluginKind::sensor) {
+        if (resolved->library->manifest().kind == PluginKind::sensor) {
             auto h = registry.create_sensor(dev.plugin, dev.name);
             if (auto s = configure(h); !s.ok()) return s.error();
             std::vector<ChannelInfo> channels;  // read in the handle's guard: a throw names the device (review)
